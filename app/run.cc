@@ -1,0 +1,385 @@
+#include "app/run.h"
+
+#include "common/history_writer.h"
+#include "common/input_error.h"
+#include "dda/system.h"
+#include "dda/vtu_writer.h"
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+
+namespace ddafem
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double elapsed(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string format(double value, int precision = 4)
+{
+  std::ostringstream s;
+  s << std::setprecision(precision) << value;
+  return s.str();
+}
+
+/// P-wave speed that governs the scene's blocks: plate speed in plane stress, body in strain.
+double governing_p_speed(const Scene& scene, const dda::Material& m)
+{
+  const WaveSpeeds c = wave_speeds(m);
+  return scene.model.plane_mode == dda::PlaneMode::stress ? c.p_plate : c.p_body;
+}
+
+/// Smallest block: index, area [m^2] and shortest edge [m].
+struct SmallestBlock
+{
+  std::size_t index = 0;
+  double area = std::numeric_limits<double>::max();
+  double shortest_edge = std::numeric_limits<double>::max();
+};
+
+SmallestBlock smallest_block(const Scene& scene)
+{
+  SmallestBlock s;
+  for (std::size_t i = 0; i < scene.model.blocks.size(); ++i)
+  {
+    const auto& v = scene.model.blocks[i].vertices;
+    const double area = std::abs(dda::signed_area(v));
+    if (area < s.area)
+    {
+      s.area = area;
+      s.index = i;
+    }
+    for (std::size_t k = 0; k < v.size(); ++k)
+      s.shortest_edge = std::min(s.shortest_edge, (v[(k + 1) % v.size()] - v[k]).norm());
+  }
+  return s;
+}
+
+/// One-line progress display on a terminal, at most five updates a second.
+class Progress
+{
+public:
+  Progress(bool enabled_, std::size_t n_steps_) : enabled(enabled_), n_steps(n_steps_) {}
+  void update(std::size_t step, double time, double wall, bool force = false)
+  {
+    if (!enabled || (!force && wall - last < 0.2))
+      return;
+    last = wall;
+    const double eta = step > 0 ? wall * static_cast<double>(n_steps - step) / step : 0.0;
+    std::fprintf(stderr, "\rstep %zu/%zu  t = %.6g s  wall %.1f s  ETA %.1f s   ", step, n_steps,
+                 time, wall, eta);
+    std::fflush(stderr);
+  }
+  void finish()
+  {
+    if (enabled)
+      std::fprintf(stderr, "\n");
+  }
+
+private:
+  bool enabled;
+  std::size_t n_steps;
+  double last = -1.0;
+};
+
+std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
+{
+  std::vector<HistoryChannel> channels;
+  for (const dda::Monitor& m : model.monitors)
+  {
+    const std::string base = "monitors/" + m.name + "/";
+    channels.push_back({base + "displacement", 2, "m", "(ux, uy) of the material point"});
+    channels.push_back({base + "velocity", 2, "m/s", "(vx, vy) of the material point"});
+    channels.push_back(
+        {base + "stress", 3, "Pa", "(sxx, syy, sxy) of its block, tension positive"});
+  }
+  channels.push_back({"energy/kinetic", 1, "J", "sum of v^T M v / 2"});
+  channels.push_back({"energy/strain", 1, "J", "elastic energy of the blocks"});
+  channels.push_back({"energy/spring", 1, "J", "joint and fixed-point penalty springs"});
+  channels.push_back({"energy/work_of_loads", 1, "J", "point loads and gravity since t = 0"});
+  channels.push_back({"energy/work_of_supports", 1, "J", "prescribed support motion since t = 0"});
+  channels.push_back({"energy/dissipated", 1, "J",
+                      "initial + work - stored: algorithmic damping of the integrator"});
+  return channels;
+}
+
+std::vector<double> history_row(const dda::System& system)
+{
+  std::vector<double> row;
+  for (std::size_t k = 0; k < system.get_model().monitors.size(); ++k)
+  {
+    const dda::MonitorSample s = system.sample_monitor(k);
+    row.insert(row.end(), {s.displacement.x(), s.displacement.y(), s.velocity.x(), s.velocity.y(),
+                           s.stress[0], s.stress[1], s.stress[2]});
+  }
+  const dda::EnergyBalance e = system.energy();
+  row.insert(row.end(),
+             {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports, e.dissipated});
+  return row;
+}
+
+const char* integrator_name(dda::Integrator i)
+{
+  return i == dda::Integrator::dda ? "dda" : "newmark_trapezoidal";
+}
+} // namespace
+
+WaveSpeeds wave_speeds(const dda::Material& m)
+{
+  const double e = m.youngs_modulus, nu = m.poisson_ratio, rho = m.density;
+  WaveSpeeds c;
+  c.p_body = std::sqrt(e * (1.0 - nu) / (rho * (1.0 + nu) * (1.0 - 2.0 * nu)));
+  c.p_plate = std::sqrt(e / (rho * (1.0 - nu * nu)));
+  c.p_bar = std::sqrt(e / rho);
+  c.s = std::sqrt(e / (2.0 * rho * (1.0 + nu)));
+  return c;
+}
+
+TimeStepAdvice suggest_time_step(const Scene& scene)
+{
+  double c_max = 0.0;
+  for (const dda::Material& m : scene.model.materials)
+    c_max = std::max(c_max, governing_p_speed(scene, m));
+  const SmallestBlock small = smallest_block(scene);
+  const double transit = std::sqrt(small.area) / c_max;
+
+  double f_max = 0.0;
+  for (const dda::PointLoad& l : scene.model.point_loads)
+    f_max = std::max(f_max, l.time_function.characteristic_frequency());
+  for (const dda::FixedPoint& f : scene.model.fixed_points)
+    f_max = std::max({f_max, f.displacement_x.characteristic_frequency(),
+                      f.displacement_y.characteristic_frequency()});
+
+  TimeStepAdvice advice;
+  advice.dt_max = transit;
+  advice.reason = "a P wave crosses the smallest block in " + format(transit, 3) + " s";
+  if (f_max > 0.0 && 1.0 / (20.0 * f_max) < advice.dt_max)
+  {
+    advice.dt_max = 1.0 / (20.0 * f_max);
+    advice.reason =
+        "20 steps per period of the highest load frequency (" + format(f_max, 4) + " Hz)";
+  }
+  if (f_max > 0.0 && scene.model.time.integrator == dda::Integrator::dda)
+  {
+    // DDA's scheme damps amplitude by about exp(-omega^2 dt t / 4) (physics.md section 2); keep
+    // the loss over the time the wave needs to cross the model below 5%.
+    double x_min = std::numeric_limits<double>::max(), x_max = -x_min;
+    double y_min = x_min, y_max = x_max;
+    for (const dda::BlockDescription& b : scene.model.blocks)
+      for (const dda::Point& v : b.vertices)
+      {
+        x_min = std::min(x_min, v.x());
+        x_max = std::max(x_max, v.x());
+        y_min = std::min(y_min, v.y());
+        y_max = std::max(y_max, v.y());
+      }
+    const double crossing = std::max(x_max - x_min, y_max - y_min) / c_max;
+    const double omega = 2.0 * M_PI * f_max;
+    const double dt_damping = -4.0 * std::log(0.95) / (omega * omega * crossing);
+    if (dt_damping < advice.dt_max)
+    {
+      advice.dt_max = dt_damping;
+      advice.reason = "DDA's algorithmic damping costs < 5% amplitude at " + format(f_max, 4) +
+                      " Hz over a model crossing";
+    }
+  }
+  advice.dt_min = advice.dt_max / 10.0;
+  return advice;
+}
+
+std::string check_scene(const Scene& scene)
+{
+  const dda::System system(scene.model); // finds joints; throws InputError on engine-level issues
+  const dda::ModelDescription& model = scene.model;
+  std::ostringstream out;
+  out << "scene: " << scene.name << " (" << scene.file << ")\n";
+  double total_mass = 0.0;
+  for (const dda::BlockDescription& b : model.blocks)
+    total_mass += model.materials[b.material].density * std::abs(dda::signed_area(b.vertices));
+  std::size_t n_joint_points = 0;
+  for (const dda::Joint& j : system.get_joints())
+    n_joint_points += j.points.size();
+  const SmallestBlock small = smallest_block(scene);
+
+  out << "  analysis: plane " << (model.plane_mode == dda::PlaneMode::stress ? "stress" : "strain")
+      << "\n";
+  out << "  blocks: " << model.blocks.size() << ", joints: " << system.get_joints().size() << " ("
+      << n_joint_points << " spring points), DOFs: " << system.n_dofs() << "\n";
+  out << "  total mass: " << format(total_mass, 6) << " kg\n";
+  out << "  smallest block: " << model.blocks[small.index].origin << ", area " << format(small.area)
+      << " m^2, shortest edge " << format(small.shortest_edge) << " m\n";
+  for (const dda::Material& m : model.materials)
+  {
+    const WaveSpeeds c = wave_speeds(m);
+    out << "  material " << m.name << ": VP " << format(c.p_body, 5) << " m/s (body), "
+        << format(c.p_plate, 5) << " m/s (plane stress), " << format(c.p_bar, 5)
+        << " m/s (bar); VS " << format(c.s, 5) << " m/s\n";
+  }
+  for (const dda::JointMaterial& j : model.joint_materials)
+    out << "  joint material " << j.name << ": p " << format(j.normal_stiffness) << " N/m, shear "
+        << format(j.shear_ratio * j.normal_stiffness) << " N/m, phi " << j.friction_angle
+        << " deg, c " << format(j.cohesion) << " Pa, tensile " << format(j.tensile_strength)
+        << " Pa, " << (j.bonded ? "bonded" : "frictional") << "\n";
+  out << "  loads: " << model.point_loads.size() << ", fixed points: " << model.fixed_points.size()
+      << " (default penalty " << format(system.default_fixed_point_stiffness()) << " N/m)"
+      << ", monitors: " << model.monitors.size() << "\n";
+  const auto n_steps = static_cast<std::size_t>(std::llround(model.time.end_time / model.time.dt));
+  out << "  time: dt " << format(model.time.dt) << " s, end " << format(model.time.end_time)
+      << " s, " << n_steps << " steps, integrator " << integrator_name(model.time.integrator)
+      << "\n";
+  const TimeStepAdvice advice = suggest_time_step(scene);
+  out << "  suggested dt: " << format(advice.dt_min, 3) << " to " << format(advice.dt_max, 3)
+      << " s (" << advice.reason << ")\n";
+  return out.str();
+}
+
+int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
+{
+  const auto wall_start = Clock::now();
+  dda::System system(scene.model); // input errors surface here, before anything is written
+
+  const std::filesystem::path dir =
+      options.output_directory.empty() ? scene.output.directory : options.output_directory;
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec)
+    throw InputError("cannot create output directory '" + dir.string() + "': " + ec.message());
+
+  const dda::TimeSettings& time = scene.model.time;
+  const auto n_steps = static_cast<std::size_t>(std::llround(time.end_time / time.dt));
+  const TimeStepAdvice advice = suggest_time_step(scene);
+  std::vector<std::string> warnings;
+  if (time.dt > advice.dt_max)
+    warnings.push_back("dt = " + format(time.dt) + " s exceeds the suggested " +
+                       format(advice.dt_max, 3) + " s (" + advice.reason + ")");
+  for (const std::string& w : warnings)
+    log << "warning: " << w << "\n";
+
+  HistoryWriter history((dir / "histories.h5").string(), history_channels(scene.model));
+  history.set_attribute("scene", scene.file);
+  history.set_attribute("version", DDAFEM_VERSION);
+  dda::VtuSeriesWriter vtu(dir.string(), "blocks");
+
+  double output_time = 0.0;
+  const auto timed_output = [&](auto&& write)
+  {
+    const auto start = Clock::now();
+    write();
+    output_time += elapsed(start);
+  };
+  timed_output(
+      [&]
+      {
+        history.append(system.time(), history_row(system));
+        vtu.write(system.time(), system.snapshot());
+      });
+
+  Progress progress(!options.quiet && isatty(fileno(stderr)), n_steps);
+  double next_snapshot = scene.output.interval;
+  dda::StepStatus failure;
+  for (std::size_t step = 1; step <= n_steps; ++step)
+  {
+    const dda::StepStatus status = system.advance(time.dt);
+    if (status.outcome != dda::StepOutcome::success)
+    {
+      failure = status;
+      break;
+    }
+    const bool last = step == n_steps;
+    timed_output(
+        [&]
+        {
+          if (step % scene.output.history_every == 0 || last)
+            history.append(system.time(), history_row(system));
+          if (last ||
+              (scene.output.interval > 0.0 && system.time() >= next_snapshot - 1e-9 * time.dt))
+          {
+            vtu.write(system.time(), system.snapshot());
+            while (next_snapshot <= system.time() + 1e-9 * time.dt && scene.output.interval > 0.0)
+              next_snapshot += scene.output.interval;
+          }
+        });
+    progress.update(step, system.time(), elapsed(wall_start));
+  }
+  progress.update(system.n_steps(), system.time(), elapsed(wall_start), true);
+  progress.finish();
+
+  const bool failed = failure.outcome != dda::StepOutcome::success;
+  if (failed)
+  {
+    // Keep the state reached readable: a last row and snapshot at the failure time.
+    history.append(system.time(), history_row(system));
+    vtu.write(system.time(), system.snapshot());
+  }
+  history.flush();
+
+  const dda::PhaseTimings& t = system.get_timings();
+  const dda::EnergyBalance e = system.energy();
+  const double wall = elapsed(wall_start);
+  nlohmann::json summary;
+  summary["scene"] = scene.file;
+  summary["name"] = scene.name;
+  summary["version"] = DDAFEM_VERSION;
+  summary["status"] = failed ? "numerical_failure" : "completed";
+  if (failed)
+    summary["failure"] = failure.message;
+  summary["time_reached_s"] = system.time();
+  summary["end_time_s"] = time.end_time;
+  summary["steps"] = system.n_steps();
+  summary["dt_s"] = time.dt;
+  summary["integrator"] = integrator_name(time.integrator);
+  summary["solver"] = {{"name", system.get_solver().name()},
+                       {"factorizations", system.get_solver().n_factorizations()},
+                       {"solves", system.get_solver().n_solves()},
+                       {"refinement_iterations", system.get_solver().n_refinements()}};
+  summary["model"] = {{"blocks", system.get_blocks().size()},
+                      {"joints", system.get_joints().size()},
+                      {"dofs", system.n_dofs()}};
+  summary["wall_time_s"] = wall;
+  summary["timings_s"] = {
+      {"assemble", t.assemble}, {"solve", t.solve}, {"update", t.update}, {"output", output_time}};
+  summary["energy_J"] = {{"kinetic", e.kinetic},
+                         {"strain", e.strain},
+                         {"spring", e.spring},
+                         {"work_of_loads", e.work_of_loads},
+                         {"work_of_supports", e.work_of_supports},
+                         {"initial", e.initial},
+                         {"dissipated", e.dissipated}};
+  summary["warnings"] = warnings;
+  summary["outputs"] = {
+      {"histories", "histories.h5"}, {"blocks", "blocks.pvd"}, {"snapshots", vtu.n_written()}};
+  {
+    std::ofstream f(dir / "summary.json");
+    f << summary.dump(2) << "\n";
+    if (!f)
+      throw std::runtime_error("cannot write " + (dir / "summary.json").string());
+  }
+
+  if (failed)
+  {
+    log << "error: numerical failure: " << failure.message << "\n"
+        << "results up to t = " << system.time() << " s are in " << dir.string() << "\n";
+    return 1;
+  }
+  log << "completed " << system.n_steps() << " steps to t = " << system.time() << " s in "
+      << format(wall, 3) << " s wall time\n"
+      << "results: " << (dir / "blocks.pvd").string() << " (ParaView), "
+      << (dir / "histories.h5").string() << ", " << (dir / "summary.json").string() << "\n";
+  return 0;
+}
+
+} // namespace ddafem

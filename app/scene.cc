@@ -1,0 +1,1282 @@
+#include "app/scene.h"
+
+#include "app/scene_schema.h"
+#include "common/input_error.h"
+#include "dda/geometry.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <utility>
+
+namespace ddafem
+{
+namespace
+{
+using dda::Point;
+using dda::Vector2;
+using dda::Voigt;
+using schema::Key;
+using schema::SceneSchema;
+using schema::Section;
+using schema::ValueType;
+
+// ---- Text helpers ---------------------------------------------------------------------------
+
+std::string trim(const std::string& s)
+{
+  const auto first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos)
+    return "";
+  const auto last = s.find_last_not_of(" \t\r\n");
+  return s.substr(first, last - first + 1);
+}
+
+std::vector<std::string> split(const std::string& s, char separator)
+{
+  std::vector<std::string> parts;
+  std::string::size_type begin = 0;
+  while (true)
+  {
+    const auto end = s.find(separator, begin);
+    parts.push_back(s.substr(begin, end == std::string::npos ? std::string::npos : end - begin));
+    if (end == std::string::npos)
+      return parts;
+    begin = end + 1;
+  }
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& separator)
+{
+  std::string s;
+  for (std::size_t i = 0; i < items.size(); ++i)
+    s += (i == 0 ? "" : separator) + items[i];
+  return s;
+}
+
+std::string format_number(double v)
+{
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::string format_point(const Point& p)
+{
+  return "[" + format_number(p.x()) + ", " + format_number(p.y()) + "]";
+}
+
+/// Levenshtein distance (insertions, deletions, substitutions).
+std::size_t edit_distance(const std::string& a, const std::string& b)
+{
+  std::vector<std::size_t> previous(b.size() + 1), current(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    previous[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+  {
+    current[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j)
+      current[j] = std::min(
+          {previous[j] + 1, current[j - 1] + 1, previous[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    std::swap(previous, current);
+  }
+  return previous[b.size()];
+}
+
+/// "; did you mean 'X'?" for the candidate closest to `name`, if it is close; else "".
+std::string suggestion(const std::string& name, const std::vector<std::string>& candidates)
+{
+  const std::size_t threshold = std::max<std::size_t>(2, name.size() / 3);
+  std::optional<std::string> best;
+  std::size_t best_distance = 0;
+  for (const std::string& c : candidates)
+  {
+    const std::size_t d = edit_distance(name, c);
+    if (d <= threshold && d < std::max(name.size(), c.size()) && (!best || d < best_distance))
+    {
+      best = c;
+      best_distance = d;
+    }
+  }
+  return best ? "; did you mean '" + *best + "'?" : "";
+}
+
+/// A node as it would be written in flow style, shortened for messages.
+std::string yaml_text(const YAML::Node& node)
+{
+  if (!node.IsDefined() || node.IsNull())
+    return "";
+  std::string text;
+  if (node.IsScalar())
+    text = node.Scalar();
+  else
+  {
+    YAML::Emitter emitter;
+    emitter << YAML::Flow << node;
+    text = emitter.c_str();
+  }
+  if (text.size() > 80)
+    text = text.substr(0, 77) + "...";
+  return text;
+}
+
+std::optional<double> parse_double(const std::string& text)
+{
+  const std::string t = trim(text);
+  if (t.empty())
+    return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(t.c_str(), &end);
+  if (end != t.c_str() + t.size() || errno == ERANGE || !std::isfinite(v))
+    return std::nullopt;
+  return v;
+}
+
+std::optional<double> parse_double(const YAML::Node& node)
+{
+  if (!node.IsDefined() || !node.IsScalar())
+    return std::nullopt;
+  return parse_double(node.Scalar());
+}
+
+std::optional<long long> parse_integer(const YAML::Node& node)
+{
+  if (!node.IsDefined() || !node.IsScalar())
+    return std::nullopt;
+  const std::string t = trim(node.Scalar());
+  if (t.empty())
+    return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(t.c_str(), &end, 10);
+  if (end != t.c_str() + t.size() || errno == ERANGE)
+    return std::nullopt;
+  return v;
+}
+
+/// The child of a map (without the side effects of non-const operator[]).
+YAML::Node child(const YAML::Node& map, const std::string& key)
+{
+  const YAML::Node& const_map = map;
+  return const_map[key];
+}
+
+// ---- What a key expects, in words -----------------------------------------------------------
+
+std::string unit_suffix(const Key& key)
+{
+  return key.unit.empty() ? "" : " [" + key.unit + "]";
+}
+
+std::string range_text(const Key& key, bool each)
+{
+  const std::string r = key.range.describe();
+  if (r.empty())
+    return "";
+  const bool interval = key.range.min && key.range.max;
+  return std::string(each ? " each" : "") + (interval ? " in " : " ") + r;
+}
+
+std::string quoted_list(const std::vector<std::string>& names)
+{
+  std::vector<std::string> q;
+  for (const std::string& n : names)
+    q.push_back("'" + n + "'");
+  return join(q, ", ");
+}
+
+/// "a number > 0 [kg/m^3]", "one of 'stress', 'strain'", ...
+std::string expected_text(const Key& key, const SceneSchema& schema)
+{
+  switch (key.type)
+  {
+  case ValueType::string:
+    return "a string";
+  case ValueType::number:
+    return "a number" + range_text(key, false) + unit_suffix(key);
+  case ValueType::integer:
+    return "an integer" + range_text(key, false);
+  case ValueType::boolean:
+    return "true or false";
+  case ValueType::choice:
+    return "one of " + quoted_list(key.choices);
+  case ValueType::vector2:
+    return "[x, y]: a list of 2 numbers" + range_text(key, true) + unit_suffix(key);
+  case ValueType::integer_pair:
+    return "a list of 2 integers" + range_text(key, true);
+  case ValueType::name_pair:
+    return "a list of 2 names";
+  case ValueType::voigt:
+    return "[xx, yy, xy]: a list of 3 numbers" + unit_suffix(key);
+  case ValueType::point_list:
+    return "a list of [x, y] points" + unit_suffix(key);
+  case ValueType::table:
+    return "a list of [t, value] pairs with strictly increasing t";
+  case ValueType::section:
+    return "a map with keys " + quoted_list(schema.section(key.section).key_names());
+  case ValueType::section_map:
+    return "a map from names to maps with keys " +
+           quoted_list(schema.section(key.section).key_names());
+  case ValueType::section_list:
+    return "a list of maps with keys " + quoted_list(schema.section(key.section).key_names());
+  case ValueType::time_function:
+    return "a time function: a map with 'type' one of " + quoted_list(schema.time_function_types());
+  }
+  return "";
+}
+
+// ---- Where a problem is ---------------------------------------------------------------------
+
+/// A --set override as applied: the key path it set (in message form, "blocks[0].material") and
+/// the argument as typed.
+struct AppliedOverride
+{
+  std::string key_path;
+  std::string argument;
+};
+
+std::string command_line_location(const std::string& argument)
+{
+  return "command line --set " + argument;
+}
+
+bool is_within(const std::string& path, const std::string& prefix)
+{
+  if (path.compare(0, prefix.size(), prefix) != 0)
+    return false;
+  return path.size() == prefix.size() || path[prefix.size()] == '.' || path[prefix.size()] == '[';
+}
+
+/// Turns problems at YAML nodes into InputErrors naming the file and line, or the --set argument
+/// that put the value there.
+class Locator
+{
+public:
+  explicit Locator(std::string file_) : file(std::move(file_)) {}
+
+  void add_override(AppliedOverride o) { overrides.push_back(std::move(o)); }
+
+  InputError error(const YAML::Node& node, const std::string& key_path, const std::string& value,
+                   const std::string& expected) const
+  {
+    // A problem at or inside an overridden key, or at a key an override changed something in.
+    for (auto o = overrides.rbegin(); o != overrides.rend(); ++o)
+      if (is_within(key_path, o->key_path) ||
+          (!key_path.empty() && is_within(o->key_path, key_path)))
+        return InputError::at(command_line_location(o->argument), 0, key_path, value, expected);
+    int line = 0;
+    if (node.IsDefined() && !node.Mark().is_null())
+      line = node.Mark().line + 1;
+    return InputError::at(file, line, key_path, value, expected);
+  }
+
+  const std::string& scene_file() const { return file; }
+
+private:
+  std::string file;
+  std::vector<AppliedOverride> overrides;
+};
+
+/// What every reader needs: the schema, where problems are, and where relative paths start.
+struct Context
+{
+  const SceneSchema& schema;
+  const Locator& locator;
+  std::filesystem::path scene_directory;
+};
+
+// ---- Reading one map against its schema section ---------------------------------------------
+
+/// A YAML map checked against a schema section: no unknown or duplicate keys, all required keys
+/// present. Its getters convert and range-check one key each, using the schema's default when the
+/// key is absent; asking for a key that is not in the section is a programming error.
+class MapReader
+{
+public:
+  MapReader(const YAML::Node& node_, const Section& section_, std::string path_,
+            const Context& context_)
+      : node(node_), section(&section_), path(std::move(path_)), context(&context_)
+  {
+    // A null value (`output:` with nothing after it) is an empty map.
+    if (!node.IsMap() && !node.IsNull())
+      throw context->locator.error(node, path, yaml_text(node),
+                                   "expected a map with keys " + quoted_list(section->key_names()));
+    std::vector<std::string> seen;
+    for (auto it = node.begin(); node.IsMap() && it != node.end(); ++it)
+    {
+      const YAML::Node key_node = it->first;
+      if (!key_node.IsScalar())
+        throw context->locator.error(key_node, path, yaml_text(key_node),
+                                     "expected a key name (a string)");
+      const std::string name = key_node.Scalar();
+      if (std::find(seen.begin(), seen.end(), name) != seen.end())
+        throw context->locator.error(key_node, path_of(name), "", "duplicate key");
+      seen.push_back(name);
+      if (section->find(name) == nullptr)
+      {
+        const std::string hint = suggestion(name, section->key_names());
+        throw context->locator.error(key_node, path_of(name), "",
+                                     "unknown key" + (hint.empty() ? std::string(".") : hint) +
+                                         " Allowed keys here: " + join(section->key_names(), ", "));
+      }
+    }
+    for (const Key& k : section->keys)
+      if (k.required && !has(k.name))
+        throw context->locator.error(node, path_of(k.name), "",
+                                     "missing required key: expected " +
+                                         expected_text(k, context->schema));
+  }
+
+  bool has(const std::string& name) const { return child(node, name).IsDefined(); }
+
+  const std::string& key_path() const { return path; }
+  const YAML::Node& yaml() const { return node; }
+  const Context& ctx() const { return *context; }
+
+  /// Path of a key of this map: "materials.rock.density".
+  std::string path_of(const std::string& name) const
+  {
+    return path.empty() ? name : path + "." + name;
+  }
+
+  /// An error about key `name` (at its line, or the map's if it is absent).
+  InputError error(const std::string& name, const std::string& expected) const
+  {
+    const YAML::Node n = child(node, name);
+    return context->locator.error(n.IsDefined() ? n : node, path_of(name), yaml_text(n), expected);
+  }
+
+  double number(const std::string& name) const
+  {
+    const Value v = value(name, ValueType::number);
+    const std::optional<double> x = parse_double(v.node);
+    if (!x || !v.key->range.contains(*x))
+      throw mismatch(v);
+    return *x;
+  }
+
+  long long integer(const std::string& name) const
+  {
+    const Value v = value(name, ValueType::integer);
+    const std::optional<long long> x = parse_integer(v.node);
+    if (!x || !v.key->range.contains(static_cast<double>(*x)))
+      throw mismatch(v);
+    return *x;
+  }
+
+  bool boolean(const std::string& name) const
+  {
+    const Value v = value(name, ValueType::boolean);
+    bool b = false;
+    if (!v.node.IsScalar() || !YAML::convert<bool>::decode(v.node, b))
+      throw mismatch(v);
+    return b;
+  }
+
+  std::string string(const std::string& name) const
+  {
+    const Value v = value(name, ValueType::string);
+    if (!v.node.IsScalar())
+      throw mismatch(v);
+    return v.node.Scalar();
+  }
+
+  std::string choice(const std::string& name) const
+  {
+    const Value v = value(name, ValueType::choice);
+    if (!v.node.IsScalar())
+      throw mismatch(v);
+    const std::string s = v.node.Scalar();
+    if (std::find(v.key->choices.begin(), v.key->choices.end(), s) == v.key->choices.end())
+      throw context->locator.error(v.node, v.path, s,
+                                   "expected " + expected_text(*v.key, context->schema) +
+                                       suggestion(s, v.key->choices));
+    return s;
+  }
+
+  Vector2 vector2(const std::string& name) const
+  {
+    const Value v = value(name, ValueType::vector2);
+    const std::vector<double> x = numbers(v, 2);
+    return Vector2(x[0], x[1]);
+  }
+
+  Voigt voigt(const std::string& name) const
+  {
+    const Value v = value(name, ValueType::voigt);
+    const std::vector<double> x = numbers(v, 3);
+    return Voigt(x[0], x[1], x[2]);
+  }
+
+  std::array<long long, 2> integer_pair(const std::string& name) const
+  {
+    const Value v = value(name, ValueType::integer_pair);
+    if (!v.node.IsSequence() || v.node.size() != 2)
+      throw mismatch(v);
+    std::array<long long, 2> result{};
+    for (std::size_t i = 0; i < 2; ++i)
+    {
+      const std::optional<long long> x = parse_integer(v.node[i]);
+      if (!x || !v.key->range.contains(static_cast<double>(*x)))
+        throw mismatch(v);
+      result[i] = *x;
+    }
+    return result;
+  }
+
+  std::array<std::string, 2> name_pair(const std::string& name) const
+  {
+    const Value v = value(name, ValueType::name_pair);
+    if (!v.node.IsSequence() || v.node.size() != 2 || !v.node[0].IsScalar() ||
+        !v.node[1].IsScalar())
+      throw mismatch(v);
+    return {v.node[0].Scalar(), v.node[1].Scalar()};
+  }
+
+  /// A list of pairs of numbers ([[x, y], ...] or [[t, value], ...]).
+  std::vector<std::array<double, 2>> pair_list(const std::string& name) const
+  {
+    const Key& k = section->key(name);
+    assert(k.type == ValueType::point_list || k.type == ValueType::table);
+    const Value v = value(name, k.type);
+    if (!v.node.IsSequence() || v.node.size() == 0)
+      throw mismatch(v);
+    std::vector<std::array<double, 2>> result;
+    for (std::size_t i = 0; i < v.node.size(); ++i)
+    {
+      const YAML::Node item = v.node[i];
+      std::optional<double> a, b;
+      if (item.IsSequence() && item.size() == 2)
+      {
+        a = parse_double(item[0]);
+        b = parse_double(item[1]);
+      }
+      if (!a || !b)
+        throw context->locator.error(item, v.path + "[" + std::to_string(i) + "]", yaml_text(item),
+                                     "expected a pair of numbers in " +
+                                         expected_text(k, context->schema));
+      result.push_back({*a, *b});
+    }
+    return result;
+  }
+
+  MapReader section_reader(const std::string& name) const
+  {
+    const Value v = value_or_empty(name, ValueType::section);
+    return MapReader(v.node, context->schema.section(v.key->section), v.path, *context);
+  }
+
+  /// Entries of a map of named maps, in file order.
+  std::vector<std::pair<std::string, MapReader>> section_map(const std::string& name) const
+  {
+    const Value v = value_or_empty(name, ValueType::section_map);
+    if (v.node.IsNull())
+      return {};
+    if (!v.node.IsMap())
+      throw mismatch(v);
+    const Section& s = context->schema.section(v.key->section);
+    std::vector<std::pair<std::string, MapReader>> entries;
+    std::vector<std::string> seen;
+    for (auto it = v.node.begin(); it != v.node.end(); ++it)
+    {
+      const YAML::Node key_node = it->first;
+      if (!key_node.IsScalar() || trim(key_node.Scalar()).empty())
+        throw context->locator.error(key_node, v.path, yaml_text(key_node),
+                                     "expected a name (a non-empty string)");
+      const std::string entry = key_node.Scalar();
+      if (std::find(seen.begin(), seen.end(), entry) != seen.end())
+        throw context->locator.error(key_node, v.path + "." + entry, "", "duplicate name");
+      seen.push_back(entry);
+      entries.emplace_back(entry, MapReader(it->second, s, v.path + "." + entry, *context));
+    }
+    return entries;
+  }
+
+  std::vector<MapReader> section_list(const std::string& name) const
+  {
+    const Value v = value_or_empty(name, ValueType::section_list);
+    if (v.node.IsNull())
+      return {};
+    if (!v.node.IsSequence())
+      throw mismatch(v);
+    const Section& s = context->schema.section(v.key->section);
+    std::vector<MapReader> items;
+    for (std::size_t i = 0; i < v.node.size(); ++i)
+      items.emplace_back(v.node[i], s, v.path + "[" + std::to_string(i) + "]", *context);
+    return items;
+  }
+
+  /// The time function's map, checked against the section its `type` selects.
+  MapReader time_function_reader(const std::string& name) const
+  {
+    const Value v = value(name, ValueType::time_function);
+    const std::vector<std::string>& types = context->schema.time_function_types();
+    if (!v.node.IsMap())
+      throw mismatch(v);
+    const YAML::Node type_node = child(v.node, "type");
+    if (!type_node.IsDefined())
+      throw context->locator.error(v.node, v.path + ".type", "",
+                                   "missing required key: expected one of " + quoted_list(types));
+    const std::string type = type_node.IsScalar() ? type_node.Scalar() : "";
+    if (std::find(types.begin(), types.end(), type) == types.end())
+      throw context->locator.error(type_node, v.path + ".type", yaml_text(type_node),
+                                   "expected one of " + quoted_list(types) +
+                                       suggestion(type, types));
+    return MapReader(v.node, context->schema.section(SceneSchema::time_function_section(type)),
+                     v.path, *context);
+  }
+
+private:
+  /// A key's value node: the user's, or the schema default parsed as YAML.
+  struct Value
+  {
+    YAML::Node node;
+    std::string path;
+    const Key* key = nullptr;
+  };
+
+  Value value(const std::string& name, ValueType type) const
+  {
+    const Key& k = section->key(name);
+    assert(k.type == type && "the reader asked for a key with another type than the schema's");
+    (void)type;
+    const YAML::Node n = child(node, name);
+    if (n.IsDefined())
+      return {n, path_of(name), &k};
+    assert(!k.default_yaml.empty() && "the reader asked for an absent key without default");
+    return {YAML::Load(k.default_yaml), path_of(name), &k};
+  }
+
+  /// Like value(), for optional sections without a YAML default: absent means empty.
+  Value value_or_empty(const std::string& name, ValueType type) const
+  {
+    const Key& k = section->key(name);
+    const YAML::Node n = child(node, name);
+    if (n.IsDefined() || !k.default_yaml.empty())
+      return value(name, type);
+    return {YAML::Node(), path_of(name), &k};
+  }
+
+  InputError mismatch(const Value& v) const
+  {
+    return context->locator.error(v.node, v.path, yaml_text(v.node),
+                                  "expected " + expected_text(*v.key, context->schema));
+  }
+
+  std::vector<double> numbers(const Value& v, std::size_t n) const
+  {
+    if (!v.node.IsSequence() || v.node.size() != n)
+      throw mismatch(v);
+    std::vector<double> result;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const std::optional<double> x = parse_double(v.node[i]);
+      if (!x || !v.key->range.contains(*x))
+        throw mismatch(v);
+      result.push_back(*x);
+    }
+    return result;
+  }
+
+  YAML::Node node;
+  const Section* section;
+  std::string path;
+  const Context* context;
+};
+
+// ---- Time functions -------------------------------------------------------------------------
+
+/// A table from a CSV file; every problem names the file, row and the scene key.
+TimeFunction read_csv_table(const MapReader& r)
+{
+  const std::string file = r.string("file");
+  const long long time_column = r.integer("time_column");
+  const long long value_column = r.integer("value_column");
+  const long long skip_rows = r.integer("skip_rows");
+  std::filesystem::path csv_path(file);
+  if (csv_path.is_relative())
+    csv_path = r.ctx().scene_directory / csv_path;
+  const std::string shown = csv_path.lexically_normal().string();
+
+  std::error_code ec;
+  std::ifstream in(csv_path);
+  if (!std::filesystem::is_regular_file(csv_path, ec) || !in)
+    throw r.error("file", "cannot open CSV file '" + shown + "'");
+
+  std::vector<double> times, values;
+  std::string line;
+  long long row = 0;
+  const std::size_t n_needed = static_cast<std::size_t>(std::max(time_column, value_column)) + 1;
+  while (std::getline(in, line))
+  {
+    ++row;
+    if (row <= skip_rows || trim(line).empty())
+      continue;
+    const std::vector<std::string> cells = split(line, ',');
+    const std::string at_row = "CSV file '" + shown + "' row " + std::to_string(row) + ": ";
+    if (cells.size() < n_needed)
+      throw r.error("file", at_row + "found " + std::to_string(cells.size()) +
+                                " column(s), expected at least " + std::to_string(n_needed));
+    const auto cell = [&](long long column)
+    {
+      const std::string text = trim(cells[static_cast<std::size_t>(column)]);
+      const std::optional<double> x = parse_double(text);
+      if (!x)
+        throw r.error("file", at_row + "column " + std::to_string(column) + " is '" + text +
+                                  "', expected a number");
+      return *x;
+    };
+    const double t = cell(time_column);
+    const double v = cell(value_column);
+    if (!times.empty() && t <= times.back())
+      throw r.error("file", at_row + "time " + format_number(t) +
+                                " does not increase strictly (previous " +
+                                format_number(times.back()) + ")");
+    times.push_back(t);
+    values.push_back(v);
+  }
+  if (times.empty())
+    throw r.error("file", "CSV file '" + shown + "' has no data rows (after skipping " +
+                              std::to_string(skip_rows) + ")");
+  return TimeFunction::table(std::move(times), std::move(values));
+}
+
+TimeFunction read_time_function(const MapReader& parent, const std::string& name)
+{
+  const MapReader r = parent.time_function_reader(name);
+  const std::string type = r.choice("type");
+  if (type == "constant")
+    return TimeFunction::constant(r.number("value"));
+  if (type == "sine_pulse")
+    return TimeFunction::sine_pulse(r.number("amplitude"), r.number("frequency"),
+                                    r.number("cycles"), r.number("start"));
+  if (type == "table")
+  {
+    std::vector<double> times, values;
+    for (const auto& [t, v] : r.pair_list("points"))
+    {
+      if (!times.empty() && t <= times.back())
+        throw r.error("points", "expected strictly increasing times; found " + format_number(t) +
+                                    " after " + format_number(times.back()));
+      times.push_back(t);
+      values.push_back(v);
+    }
+    return TimeFunction::table(std::move(times), std::move(values));
+  }
+  assert(type == "csv");
+  return read_csv_table(r);
+}
+
+// ---- Names ----------------------------------------------------------------------------------
+
+/// Index of `name` in `names`, or an error at key `key` of `r` listing the defined names.
+std::size_t find_name(const MapReader& r, const std::string& key, const std::string& name,
+                      const std::vector<std::string>& names, const std::string& what)
+{
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it != names.end())
+    return static_cast<std::size_t>(it - names.begin());
+  const std::string defined = names.empty() ? "none is defined" : "defined: " + join(names, ", ");
+  throw r.error(key, "unknown " + what + " '" + name + "'" + suggestion(name, names) + " (" +
+                         defined + ")");
+}
+
+// ---- Blocks ---------------------------------------------------------------------------------
+
+/// Where a block came from, for messages.
+struct BlockSource
+{
+  YAML::Node node;
+  std::string key_path;
+};
+
+/// Drops a repeated closing vertex, checks that the polygon is simple and orders it
+/// anticlockwise.
+std::vector<Point> clean_polygon(const MapReader& r, std::vector<Point> vertices)
+{
+  if (vertices.size() > 1 && vertices.front() == vertices.back())
+    vertices.pop_back();
+  std::vector<Point> distinct;
+  for (const Point& v : vertices)
+    if (std::find(distinct.begin(), distinct.end(), v) == distinct.end())
+      distinct.push_back(v);
+  if (distinct.size() < 3)
+    throw r.error("vertices", "polygon is not closed: needs at least 3 distinct vertices");
+  if (!dda::is_simple_polygon(vertices))
+    throw r.error("vertices", "polygon of " + r.key_path() +
+                                  " is self-intersecting (or repeats a vertex or has zero "
+                                  "area): expected a simple polygon");
+  if (dda::signed_area(vertices) < 0.0)
+    std::reverse(vertices.begin(), vertices.end());
+  return vertices;
+}
+
+void read_blocks(const MapReader& top, const std::vector<std::string>& material_names,
+                 dda::ModelDescription& model, std::vector<BlockSource>& sources)
+{
+  const std::vector<MapReader> items = top.section_list("blocks");
+  if (items.empty())
+    throw top.error("blocks", "expected at least one block");
+  for (std::size_t i = 0; i < items.size(); ++i)
+  {
+    const MapReader& r = items[i];
+    dda::BlockDescription block;
+    block.material = find_name(r, "material", r.string("material"), material_names, "material");
+    block.initial_velocity = r.vector2("initial_velocity");
+    block.initial_stress = r.voigt("initial_stress");
+    const bool has_vertices = r.has("vertices"), has_grid = r.has("grid");
+    if (has_vertices == has_grid)
+      throw top.ctx().locator.error(r.yaml(), r.key_path(), "",
+                                    has_vertices ? "give either 'vertices' or 'grid', not both"
+                                                 : "missing key: give 'vertices' or 'grid'");
+    if (has_vertices)
+    {
+      std::vector<Point> vertices;
+      for (const auto& [x, y] : r.pair_list("vertices"))
+        vertices.emplace_back(x, y);
+      block.vertices = clean_polygon(r, std::move(vertices));
+      block.origin = r.key_path();
+      model.blocks.push_back(block);
+      sources.push_back({r.yaml(), r.key_path()});
+      continue;
+    }
+    const MapReader grid = r.section_reader("grid");
+    const Vector2 origin = grid.vector2("origin");
+    const Vector2 cell = grid.vector2("cell_size");
+    const std::array<long long, 2> count = grid.integer_pair("count");
+    constexpr long long max_cells = 1000000;
+    if (count[0] > max_cells || count[1] > max_cells || count[0] * count[1] > max_cells)
+      throw grid.error("count", "expected at most " + std::to_string(max_cells) + " cells in all");
+    for (long long iy = 0; iy < count[1]; ++iy)
+      for (long long ix = 0; ix < count[0]; ++ix)
+      {
+        const double x0 = origin.x() + static_cast<double>(ix) * cell.x();
+        const double x1 = origin.x() + static_cast<double>(ix + 1) * cell.x();
+        const double y0 = origin.y() + static_cast<double>(iy) * cell.y();
+        const double y1 = origin.y() + static_cast<double>(iy + 1) * cell.y();
+        block.vertices = {Point(x0, y0), Point(x1, y0), Point(x1, y1), Point(x0, y1)};
+        block.origin =
+            r.key_path() + " (grid cell " + std::to_string(ix) + ", " + std::to_string(iy) + ")";
+        model.blocks.push_back(block);
+        sources.push_back({r.yaml(), r.key_path()});
+      }
+  }
+}
+
+/// Axis-aligned bounding box [m].
+struct Box
+{
+  Point lower = Point::Constant(std::numeric_limits<double>::max());
+  Point upper = Point::Constant(std::numeric_limits<double>::lowest());
+
+  explicit Box(const std::vector<Point>& vertices)
+  {
+    for (const Point& v : vertices)
+    {
+      lower = lower.cwiseMin(v);
+      upper = upper.cwiseMax(v);
+    }
+  }
+  bool contains(const Point& p, double tol) const
+  {
+    return p.x() >= lower.x() - tol && p.x() <= upper.x() + tol && p.y() >= lower.y() - tol &&
+           p.y() <= upper.y() + tol;
+  }
+};
+
+/// Interval [min, max] of the projections of a polygon's vertices onto a direction.
+std::pair<double, double> projection(const std::vector<Point>& vertices, const Vector2& direction)
+{
+  double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+  for (const Point& v : vertices)
+  {
+    const double x = v.dot(direction);
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  return {lo, hi};
+}
+
+/// An upper bound of the overlap area of two polygons [m^2], from their projections onto the
+/// edge normals of both: the intersection lies in the slab where the projections overlap, and its
+/// length along the slab is at most the smaller extent of the two polygons along it. Zero for
+/// convex polygons that are separated or only touch; cheap next to the exact computation.
+double overlap_area_bound(const std::vector<Point>& a, const std::vector<Point>& b)
+{
+  double bound = std::numeric_limits<double>::max();
+  for (const std::vector<Point>* polygon : {&a, &b})
+  {
+    const std::size_t n = polygon->size();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const Vector2 edge = (*polygon)[(k + 1) % n] - (*polygon)[k];
+      if (edge.norm() == 0.0)
+        continue;
+      const Vector2 along = edge.normalized();
+      const Vector2 normal(-along.y(), along.x());
+      const auto [a_lo, a_hi] = projection(a, normal);
+      const auto [b_lo, b_hi] = projection(b, normal);
+      const double width = std::min(a_hi, b_hi) - std::max(a_lo, b_lo);
+      if (width <= 0.0)
+        return 0.0;
+      const auto [a_first, a_last] = projection(a, along);
+      const auto [b_first, b_last] = projection(b, along);
+      bound = std::min(bound, width * std::min(a_last - a_first, b_last - b_first));
+    }
+  }
+  return bound;
+}
+
+/// Overlapping blocks are an error. Only pairs whose bounding boxes (and projections onto their
+/// edge normals) overlap by more than the tolerated area are handed to the exact but slow
+/// overlap computation; candidate pairs come from a sweep over the boxes sorted by lower x.
+void check_overlaps(const dda::ModelDescription& model, const std::vector<BlockSource>& sources,
+                    const Locator& locator)
+{
+  const std::size_t n = model.blocks.size();
+  std::vector<Box> boxes;
+  std::vector<double> areas;
+  for (const dda::BlockDescription& b : model.blocks)
+  {
+    boxes.emplace_back(b.vertices);
+    areas.push_back(std::abs(dda::signed_area(b.vertices)));
+  }
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i)
+    order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return boxes[a].lower.x() < boxes[b].lower.x(); });
+  for (std::size_t oi = 0; oi < n; ++oi)
+  {
+    const std::size_t i = order[oi];
+    for (std::size_t oj = oi + 1; oj < n && boxes[order[oj]].lower.x() < boxes[i].upper.x(); ++oj)
+    {
+      const std::size_t j = order[oj];
+      const double tolerated = 1e-9 * std::min(areas[i], areas[j]);
+      const double wx = std::min(boxes[i].upper.x(), boxes[j].upper.x()) -
+                        std::max(boxes[i].lower.x(), boxes[j].lower.x());
+      const double wy = std::min(boxes[i].upper.y(), boxes[j].upper.y()) -
+                        std::max(boxes[i].lower.y(), boxes[j].lower.y());
+      if (wx <= 0.0 || wy <= 0.0 || wx * wy <= tolerated ||
+          overlap_area_bound(model.blocks[i].vertices, model.blocks[j].vertices) <= tolerated)
+        continue;
+      const double overlap = dda::overlap_area(model.blocks[i].vertices, model.blocks[j].vertices);
+      if (overlap > tolerated)
+      {
+        const std::size_t first = std::min(i, j), second = std::max(i, j);
+        throw locator.error(sources[second].node, sources[second].key_path, "",
+                            "blocks overlap: " + model.blocks[first].origin + " and " +
+                                model.blocks[second].origin + " share an area of " +
+                                format_number(overlap) +
+                                " m^2; expected blocks that touch at most");
+      }
+    }
+  }
+}
+
+/// Points of loads, supports and monitors must be inside or on the boundary of some block.
+void check_point_in_blocks(const MapReader& r, const std::string& key, const Point& p,
+                           const dda::ModelDescription& model, const std::vector<Box>& boxes,
+                           double tol)
+{
+  for (std::size_t b = 0; b < model.blocks.size(); ++b)
+    if (boxes[b].contains(p, tol) &&
+        dda::locate_point(model.blocks[b].vertices, p, tol) != dda::PointLocation::outside)
+      return;
+  throw r.error(key, "the point " + format_point(p) +
+                         " lies outside every block; expected a point inside or on the boundary "
+                         "of a block");
+}
+
+// ---- Overrides ------------------------------------------------------------------------------
+
+/// Sets the value of one --set override in the YAML tree; returns where it went.
+AppliedOverride apply_override(YAML::Node& root, const Override& o)
+{
+  const std::string argument = o.path + "=" + o.value;
+  const std::string where = command_line_location(argument);
+  YAML::Node value;
+  try
+  {
+    value = YAML::Load(o.value);
+  }
+  catch (const YAML::Exception& e)
+  {
+    throw InputError::at(where, 0, "", "", "cannot parse the value as YAML: " + e.msg);
+  }
+
+  const std::vector<std::string> components = split(o.path, '.');
+  YAML::Node current = root;
+  std::string key_path;
+  for (std::size_t i = 0; i < components.size(); ++i)
+  {
+    const std::string& c = components[i];
+    const bool last = i + 1 == components.size();
+    if (c.empty())
+      throw InputError::at(where, 0, "", "", "empty key in the path '" + o.path + "'");
+    if (current.IsSequence())
+    {
+      const bool digits = c.find_first_not_of("0123456789") == std::string::npos;
+      const std::size_t index = digits && c.size() < 10 ? std::stoul(c) : current.size();
+      if (!digits || index >= current.size())
+        throw InputError::at(where, 0, key_path, "",
+                             "'" + c + "' is not an index of this list of " +
+                                 std::to_string(current.size()) + " item(s)" +
+                                 (current.size() == 0
+                                      ? std::string()
+                                      : ": expected 0 to " + std::to_string(current.size() - 1)));
+      key_path += "[" + c + "]";
+      if (last)
+        current[index] = value;
+      else
+      {
+        YAML::Node next = current[index];
+        current.reset(next);
+      }
+    }
+    else if (!current.IsDefined() || current.IsMap() || current.IsNull())
+    {
+      key_path += (key_path.empty() ? "" : ".") + c;
+      if (last)
+        current[c] = value;
+      else
+      {
+        YAML::Node next = current[c];
+        current.reset(next);
+      }
+    }
+    else
+      throw InputError::at(where, 0, key_path, yaml_text(current),
+                           "cannot set '" + c +
+                               "' inside a single value: expected a map or a "
+                               "list here");
+  }
+  return {key_path, argument};
+}
+
+YAML::Node load_yaml(const std::string& file)
+{
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec))
+    throw InputError::at(file, 0, "", "",
+                         std::filesystem::exists(file, ec) ? "the scene file is not a regular file"
+                                                           : "cannot open the scene file: no "
+                                                             "such file");
+  std::ifstream in(file);
+  if (!in)
+    throw InputError::at(file, 0, "", "", "cannot open the scene file");
+  try
+  {
+    return YAML::Load(in);
+  }
+  catch (const YAML::ParserException& e)
+  {
+    throw InputError::at(file, e.mark.is_null() ? 0 : e.mark.line + 1, "", "",
+                         "YAML syntax error: " + e.msg);
+  }
+}
+
+// ---- The scene ------------------------------------------------------------------------------
+
+Scene read_validated_scene(const std::string& file, const YAML::Node& root, const Context& context)
+{
+  if (!root.IsMap())
+    throw context.locator.error(root, "", yaml_text(root),
+                                "expected a map of scene sections (materials, blocks, time, ...)");
+  const MapReader top(root, context.schema.section(SceneSchema::top_level), "", context);
+  Scene scene;
+  scene.file = file;
+  scene.name = top.has("name") ? top.string("name") : std::filesystem::path(file).stem().string();
+  scene.description = top.string("description");
+  dda::ModelDescription& model = scene.model;
+
+  const MapReader analysis = top.section_reader("analysis");
+  model.plane_mode =
+      analysis.choice("plane") == "strain" ? dda::PlaneMode::strain : dda::PlaneMode::stress;
+
+  std::vector<std::string> material_names;
+  for (const auto& [name, r] : top.section_map("materials"))
+  {
+    dda::Material m;
+    m.name = name;
+    m.density = r.number("density");
+    m.youngs_modulus = r.number("youngs_modulus");
+    m.poisson_ratio = r.number("poisson_ratio");
+    model.materials.push_back(m);
+    material_names.push_back(name);
+  }
+  if (model.materials.empty())
+    throw top.error("materials", "expected at least one material");
+
+  std::vector<std::string> joint_names;
+  for (const auto& [name, r] : top.section_map("joint_materials"))
+  {
+    dda::JointMaterial j;
+    j.name = name;
+    j.normal_stiffness = r.number("normal_stiffness");
+    j.shear_ratio = r.number("shear_ratio");
+    j.friction_angle = r.number("friction_angle");
+    j.cohesion = r.number("cohesion");
+    j.tensile_strength = r.number("tensile_strength");
+    j.bonded = r.boolean("bonded");
+    model.joint_materials.push_back(j);
+    joint_names.push_back(name);
+  }
+
+  const MapReader joints = top.section_reader("joints");
+  if (joints.has("default"))
+    model.default_joint_material =
+        find_name(joints, "default", joints.string("default"), joint_names, "joint material");
+  for (const MapReader& r : joints.section_list("pairs"))
+  {
+    const std::array<std::string, 2> pair = r.name_pair("materials");
+    dda::JointAssignment a;
+    a.material_a = find_name(r, "materials", pair[0], material_names, "material");
+    a.material_b = find_name(r, "materials", pair[1], material_names, "material");
+    a.joint_material = find_name(r, "joint", r.string("joint"), joint_names, "joint material");
+    model.joint_assignments.push_back(a);
+  }
+
+  std::vector<BlockSource> sources;
+  read_blocks(top, material_names, model, sources);
+  check_overlaps(model, sources, context.locator);
+
+  std::vector<Box> boxes;
+  Box all(model.blocks.front().vertices);
+  for (const dda::BlockDescription& b : model.blocks)
+  {
+    boxes.emplace_back(b.vertices);
+    all.lower = all.lower.cwiseMin(boxes.back().lower);
+    all.upper = all.upper.cwiseMax(boxes.back().upper);
+  }
+  const double tol = 1e-9 * (all.upper - all.lower).norm();
+
+  for (const MapReader& r : top.section_list("point_loads"))
+  {
+    dda::PointLoad load;
+    load.point = r.vector2("point");
+    load.force = r.vector2("force");
+    load.time_function = read_time_function(r, "time_function");
+    load.origin = r.key_path();
+    check_point_in_blocks(r, "point", load.point, model, boxes, tol);
+    model.point_loads.push_back(load);
+  }
+
+  for (const MapReader& r : top.section_list("fixed_points"))
+  {
+    dda::FixedPoint f;
+    f.point = r.vector2("point");
+    f.stiffness = r.number("stiffness");
+    f.displacement_x = read_time_function(r, "displacement_x");
+    f.displacement_y = read_time_function(r, "displacement_y");
+    f.origin = r.key_path();
+    check_point_in_blocks(r, "point", f.point, model, boxes, tol);
+    model.fixed_points.push_back(f);
+  }
+
+  model.gravity = top.vector2("gravity");
+
+  std::map<std::string, std::string> monitor_paths;
+  for (const MapReader& r : top.section_list("monitors"))
+  {
+    dda::Monitor m;
+    m.name = r.string("name");
+    if (trim(m.name).empty())
+      throw r.error("name", "expected a non-empty name");
+    const auto [it, inserted] = monitor_paths.emplace(m.name, r.key_path());
+    if (!inserted)
+      throw r.error("name", "duplicate monitor name (also used by " + it->second +
+                                "): expected unique names");
+    m.point = r.vector2("point");
+    check_point_in_blocks(r, "point", m.point, model, boxes, tol);
+    model.monitors.push_back(m);
+  }
+
+  const MapReader time = top.section_reader("time");
+  model.time.dt = time.number("dt");
+  model.time.end_time = time.number("end_time");
+  if (model.time.end_time < model.time.dt)
+    throw time.error("end_time",
+                     "expected end_time >= dt = " + format_number(model.time.dt) + " s");
+  model.time.integrator = time.choice("integrator") == "newmark_trapezoidal"
+                              ? dda::Integrator::newmark_trapezoidal
+                              : dda::Integrator::dda;
+
+  const MapReader solver = top.section_reader("solver");
+  const std::string solver_type = solver.choice("type");
+  model.solver = solver_type == "amesos_klu"   ? dda::SolverKind::amesos_klu
+                 : solver_type == "eigen_ldlt" ? dda::SolverKind::eigen_ldlt
+                                               : dda::SolverKind::block_ldlt;
+
+  const MapReader output = top.section_reader("output");
+  scene.output.directory = output.string("directory");
+  if (trim(scene.output.directory).empty())
+    throw output.error("directory", "expected a non-empty directory name");
+  scene.output.interval = output.number("interval");
+  scene.output.history_every = static_cast<std::size_t>(output.integer("history_every"));
+  return scene;
+}
+
+// ---- Reference ------------------------------------------------------------------------------
+
+std::string table_cell(std::string text)
+{
+  std::string escaped;
+  for (const char c : text)
+    escaped += c == '|' ? std::string("\\|") : std::string(1, c);
+  return escaped;
+}
+
+std::string section_heading(const Section& s)
+{
+  if (s.id == SceneSchema::top_level)
+    return "Top level";
+  return "`" + s.id + "`";
+}
+
+std::string type_cell(const Key& k)
+{
+  switch (k.type)
+  {
+  case ValueType::section:
+  case ValueType::section_map:
+  case ValueType::section_list:
+    return schema::describe(k.type) + ", see `" + k.section + "`";
+  case ValueType::time_function:
+    return "time function, see below";
+  default:
+    return schema::describe(k.type);
+  }
+}
+
+std::string default_cell(const Key& k)
+{
+  if (k.required)
+    return "**required**";
+  if (!k.default_yaml.empty())
+    return "`" + (k.default_yaml == "''" ? std::string("\"\"") : k.default_yaml) + "`";
+  return k.default_note;
+}
+
+std::string allowed_cell(const Key& k)
+{
+  if (k.type == ValueType::choice)
+  {
+    std::vector<std::string> q;
+    for (const std::string& c : k.choices)
+      q.push_back("`" + c + "`");
+    return join(q, ", ");
+  }
+  const std::string r = k.range.describe();
+  const bool vector = k.type == ValueType::vector2 || k.type == ValueType::integer_pair ||
+                      k.type == ValueType::voigt;
+  return r.empty() ? "" : (vector ? "each " : "") + r;
+}
+
+} // namespace
+
+Override parse_override(const std::string& argument)
+{
+  const auto equals = argument.find('=');
+  if (equals == std::string::npos || trim(argument.substr(0, equals)).empty())
+    throw InputError::at(command_line_location(argument), 0, "", "",
+                         "expected path.to.key=value, e.g. --set time.dt=1e-4 or --set "
+                         "blocks.0.material=granite");
+  return {trim(argument.substr(0, equals)), argument.substr(equals + 1)};
+}
+
+Scene read_scene(const std::string& file, const std::vector<Override>& overrides)
+{
+  const SceneSchema schema;
+  Locator locator(file);
+  YAML::Node root = load_yaml(file);
+  try
+  {
+    for (const Override& o : overrides)
+      locator.add_override(apply_override(root, o));
+    const Context context{schema, locator, std::filesystem::path(file).parent_path()};
+    return read_validated_scene(file, root, context);
+  }
+  catch (const YAML::Exception& e)
+  {
+    // Anything the YAML library objects to beyond syntax (aliases, conversions).
+    throw InputError::at(file, e.mark.is_null() ? 0 : e.mark.line + 1, "", "",
+                         "cannot read the YAML tree: " + e.msg);
+  }
+}
+
+std::string scene_reference_markdown()
+{
+  const SceneSchema schema;
+  // A small scene using most sections; a test reads it, so it stays valid.
+  const char* const example = R"(name: two_blocks
+materials:
+  rock: {density: 2650, youngs_modulus: 50e9, poisson_ratio: 0.25}
+joint_materials:
+  glued: {normal_stiffness: 5e10, friction_angle: 30}
+joints: {default: glued}
+blocks:
+  - material: rock
+    vertices: [[0, 0], [2, 0], [2, 1], [0, 1]]
+  - material: rock
+    grid: {origin: [0, 1], cell_size: [1, 1], count: [2, 1]}
+fixed_points:
+  - {point: [1, 0]}
+point_loads:
+  - point: [0.5, 2]
+    force: [0, -1e6]
+    time_function: {type: sine_pulse, frequency: 100}
+gravity: [0, -9.81]
+monitors:
+  - {name: top, point: [1.5, 1.5]}
+time: {dt: 1e-4, end_time: 0.05}
+output: {directory: results/two_blocks, interval: 0.001}
+)";
+  std::ostringstream md;
+  md << "# Scene file reference\n\n"
+     << "This file is generated from the schema that the scene reader validates against "
+        "(`app/scene_schema.cc`).\nDo not edit it; regenerate it with\n\n"
+     << "    build/ddafem scene-reference > docs/scene_reference.md\n\n"
+     << "## Conventions\n\n"
+     << "- A scene is a YAML file. Units are SI: m, s, kg, N, Pa; angles in degrees.\n"
+     << "- Every map rejects keys that are not listed here, and suggests the closest allowed "
+        "key.\n"
+     << "- `blocks[i]` is item `i` (from 0) of the list `blocks`; `materials.<name>` is an entry "
+        "of the map `materials` under a name you choose.\n"
+     << "- Points of point loads, fixed points and monitors must lie inside or on the boundary "
+        "of a block.\n"
+     << "- Every key can be overridden on the command line without editing the file: "
+        "`--set time.dt=1e-4`, `--set gravity=[0,-9.81]`, `--set blocks.0.material=granite`. "
+        "Path components are separated by `.`, list items are addressed by their index, and "
+        "the value is read as YAML.\n"
+     << "- A time function is a map whose `type` selects one of the kinds at the end of this "
+        "page.\n\n"
+     << "## Example\n\n```yaml\n"
+     << example << "```\n";
+  for (const Section& s : schema.sections())
+  {
+    md << "\n## " << section_heading(s) << "\n\n"
+       << s.meaning << "\n\n"
+       << "| key | type | unit | default | allowed | meaning |\n"
+       << "|---|---|---|---|---|---|\n";
+    for (const Key& k : s.keys)
+      md << "| `" << k.name << "` | " << table_cell(type_cell(k)) << " | "
+         << table_cell(k.unit.empty() ? "-" : k.unit) << " | " << table_cell(default_cell(k))
+         << " | " << table_cell(allowed_cell(k)) << " | " << table_cell(k.meaning) << " |\n";
+  }
+  return md.str();
+}
+
+} // namespace ddafem

@@ -1,0 +1,49 @@
+// A scene: the YAML file a user writes, read into validated model descriptions.
+#pragma once
+
+#include "dda/model_description.h"
+
+#include <string>
+#include <vector>
+
+namespace ddafem
+{
+/// Where and how often results are written.
+struct OutputSettings
+{
+  std::string directory = "results"; ///< relative to the working directory; `-o DIR` overrides
+  double interval = 0.0; ///< simulated time between VTU snapshots [s]; 0: first and last only
+  std::size_t history_every = 1; ///< steps between rows of the HDF5 histories, >= 1
+};
+
+/// A scene file, read and validated.
+struct Scene
+{
+  std::string file;        ///< path of the scene file as given
+  std::string name;        ///< `name:` key, or the file's stem
+  std::string description; ///< `description:` key (free text)
+  dda::ModelDescription model;
+  OutputSettings output;
+};
+
+/// One `--set path.to.key=value` override; list items are addressed by index (blocks.0.material).
+struct Override
+{
+  std::string path;
+  std::string value; ///< parsed as a YAML scalar or flow sequence, e.g. "1e-4" or "[0, -9.81]"
+};
+
+/// Parses "path.to.key=value"; throws InputError on a malformed argument.
+Override parse_override(const std::string& argument);
+
+/// Reads, applies overrides to, and validates a scene file. Every problem throws InputError
+/// naming the file, line, key, value and what was expected (unknown keys, wrong types, values
+/// out of range, missing required keys, missing CSV files, unknown material names, polygons
+/// that are not simple, overlapping blocks, points outside every block, ...).
+Scene read_scene(const std::string& file, const std::vector<Override>& overrides = {});
+
+/// Markdown reference of every scene key (type, unit, default, range, meaning), generated from
+/// the same schema the reader validates against, so that it cannot drift.
+std::string scene_reference_markdown();
+
+} // namespace ddafem

@@ -1,0 +1,496 @@
+#include "app/scene_schema.h"
+
+#include <cassert>
+#include <sstream>
+#include <utility>
+
+namespace ddafem::schema
+{
+namespace
+{
+/// Chained construction of a Key, so that the schema below reads like a table.
+class KeyBuilder
+{
+public:
+  KeyBuilder(std::string name, ValueType type)
+  {
+    k.name = std::move(name);
+    k.type = type;
+  }
+  KeyBuilder& unit(std::string u)
+  {
+    k.unit = std::move(u);
+    return *this;
+  }
+  KeyBuilder& required()
+  {
+    k.required = true;
+    return *this;
+  }
+  KeyBuilder& default_yaml(std::string yaml)
+  {
+    k.default_yaml = std::move(yaml);
+    return *this;
+  }
+  KeyBuilder& default_note(std::string note)
+  {
+    k.default_note = std::move(note);
+    return *this;
+  }
+  KeyBuilder& greater_than(double v)
+  {
+    k.range.min = v;
+    k.range.min_inclusive = false;
+    return *this;
+  }
+  KeyBuilder& at_least(double v)
+  {
+    k.range.min = v;
+    k.range.min_inclusive = true;
+    return *this;
+  }
+  KeyBuilder& less_than(double v)
+  {
+    k.range.max = v;
+    k.range.max_inclusive = false;
+    return *this;
+  }
+  KeyBuilder& choices(std::vector<std::string> c)
+  {
+    k.choices = std::move(c);
+    return *this;
+  }
+  KeyBuilder& section(std::string id)
+  {
+    k.section = std::move(id);
+    return *this;
+  }
+  KeyBuilder& meaning(std::string m)
+  {
+    k.meaning = std::move(m);
+    return *this;
+  }
+  operator Key() const { return k; }
+
+private:
+  Key k;
+};
+
+KeyBuilder key(std::string name, ValueType type)
+{
+  return KeyBuilder(std::move(name), type);
+}
+
+std::string format_number(double v)
+{
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+/// The `type` key of one time-function variant.
+Key time_function_type(const std::string& type_name)
+{
+  return key("type", ValueType::choice)
+      .required()
+      .choices({type_name})
+      .meaning("selects this kind of time function");
+}
+} // namespace
+
+std::string describe(ValueType type)
+{
+  switch (type)
+  {
+  case ValueType::string:
+    return "string";
+  case ValueType::number:
+    return "number";
+  case ValueType::integer:
+    return "integer";
+  case ValueType::boolean:
+    return "boolean";
+  case ValueType::choice:
+    return "choice";
+  case ValueType::vector2:
+    return "[x, y]";
+  case ValueType::integer_pair:
+    return "[integer, integer]";
+  case ValueType::name_pair:
+    return "[name, name]";
+  case ValueType::voigt:
+    return "[xx, yy, xy]";
+  case ValueType::point_list:
+    return "list of [x, y]";
+  case ValueType::table:
+    return "list of [t, value]";
+  case ValueType::section:
+    return "map";
+  case ValueType::section_map:
+    return "map of named maps";
+  case ValueType::section_list:
+    return "list of maps";
+  case ValueType::time_function:
+    return "time function";
+  }
+  return "";
+}
+
+bool Range::contains(double value) const
+{
+  if (min && (min_inclusive ? value < *min : value <= *min))
+    return false;
+  if (max && (max_inclusive ? value > *max : value >= *max))
+    return false;
+  return true;
+}
+
+std::string Range::describe() const
+{
+  if (min && max)
+    return std::string(min_inclusive ? "[" : "(") + format_number(*min) + ", " +
+           format_number(*max) + (max_inclusive ? "]" : ")");
+  if (min)
+    return std::string(min_inclusive ? ">= " : "> ") + format_number(*min);
+  if (max)
+    return std::string(max_inclusive ? "<= " : "< ") + format_number(*max);
+  return "";
+}
+
+const Key* Section::find(const std::string& name) const
+{
+  for (const Key& k : keys)
+    if (k.name == name)
+      return &k;
+  return nullptr;
+}
+
+const Key& Section::key(const std::string& name) const
+{
+  const Key* k = find(name);
+  assert(k != nullptr && "the reader asked for a key that is not in the schema");
+  return *k;
+}
+
+std::vector<std::string> Section::key_names() const
+{
+  std::vector<std::string> names;
+  for (const Key& k : keys)
+    names.push_back(k.name);
+  return names;
+}
+
+std::string SceneSchema::time_function_section(const std::string& type_name)
+{
+  return "time function: " + type_name;
+}
+
+const Section& SceneSchema::section(const std::string& id) const
+{
+  for (const Section& s : all_sections)
+    if (s.id == id)
+      return s;
+  assert(false && "unknown schema section");
+  return all_sections.front();
+}
+
+SceneSchema::SceneSchema()
+{
+  using T = ValueType;
+  tf_types = {"constant", "sine_pulse", "table", "csv"};
+
+  all_sections.push_back(
+      {top_level,
+       "A scene is one YAML map with these sections.",
+       {key("name", T::string)
+            .default_note("file name without extension")
+            .meaning("scene name shown in summaries and result files"),
+        key("description", T::string).default_yaml("''").meaning("free text"),
+        key("analysis", T::section)
+            .section("analysis")
+            .default_note("plane stress")
+            .meaning("2D idealisation of the blocks"),
+        key("materials", T::section_map)
+            .section("materials.<name>")
+            .required()
+            .meaning("block materials by name"),
+        key("joint_materials", T::section_map)
+            .section("joint_materials.<name>")
+            .default_note("none")
+            .meaning("joint (contact) materials by name"),
+        key("joints", T::section)
+            .section("joints")
+            .default_note("none")
+            .meaning("which joint material acts between blocks of which materials"),
+        key("blocks", T::section_list)
+            .section("blocks[i]")
+            .required()
+            .meaning("the blocks: polygons or grids of rectangles"),
+        key("point_loads", T::section_list)
+            .section("point_loads[i]")
+            .default_note("none")
+            .meaning("forces at material points"),
+        key("fixed_points", T::section_list)
+            .section("fixed_points[i]")
+            .default_note("none")
+            .meaning("material points tied to their initial position (plus a prescribed motion)"),
+        key("gravity", T::vector2)
+            .unit("m/s^2")
+            .default_yaml("[0, 0]")
+            .meaning("body acceleration, e.g. [0, -9.81]"),
+        key("monitors", T::section_list)
+            .section("monitors[i]")
+            .default_note("none")
+            .meaning("points whose displacement, velocity and stress histories are recorded"),
+        key("time", T::section).section("time").required().meaning("time step and duration"),
+        key("solver", T::section)
+            .section("solver")
+            .default_note("block_ldlt")
+            .meaning("linear solver of each step"),
+        key("output", T::section)
+            .section("output")
+            .default_note("see `output`")
+            .meaning("where and how often results are written")}});
+
+  all_sections.push_back(
+      {"analysis",
+       "How the 2D model idealises the third dimension.",
+       {key("plane", T::choice)
+            .choices({"stress", "strain"})
+            .default_yaml("stress")
+            .meaning("plane stress (thin slab, one-block-high bar) or plane strain (long "
+                     "section)")}});
+
+  all_sections.push_back(
+      {"materials.<name>",
+       "A linear elastic, isotropic block material. `<name>` is any name; blocks refer to it.",
+       {key("density", T::number)
+            .unit("kg/m^3")
+            .required()
+            .greater_than(0)
+            .meaning("mass density rho"),
+        key("youngs_modulus", T::number)
+            .unit("Pa")
+            .required()
+            .greater_than(0)
+            .meaning("Young's modulus E"),
+        key("poisson_ratio", T::number)
+            .required()
+            .at_least(0)
+            .less_than(0.5)
+            .meaning("Poisson's ratio nu")}});
+
+  all_sections.push_back(
+      {"joint_materials.<name>",
+       "Properties of the joints (contacts) between blocks. `<name>` is any name; `joints` "
+       "refers to it.",
+       {key("normal_stiffness", T::number)
+            .unit("N/m")
+            .required()
+            .greater_than(0)
+            .meaning("penalty spring at each contact point"),
+        key("shear_ratio", T::number)
+            .default_yaml("0.4")
+            .greater_than(0)
+            .meaning("shear spring / normal spring"),
+        key("friction_angle", T::number)
+            .unit("deg")
+            .default_yaml("0")
+            .at_least(0)
+            .less_than(90)
+            .meaning("Coulomb friction angle phi"),
+        key("cohesion", T::number)
+            .unit("Pa")
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("cohesion c of a bonded joint"),
+        key("tensile_strength", T::number)
+            .unit("Pa")
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("tensile strength of a bonded joint"),
+        key("bonded", T::boolean)
+            .default_yaml("true")
+            .meaning("true: glued until its strength is exceeded; false: frictional contact")}});
+
+  all_sections.push_back(
+      {"joints",
+       "Assigns joint materials to pairs of block materials. Blocks that share an edge need a "
+       "joint material, from a pair entry or the default.",
+       {key("default", T::string)
+            .default_note("none")
+            .meaning("name of the joint material for pairs not listed in `pairs`"),
+        key("pairs", T::section_list)
+            .section("joints.pairs[i]")
+            .default_note("none")
+            .meaning("joint materials for given pairs of block materials")}});
+
+  all_sections.push_back(
+      {"joints.pairs[i]",
+       "The joint material between blocks of materials A and B (in either order).",
+       {key("materials", T::name_pair)
+            .required()
+            .meaning("the two block material names, e.g. [rock, concrete]"),
+        key("joint", T::string).required().meaning("the joint material name")}});
+
+  all_sections.push_back(
+      {"blocks[i]",
+       "One block (`vertices`) or a grid of rectangular blocks (`grid`): give exactly one of the "
+       "two. Vertices may be given clockwise or anticlockwise, and the first vertex may be "
+       "repeated at the end. Blocks may touch but not overlap.",
+       {key("material", T::string).required().meaning("name of the block's material"),
+        key("vertices", T::point_list)
+            .unit("m")
+            .default_note("(give vertices or grid)")
+            .meaning("corners of a simple polygon, at least 3"),
+        key("grid", T::section)
+            .section("blocks[i].grid")
+            .default_note("(give vertices or grid)")
+            .meaning("a grid of nx * ny rectangles, numbered row by row, x fastest"),
+        key("initial_velocity", T::vector2)
+            .unit("m/s")
+            .default_yaml("[0, 0]")
+            .meaning("translational velocity at t = 0"),
+        key("initial_stress", T::voigt)
+            .unit("Pa")
+            .default_yaml("[0, 0, 0]")
+            .meaning("stress [sxx, syy, sxy] at t = 0, tension positive")}});
+
+  all_sections.push_back(
+      {"blocks[i].grid",
+       "A grid of equal rectangles; each becomes one block.",
+       {key("origin", T::vector2).unit("m").required().meaning("lower-left corner of the grid"),
+        key("cell_size", T::vector2)
+            .unit("m")
+            .required()
+            .greater_than(0)
+            .meaning("[width, height] of each rectangle"),
+        key("count", T::integer_pair)
+            .required()
+            .at_least(1)
+            .meaning("[nx, ny] rectangles in x and y, at most 10^6 in all")}});
+
+  all_sections.push_back(
+      {"point_loads[i]",
+       "A force F(t) = force * f(t) at a material point; the point must lie inside or on the "
+       "boundary of a block.",
+       {key("point", T::vector2).unit("m").required().meaning("where the force acts"),
+        key("force", T::vector2).unit("N").required().meaning("[fx, fy]"),
+        key("time_function", T::time_function)
+            .default_yaml("{type: constant, value: 1}")
+            .meaning("dimensionless factor f(t)")}});
+
+  all_sections.push_back(
+      {"fixed_points[i]",
+       "A material point tied by a stiff spring to its initial position plus a prescribed "
+       "displacement; the point must lie inside or on the boundary of a block.",
+       {key("point", T::vector2).unit("m").required().meaning("the tied material point"),
+        key("stiffness", T::number)
+            .unit("N/m")
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("penalty spring; 0 selects the engine's default"),
+        key("displacement_x", T::time_function)
+            .unit("m")
+            .default_yaml("{type: constant, value: 0}")
+            .meaning("prescribed displacement ux(t)"),
+        key("displacement_y", T::time_function)
+            .unit("m")
+            .default_yaml("{type: constant, value: 0}")
+            .meaning("prescribed displacement uy(t)")}});
+
+  all_sections.push_back(
+      {"monitors[i]",
+       "A measurement point; it must lie inside or on the boundary of a block.",
+       {key("name", T::string).required().meaning("unique name of the history"),
+        key("point", T::vector2).unit("m").required().meaning("the monitored material point")}});
+
+  all_sections.push_back(
+      {"time",
+       "Time stepping.",
+       {key("dt", T::number).unit("s").required().greater_than(0).meaning("time step"),
+        key("end_time", T::number)
+            .unit("s")
+            .required()
+            .greater_than(0)
+            .meaning("simulated duration; must be >= dt"),
+        key("integrator", T::choice)
+            .choices({"dda", "newmark_trapezoidal"})
+            .default_yaml("dda")
+            .meaning("dda: Shi's dissipative first-order scheme; newmark_trapezoidal: "
+                     "energy-conserving, second order")}});
+
+  all_sections.push_back({"solver",
+                          "Sparse direct solver for each step's linear system.",
+                          {key("type", T::choice)
+                               .choices({"block_ldlt", "eigen_ldlt", "amesos_klu"})
+                               .default_yaml("block_ldlt")
+                               .meaning("block_ldlt: sparse Cholesky on the 6x6 blocks (fastest, "
+                                        "see docs/performance/dda_bench.md); eigen_ldlt: Eigen "
+                                        "SimplicialLDLT; amesos_klu: Trilinos Amesos KLU")}});
+
+  all_sections.push_back(
+      {"output",
+       "Where and how often results are written.",
+       {key("directory", T::string)
+            .default_yaml("results")
+            .meaning("output directory, relative to the working directory; `-o DIR` overrides"),
+        key("interval", T::number)
+            .unit("s")
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("simulated time between block snapshots; 0: first and last only"),
+        key("history_every", T::integer)
+            .default_yaml("1")
+            .at_least(1)
+            .meaning("time steps between rows of the monitor histories")}});
+
+  all_sections.push_back({time_function_section("constant"),
+                          "f(t) = value.",
+                          {time_function_type("constant"),
+                           key("value", T::number)
+                               .required()
+                               .meaning("the constant (in the unit of the quantity it gives)")}});
+
+  all_sections.push_back(
+      {time_function_section("sine_pulse"),
+       "f(t) = amplitude sin(2 pi frequency (t - start)) for start <= t <= start + "
+       "cycles / frequency, 0 elsewhere.",
+       {time_function_type("sine_pulse"),
+        key("frequency", T::number).unit("Hz").required().greater_than(0).meaning("frequency"),
+        key("cycles", T::number).default_yaml("1").greater_than(0).meaning("number of cycles"),
+        key("amplitude", T::number).default_yaml("1").meaning("peak value"),
+        key("start", T::number).unit("s").default_yaml("0").meaning("time the pulse starts")}});
+
+  all_sections.push_back(
+      {time_function_section("table"),
+       "Piecewise-linear interpolation of (time, value) points; the first value holds before "
+       "the first time and the last value after the last time.",
+       {time_function_type("table"),
+        key("points", T::table)
+            .unit("s, -")
+            .required()
+            .meaning("[[t, value], ...] with strictly increasing t, at least one point")}});
+
+  all_sections.push_back(
+      {time_function_section("csv"),
+       "A table read from a CSV file (comma-separated numbers; blank lines are ignored).",
+       {time_function_type("csv"),
+        key("file", T::string)
+            .required()
+            .meaning("path of the CSV file, relative to the scene file's directory"),
+        key("time_column", T::integer)
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("column of the times [s], counted from 0"),
+        key("value_column", T::integer)
+            .default_yaml("1")
+            .at_least(0)
+            .meaning("column of the values, counted from 0"),
+        key("skip_rows", T::integer)
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("header rows to skip")}});
+}
+
+} // namespace ddafem::schema

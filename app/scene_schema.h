@@ -1,0 +1,101 @@
+// The scene file format as data: every section and key with its type, unit, default, allowed
+// values and meaning. The scene reader validates against it and the Markdown reference is
+// rendered from it, so the two cannot drift apart.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ddafem::schema
+{
+/// What a key's value looks like in YAML.
+enum class ValueType
+{
+  string,       ///< a scalar taken as text
+  number,       ///< a real number
+  integer,      ///< a whole number
+  boolean,      ///< true or false
+  choice,       ///< one of Key::choices
+  vector2,      ///< [x, y] of numbers
+  integer_pair, ///< [nx, ny] of whole numbers
+  name_pair,    ///< [A, B] of names
+  voigt,        ///< [xx, yy, xy] of numbers
+  point_list,   ///< [[x, y], ...]
+  table,        ///< [[t, v], ...] with strictly increasing t
+  section,      ///< a map described by the Section named Key::section
+  section_map,  ///< a map from user-chosen names to maps described by Key::section
+  section_list, ///< a list of maps described by Key::section
+  time_function ///< a map whose `type` selects one of the time-function sections
+};
+
+/// Name of a value type as shown in the reference ("number", "[x, y]", ...).
+std::string describe(ValueType type);
+
+/// Allowed interval of a number (or of each component of a vector of numbers).
+struct Range
+{
+  std::optional<double> min;
+  bool min_inclusive = true;
+  std::optional<double> max;
+  bool max_inclusive = true;
+
+  bool contains(double value) const;
+  /// "> 0", ">= 1", "[0, 0.5)", or empty for an unbounded range.
+  std::string describe() const;
+};
+
+/// One key of a section.
+struct Key
+{
+  std::string name;
+  ValueType type = ValueType::string;
+  std::string unit; ///< SI unit, e.g. "Pa", "kg/m^3"; empty if dimensionless
+  bool required = false;
+  std::string default_yaml; ///< default as YAML text, read like a user's value; empty if none
+  std::string default_note; ///< default in words, when it is not a literal value
+  Range range;              ///< for numbers and vectors of numbers (each component)
+  std::vector<std::string> choices; ///< for ValueType::choice
+  std::string section;              ///< for section, section_map, section_list: the Section's id
+  std::string meaning;              ///< one line
+};
+
+/// A map of keys: the top level, a named section (`time`), an item of a list (`blocks[i]`) or
+/// of a named map (`materials.<name>`).
+struct Section
+{
+  std::string id;      ///< the path pattern shown in the reference, e.g. "materials.<name>"
+  std::string meaning; ///< a short paragraph
+  std::vector<Key> keys;
+
+  /// The key named `name`, or nullptr.
+  const Key* find(const std::string& name) const;
+  /// The key named `name`; the caller knows it exists (asserted).
+  const Key& key(const std::string& name) const;
+  /// Names of all keys, in schema order.
+  std::vector<std::string> key_names() const;
+};
+
+/// The whole scene format.
+class SceneSchema
+{
+public:
+  SceneSchema();
+
+  /// Id of the top-level section.
+  static constexpr const char* top_level = "(top level)";
+  /// Id of the time-function section whose `type` is `type_name`: "time function: <type>".
+  static std::string time_function_section(const std::string& type_name);
+  /// The time-function types, in schema order.
+  const std::vector<std::string>& time_function_types() const { return tf_types; }
+
+  const std::vector<Section>& sections() const { return all_sections; }
+  /// The section with id `id`; the caller knows it exists (asserted).
+  const Section& section(const std::string& id) const;
+
+private:
+  std::vector<Section> all_sections;
+  std::vector<std::string> tf_types;
+};
+
+} // namespace ddafem::schema

@@ -1,0 +1,320 @@
+#include "common/history_writer.h"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <iostream>
+#include <stdexcept>
+#include <utility>
+
+namespace ddafem
+{
+namespace
+{
+/// Owns one HDF5 identifier and closes it with the matching H5?close function.
+class Handle
+{
+public:
+  using Closer = herr_t (*)(hid_t);
+
+  Handle() = default;
+  Handle(hid_t new_id, Closer new_closer) : id(new_id), closer(new_closer) {}
+  ~Handle() { reset(); }
+  Handle(Handle&& other) noexcept : id(other.id), closer(other.closer) { other.id = -1; }
+  Handle& operator=(Handle&& other) noexcept
+  {
+    if (this != &other)
+    {
+      reset();
+      id = other.id;
+      closer = other.closer;
+      other.id = -1;
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+
+  hid_t get() const { return id; }
+  bool valid() const { return id >= 0; }
+
+  /// Closes the identifier; returns false if HDF5 reported a failure.
+  bool reset()
+  {
+    bool ok = true;
+    if (id >= 0 && closer != nullptr)
+      ok = closer(id) >= 0;
+    id = -1;
+    return ok;
+  }
+
+private:
+  hid_t id = -1;
+  Closer closer = nullptr;
+};
+
+/// Collects the description of the innermost error on HDF5's default error stack.
+herr_t take_innermost_message(unsigned n, const H5E_error2_t* error, void* client_data)
+{
+  if (n == 0 && error != nullptr && error->desc != nullptr)
+    *static_cast<std::string*>(client_data) = error->desc;
+  return 0;
+}
+
+/// The innermost HDF5 error message (empty if none), then clears the error stack.
+std::string hdf5_error_message()
+{
+  std::string message;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, take_innermost_message, &message);
+  H5Eclear2(H5E_DEFAULT);
+  return message;
+}
+
+[[noreturn]] void throw_hdf5_error(const std::string& filename, const std::string& object,
+                                   const std::string& action)
+{
+  std::string message = "HDF5 history file '" + filename + "'";
+  if (!object.empty())
+    message += ", object '" + object + "'";
+  message += ": cannot " + action;
+  const std::string detail = hdf5_error_message();
+  if (!detail.empty())
+    message += " (" + detail + ")";
+  throw std::runtime_error(message);
+}
+
+/// Dataset paths are relative to the root group; a leading '/' is accepted and removed.
+std::string normalized_path(const std::string& path)
+{
+  std::size_t first = 0;
+  while (first < path.size() && path[first] == '/')
+    ++first;
+  return path.substr(first);
+}
+
+} // namespace
+
+struct HistoryWriter::Impl
+{
+  std::string filename;
+  std::vector<HistoryChannel> channels;
+  std::size_t flush_every = 1;
+  std::size_t n_values_per_row = 0; ///< sum of the channels' n_components
+
+  Handle file;
+  Handle time_dataset;
+  std::vector<Handle> channel_datasets; ///< same order as `channels`
+
+  std::size_t n_rows_written = 0;           ///< rows already in the file
+  std::vector<double> time_buffer;          ///< buffered times [s]
+  std::vector<std::vector<double>> buffers; ///< per channel: buffered rows, row-major
+
+  void check(herr_t status, const std::string& object, const std::string& action) const
+  {
+    if (status < 0)
+      throw_hdf5_error(filename, object, action);
+  }
+
+  /// Sets a fixed-length string attribute (UTF-8, null-terminated) on `object`, replacing an
+  /// existing attribute of the same name.
+  void write_string_attribute(hid_t object, const std::string& object_name, const std::string& name,
+                              const std::string& value) const
+  {
+    const std::string what = "attribute '" + name + "'";
+    const htri_t exists = H5Aexists(object, name.c_str());
+    if (exists < 0)
+      throw_hdf5_error(filename, object_name, "query " + what);
+    if (exists > 0)
+      check(H5Adelete(object, name.c_str()), object_name, "replace " + what);
+
+    Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+    if (!type.valid())
+      throw_hdf5_error(filename, object_name, "create the string type of " + what);
+    check(H5Tset_size(type.get(), value.size() + 1), object_name, "size " + what);
+    check(H5Tset_strpad(type.get(), H5T_STR_NULLTERM), object_name, "pad " + what);
+    check(H5Tset_cset(type.get(), H5T_CSET_UTF8), object_name, "set the encoding of " + what);
+
+    Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+    if (!space.valid())
+      throw_hdf5_error(filename, object_name, "create the dataspace of " + what);
+    Handle attribute(
+        H5Acreate2(object, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+        H5Aclose);
+    if (!attribute.valid())
+      throw_hdf5_error(filename, object_name, "create " + what);
+    check(H5Awrite(attribute.get(), type.get(), value.c_str()), object_name, "write " + what);
+    if (!attribute.reset())
+      throw_hdf5_error(filename, object_name, "close " + what);
+  }
+
+  /// Creates an extendible, chunked dataset of doubles: 1D if n_components == 1, otherwise
+  /// (unlimited rows) x n_components. Intermediate groups are created as needed.
+  Handle create_dataset(const std::string& path, std::size_t n_components, const std::string& unit,
+                        const std::string& description) const
+  {
+    const int rank = n_components == 1 ? 1 : 2;
+    // About flush_every rows per chunk, within [64, 8192] rows.
+    const hsize_t chunk_rows = std::clamp<hsize_t>(flush_every, 64, 8192);
+    const hsize_t initial_dims[2] = {0, n_components};
+    const hsize_t max_dims[2] = {H5S_UNLIMITED, n_components};
+    const hsize_t chunk_dims[2] = {chunk_rows, n_components};
+
+    Handle space(H5Screate_simple(rank, initial_dims, max_dims), H5Sclose);
+    if (!space.valid())
+      throw_hdf5_error(filename, path, "create the dataspace");
+    Handle link_plist(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+    if (!link_plist.valid())
+      throw_hdf5_error(filename, path, "create the link creation property list");
+    check(H5Pset_create_intermediate_group(link_plist.get(), 1), path,
+          "enable creation of intermediate groups");
+    Handle create_plist(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+    if (!create_plist.valid())
+      throw_hdf5_error(filename, path, "create the dataset creation property list");
+    check(H5Pset_chunk(create_plist.get(), rank, chunk_dims), path, "set the chunk size");
+
+    Handle dataset(H5Dcreate2(file.get(), path.c_str(), H5T_IEEE_F64LE, space.get(),
+                              link_plist.get(), create_plist.get(), H5P_DEFAULT),
+                   H5Dclose);
+    if (!dataset.valid())
+      throw_hdf5_error(filename, path,
+                       "create the dataset (a path used twice, or a parent that is a dataset?)");
+    write_string_attribute(dataset.get(), path, "unit", unit);
+    write_string_attribute(dataset.get(), path, "description", description);
+    return dataset;
+  }
+
+  /// Writes rows [n_rows_written, n_rows_written + n_new) of one dataset from `data`
+  /// (row-major, n_new x n_components). Idempotent: a failed write can be retried.
+  void write_rows(const Handle& dataset, const std::string& path, std::size_t n_components,
+                  const std::vector<double>& data) const
+  {
+    const hsize_t n_new = data.size() / n_components;
+    const int rank = n_components == 1 ? 1 : 2;
+    const hsize_t new_dims[2] = {n_rows_written + n_new, n_components};
+    const hsize_t offset[2] = {n_rows_written, 0};
+    const hsize_t count[2] = {n_new, n_components};
+
+    check(H5Dset_extent(dataset.get(), new_dims), path, "extend the dataset");
+    Handle file_space(H5Dget_space(dataset.get()), H5Sclose);
+    if (!file_space.valid())
+      throw_hdf5_error(filename, path, "get the dataspace");
+    check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, offset, nullptr, count, nullptr),
+          path, "select the new rows");
+    Handle memory_space(H5Screate_simple(rank, count, nullptr), H5Sclose);
+    if (!memory_space.valid())
+      throw_hdf5_error(filename, path, "create the memory dataspace");
+    check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(),
+                   H5P_DEFAULT, data.data()),
+          path, "write rows");
+  }
+
+  /// Writes the buffered rows of /time and of every channel, then empties the buffers.
+  void write_buffered_rows()
+  {
+    if (time_buffer.empty())
+      return;
+    write_rows(time_dataset, "time", 1, time_buffer);
+    for (std::size_t c = 0; c < channels.size(); ++c)
+      write_rows(channel_datasets[c], channels[c].path, channels[c].n_components, buffers[c]);
+    n_rows_written += time_buffer.size();
+    time_buffer.clear();
+    for (auto& buffer : buffers)
+      buffer.clear();
+  }
+};
+
+HistoryWriter::HistoryWriter(const std::string& filename, std::vector<HistoryChannel> channels,
+                             std::size_t flush_every)
+    : impl(std::make_unique<Impl>())
+{
+  if (flush_every == 0)
+    throw std::invalid_argument("HistoryWriter '" + filename + "': flush_every must be >= 1");
+  impl->filename = filename;
+  impl->flush_every = flush_every;
+  impl->channels = std::move(channels);
+  for (auto& channel : impl->channels)
+  {
+    channel.path = normalized_path(channel.path);
+    if (channel.path.empty() || channel.n_components == 0)
+      throw std::invalid_argument("HistoryWriter '" + filename + "': channel '" + channel.path +
+                                  "' needs a non-empty path and n_components >= 1");
+    impl->n_values_per_row += channel.n_components;
+  }
+
+  // Errors are reported through exceptions; HDF5's own printing to stderr would duplicate them.
+  if (H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) < 0)
+    throw_hdf5_error(filename, "", "silence HDF5's error printing");
+
+  impl->file =
+      Handle(H5Fcreate(filename.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (!impl->file.valid())
+    throw_hdf5_error(filename, "", "create the file");
+
+  impl->time_dataset = impl->create_dataset("time", 1, "s", "simulated time");
+  impl->time_buffer.reserve(flush_every);
+  impl->buffers.resize(impl->channels.size());
+  for (std::size_t c = 0; c < impl->channels.size(); ++c)
+  {
+    const HistoryChannel& channel = impl->channels[c];
+    impl->channel_datasets.push_back(impl->create_dataset(channel.path, channel.n_components,
+                                                          channel.unit, channel.description));
+    impl->buffers[c].reserve(flush_every * channel.n_components);
+  }
+}
+
+HistoryWriter::~HistoryWriter()
+{
+  if (!impl)
+    return;
+  // A destructor cannot throw: report the failure and go on closing. Call flush() before
+  // destruction to get write errors as exceptions.
+  try
+  {
+    impl->write_buffered_rows();
+  }
+  catch (const std::exception& error)
+  {
+    std::cerr << "HistoryWriter: " << error.what() << ": last rows lost\n";
+  }
+  impl->time_dataset.reset();
+  impl->channel_datasets.clear();
+  if (!impl->file.reset())
+    std::cerr << "HistoryWriter: cannot close HDF5 history file '" << impl->filename << "'\n";
+}
+
+void HistoryWriter::append(double time, const std::vector<double>& values)
+{
+  if (values.size() != impl->n_values_per_row)
+    throw std::invalid_argument("HistoryWriter '" + impl->filename + "': append() got " +
+                                std::to_string(values.size()) + " values, expected " +
+                                std::to_string(impl->n_values_per_row) +
+                                " (sum of the channels' n_components)");
+  impl->time_buffer.push_back(time);
+  auto value = values.begin();
+  for (std::size_t c = 0; c < impl->channels.size(); ++c)
+  {
+    const auto n = static_cast<std::ptrdiff_t>(impl->channels[c].n_components);
+    impl->buffers[c].insert(impl->buffers[c].end(), value, value + n);
+    value += n;
+  }
+  if (impl->time_buffer.size() >= impl->flush_every)
+    impl->write_buffered_rows();
+}
+
+void HistoryWriter::flush()
+{
+  impl->write_buffered_rows();
+  impl->check(H5Fflush(impl->file.get(), H5F_SCOPE_GLOBAL), "", "flush the file to disk");
+}
+
+void HistoryWriter::set_attribute(const std::string& name, const std::string& value)
+{
+  impl->write_string_attribute(impl->file.get(), "/", name, value);
+}
+
+std::size_t HistoryWriter::n_rows() const
+{
+  return impl->n_rows_written + impl->time_buffer.size();
+}
+
+} // namespace ddafem

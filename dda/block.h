@@ -1,0 +1,42 @@
+// A DDA block: its current geometry and its dynamic state.
+#pragma once
+
+#include "dda/geometry.h"
+#include "dda/types.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace ddafem::dda
+{
+/// One block. The reference point of its unknowns is the current centroid.
+struct Block
+{
+  std::size_t material = 0;
+  std::vector<Point> vertices;            ///< current vertices [m], anticlockwise
+  PolygonMoments moments;                 ///< of the current vertices
+  Point initial_centroid = Point::Zero(); ///< centroid at t = 0 [m]
+  Vector6 velocity = Vector6::Zero();     ///< d/dt of the unknowns (m/s, rad/s, 1/s)
+  Vector6 acceleration = Vector6::Zero(); ///< d2/dt2 of the unknowns (used by Newmark)
+  Voigt stress = Voigt::Zero();           ///< accumulated (sxx, syy, sxy) [Pa], tension positive
+  Voigt strain = Voigt::Zero();           ///< accumulated (exx, eyy, gxy) [-]
+
+  Block(std::size_t material, std::vector<Point> vertices);
+
+  /// Moves the vertices by T(x) d (T about the current centroid), recomputes the moments and
+  /// accumulates the strain and stress of the step (stress += C * strain increment).
+  void apply_increment(const Vector6& d, const Eigen::Matrix3d& elasticity);
+
+  /// Centroid displacement since t = 0 [m].
+  Vector2 displacement() const { return moments.centroid - initial_centroid; }
+};
+
+/// A point attached to a block (load, monitor, fixed point, joint end): it moves with the block.
+struct MaterialPoint
+{
+  std::size_t block = 0;
+  Point position = Point::Zero(); ///< current position [m]
+  Point initial = Point::Zero();  ///< position at t = 0 [m]
+};
+
+} // namespace ddafem::dda

@@ -1,0 +1,120 @@
+#include "dda/joints.h"
+
+#include "common/input_error.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace ddafem::dda
+{
+Vector2 Joint::tangent() const
+{
+  return (points[1].on_a.position - points[0].on_a.position).normalized();
+}
+
+Vector2 Joint::normal() const
+{
+  const Vector2 t = tangent();
+  return Vector2(t.y(), -t.x());
+}
+
+namespace
+{
+/// Joint material for two block materials: a matching pair assignment, else the default.
+std::size_t joint_material_for(const ModelDescription& model, std::size_t material_a,
+                               std::size_t material_b)
+{
+  for (const JointAssignment& j : model.joint_assignments)
+    if ((j.material_a == material_a && j.material_b == material_b) ||
+        (j.material_a == material_b && j.material_b == material_a))
+      return j.joint_material;
+  return model.default_joint_material;
+}
+
+struct Box
+{
+  double x_min, x_max, y_min, y_max;
+};
+
+Box bounding_box(const std::vector<Point>& vertices, double pad)
+{
+  Box b{vertices[0].x(), vertices[0].x(), vertices[0].y(), vertices[0].y()};
+  for (const Point& v : vertices)
+  {
+    b.x_min = std::min(b.x_min, v.x());
+    b.x_max = std::max(b.x_max, v.x());
+    b.y_min = std::min(b.y_min, v.y());
+    b.y_max = std::max(b.y_max, v.y());
+  }
+  b.x_min -= pad;
+  b.y_min -= pad;
+  b.x_max += pad;
+  b.y_max += pad;
+  return b;
+}
+} // namespace
+
+std::vector<Joint> find_joints(const std::vector<Block>& blocks, const ModelDescription& model,
+                               const std::vector<std::string>& block_names, double tol)
+{
+  // Sweep and prune along x: sort boxes by x_min, test only pairs whose x ranges overlap.
+  std::vector<Box> boxes;
+  boxes.reserve(blocks.size());
+  for (const Block& b : blocks)
+    boxes.push_back(bounding_box(b.vertices, tol));
+  std::vector<std::size_t> order(blocks.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t i, std::size_t j) { return boxes[i].x_min < boxes[j].x_min; });
+
+  std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs;
+  for (std::size_t oi = 0; oi < order.size(); ++oi)
+  {
+    const Box& bi = boxes[order[oi]];
+    for (std::size_t oj = oi + 1; oj < order.size(); ++oj)
+    {
+      const Box& bj = boxes[order[oj]];
+      if (bj.x_min > bi.x_max)
+        break;
+      if (bj.y_min > bi.y_max || bj.y_max < bi.y_min)
+        continue;
+      candidate_pairs.emplace_back(std::min(order[oi], order[oj]), std::max(order[oi], order[oj]));
+    }
+  }
+  std::sort(candidate_pairs.begin(), candidate_pairs.end());
+
+  std::vector<Joint> joints;
+  for (const auto& [a, b] : candidate_pairs)
+  {
+    const std::vector<SharedSegment> shared =
+        shared_segments(blocks[a].vertices, blocks[b].vertices, tol);
+    if (shared.empty())
+      continue;
+    const std::size_t jm = joint_material_for(model, blocks[a].material, blocks[b].material);
+    if (jm >= model.joint_materials.size())
+      throw InputError("blocks " + block_names[a] + " and " + block_names[b] +
+                       " share an edge but no joint material applies to materials '" +
+                       model.materials[blocks[a].material].name + "' and '" +
+                       model.materials[blocks[b].material].name +
+                       "': expected `joints: {default: NAME}` or a `joints.pairs` entry");
+    for (const SharedSegment& s : shared)
+    {
+      Joint joint;
+      joint.id = joints.size();
+      joint.block_a = a;
+      joint.block_b = b;
+      joint.joint_material = jm;
+      joint.length = (s.q - s.p).norm();
+      const std::array<Point, 2> ends{s.p, s.q};
+      for (std::size_t k = 0; k < 2; ++k)
+      {
+        joint.points[k].on_a = {a, ends[k], ends[k]};
+        joint.points[k].on_b = {b, ends[k], ends[k]};
+      }
+      joints.push_back(joint);
+    }
+  }
+  return joints;
+}
+
+} // namespace ddafem::dda

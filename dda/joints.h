@@ -1,0 +1,56 @@
+// Joints between blocks that share an edge (issue 2: bonded joints).
+#pragma once
+
+#include "dda/block.h"
+#include "dda/model_description.h"
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace ddafem::dda
+{
+/// State of a joint contact point. Issue 4 adds open / slide / lock for frictional contacts.
+enum class JointState
+{
+  bonded, ///< glued: normal and shear springs carry tension and shear
+  broken  ///< its strength was exceeded
+};
+
+/// One end of a joint: the same point attached to both blocks, joined by a normal spring p and a
+/// shear spring p * shear_ratio (Shi's edge-to-edge contact as two vertex springs).
+struct JointPoint
+{
+  MaterialPoint on_a;        ///< the point as part of block a
+  MaterialPoint on_b;        ///< the point as part of block b
+  double normal_force = 0.0; ///< spring force [N], tension positive (blocks pulled together)
+  double shear_force = 0.0;  ///< spring force [N] along the joint tangent t (see Joint::tangent)
+  JointState state = JointState::bonded;
+};
+
+/// A joint along the shared stretch of an edge of block a and an edge of block b.
+struct Joint
+{
+  std::size_t id = 0;      ///< stable over the run
+  std::size_t block_a = 0; ///< block_a < block_b
+  std::size_t block_b = 0;
+  std::size_t joint_material = 0;
+  std::size_t coupling = 0;         ///< index of the (a, b) coupling block in the system matrix
+  double length = 0.0;              ///< initial length of the shared stretch [m]
+  std::array<JointPoint, 2> points; ///< its two ends, in a's edge direction
+
+  /// Unit tangent along a's edge at the current positions (a's anticlockwise direction).
+  Vector2 tangent() const;
+  /// Unit normal pointing out of block a, towards b: (t_y, -t_x).
+  Vector2 normal() const;
+};
+
+/// Finds every pair of blocks that share an edge stretch and makes a bonded joint there, with the
+/// joint material assigned to the pair's materials. Blocks are paired by a sweep over their
+/// bounding boxes (not all pairs). Throws InputError (naming the blocks) where two blocks share
+/// an edge and no joint material applies. `tol` [m] is the collinearity tolerance.
+std::vector<Joint> find_joints(const std::vector<Block>& blocks, const ModelDescription& model,
+                               const std::vector<std::string>& block_names, double tol);
+
+} // namespace ddafem::dda

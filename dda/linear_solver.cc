@@ -1,0 +1,355 @@
+#include "dda/linear_solver.h"
+
+#include "dda/block_cholesky.h"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <Amesos_Klu.h>
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_LinearProblem.h>
+#include <Epetra_Map.h>
+#include <Epetra_MultiVector.h>
+#include <Epetra_SerialComm.h>
+
+#include <cassert>
+#include <cmath>
+
+namespace ddafem::dda
+{
+// ---- BlockSparseMatrix ----------------------------------------------------------------------
+
+BlockSparseMatrix::BlockSparseMatrix(std::size_t n_blocks,
+                                     std::vector<std::pair<std::size_t, std::size_t>> couplings)
+    : coupling_pairs(std::move(couplings)), diagonal_blocks(n_blocks, Matrix6::Zero()),
+      upper_blocks(coupling_pairs.size(), Matrix6::Zero())
+{
+  for (const auto& [i, j] : coupling_pairs)
+  {
+    (void)i;
+    (void)j;
+    assert(i < j && j < n_blocks);
+  }
+}
+
+void BlockSparseMatrix::set_zero()
+{
+  for (Matrix6& m : diagonal_blocks)
+    m.setZero();
+  for (Matrix6& m : upper_blocks)
+    m.setZero();
+}
+
+Eigen::VectorXd BlockSparseMatrix::multiply(const Eigen::VectorXd& x) const
+{
+  Eigen::VectorXd y(x.size());
+  for (std::size_t i = 0; i < diagonal_blocks.size(); ++i)
+    y.segment<6>(6 * i) = diagonal_blocks[i] * x.segment<6>(6 * i);
+  for (std::size_t k = 0; k < coupling_pairs.size(); ++k)
+  {
+    const auto [i, j] = coupling_pairs[k];
+    y.segment<6>(6 * i) += upper_blocks[k] * x.segment<6>(6 * j);
+    y.segment<6>(6 * j) += upper_blocks[k].transpose() * x.segment<6>(6 * i);
+  }
+  return y;
+}
+
+bool BlockSparseMatrix::same_structure(const BlockSparseMatrix& other) const
+{
+  return n_blocks() == other.n_blocks() && coupling_pairs == other.coupling_pairs;
+}
+
+bool BlockSparseMatrix::same_values(const BlockSparseMatrix& other) const
+{
+  return diagonal_blocks == other.diagonal_blocks && upper_blocks == other.upper_blocks;
+}
+
+namespace
+{
+// ---- Eigen sparse Cholesky (LDL^T) ----------------------------------------------------------
+
+/// Eigen's SimplicialLDLT on the upper triangle, with AMD ordering. The CSC structure is built
+/// once; each factorization copies the block values through a precomputed index map.
+class EigenLdltSolver final : public SparseDirectSolver
+{
+public:
+  void analyze_pattern(const BlockSparseMatrix& a) override
+  {
+    // Triplets in a fixed order; remember for each entry where it lands in valuePtr().
+    const std::size_t n = a.n_rows();
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (std::size_t b = 0; b < a.n_blocks(); ++b)
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r <= c; ++r)
+          triplets.emplace_back(6 * b + r, 6 * b + c, 1.0);
+    for (std::size_t k = 0; k < a.n_couplings(); ++k)
+    {
+      const auto [i, j] = a.coupling(k);
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r < 6; ++r)
+          triplets.emplace_back(6 * i + r, 6 * j + c, 1.0);
+    }
+    matrix.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+    matrix.setFromTriplets(triplets.begin(), triplets.end());
+    matrix.makeCompressed();
+    diagonal_slots.clear();
+    for (std::size_t b = 0; b < a.n_blocks(); ++b)
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r <= c; ++r)
+          diagonal_slots.push_back(slot(6 * b + r, 6 * b + c));
+    upper_slots.clear();
+    for (std::size_t k = 0; k < a.n_couplings(); ++k)
+    {
+      const auto [i, j] = a.coupling(k);
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r < 6; ++r)
+          upper_slots.push_back(slot(6 * i + r, 6 * j + c));
+    }
+    ldlt.analyzePattern(matrix);
+  }
+
+  bool factorize(const BlockSparseMatrix& a) override
+  {
+    double* values = matrix.valuePtr();
+    std::size_t s = 0;
+    for (std::size_t b = 0; b < a.n_blocks(); ++b)
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r <= c; ++r)
+          values[diagonal_slots[s++]] = a.diagonal(b)(r, c);
+    s = 0;
+    for (std::size_t k = 0; k < a.n_couplings(); ++k)
+      for (int c = 0; c < 6; ++c)
+        for (int r = 0; r < 6; ++r)
+          values[upper_slots[s++]] = a.upper(k)(r, c);
+    ldlt.factorize(matrix);
+    if (ldlt.info() != Eigen::Success)
+      return false;
+    // LDL^T succeeds on indefinite matrices; the step matrix must be positive definite.
+    return (ldlt.vectorD().array() > 0.0).all();
+  }
+
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override { x = ldlt.solve(b); }
+
+  std::string name() const override { return "eigen_ldlt"; }
+
+private:
+  std::ptrdiff_t slot(std::size_t row, std::size_t col) const
+  {
+    const auto c = static_cast<Eigen::Index>(col);
+    const int* inner = matrix.innerIndexPtr();
+    const int begin = matrix.outerIndexPtr()[c];
+    const int end = matrix.outerIndexPtr()[c + 1];
+    for (int p = begin; p < end; ++p)
+      if (static_cast<std::size_t>(inner[p]) == row)
+        return p;
+    assert(false && "entry not in pattern");
+    return -1;
+  }
+
+  Eigen::SparseMatrix<double, Eigen::ColMajor, int> matrix;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double, Eigen::ColMajor, int>, Eigen::Upper> ldlt;
+  std::vector<std::ptrdiff_t> diagonal_slots;
+  std::vector<std::ptrdiff_t> upper_slots;
+};
+
+// ---- Trilinos Amesos KLU --------------------------------------------------------------------
+
+/// Trilinos Amesos KLU (sparse LU) on the full symmetric matrix in an Epetra_CrsMatrix over a
+/// serial communicator. Symbolic factorization once, numeric factorization per change.
+class AmesosKluSolver final : public SparseDirectSolver
+{
+public:
+  void analyze_pattern(const BlockSparseMatrix& a) override
+  {
+    const int n = static_cast<int>(a.n_rows());
+    map = std::make_unique<Epetra_Map>(n, 0, comm);
+    // Column indices per block row: itself and its coupled blocks.
+    block_neighbours.assign(a.n_blocks(), {});
+    for (std::size_t b = 0; b < a.n_blocks(); ++b)
+      block_neighbours[b].push_back(b);
+    for (std::size_t k = 0; k < a.n_couplings(); ++k)
+    {
+      const auto [i, j] = a.coupling(k);
+      block_neighbours[i].push_back(j);
+      block_neighbours[j].push_back(i);
+    }
+    std::vector<int> entries_per_row(static_cast<std::size_t>(n));
+    for (std::size_t b = 0; b < a.n_blocks(); ++b)
+      for (int r = 0; r < 6; ++r)
+        entries_per_row[6 * b + static_cast<std::size_t>(r)] =
+            static_cast<int>(6 * block_neighbours[b].size());
+    matrix = std::make_unique<Epetra_CrsMatrix>(Copy, *map, entries_per_row.data(), true);
+    fill(a, true);
+    matrix->FillComplete();
+    x_vec = std::make_unique<Epetra_MultiVector>(*map, 1);
+    b_vec = std::make_unique<Epetra_MultiVector>(*map, 1);
+    problem = std::make_unique<Epetra_LinearProblem>(matrix.get(), x_vec.get(), b_vec.get());
+    klu = std::make_unique<Amesos_Klu>(*problem);
+    klu->SymbolicFactorization();
+  }
+
+  bool factorize(const BlockSparseMatrix& a) override
+  {
+    fill(a, false);
+    return klu->NumericFactorization() == 0;
+  }
+
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override
+  {
+    for (Eigen::Index i = 0; i < b.size(); ++i)
+      (*b_vec)[0][i] = b[i];
+    klu->Solve();
+    x.resize(b.size());
+    for (Eigen::Index i = 0; i < b.size(); ++i)
+      x[i] = (*x_vec)[0][i];
+  }
+
+  std::string name() const override { return "amesos_klu"; }
+
+private:
+  /// Writes the values of a into the CRS matrix (inserting on the first call).
+  void fill(const BlockSparseMatrix& a, bool insert)
+  {
+    std::vector<int> columns;
+    std::vector<double> values;
+    // Lookup of the coupling block for (i, j) in either order.
+    std::vector<std::vector<std::pair<std::size_t, std::size_t>>> coupling_of(a.n_blocks());
+    for (std::size_t k = 0; k < a.n_couplings(); ++k)
+    {
+      const auto [i, j] = a.coupling(k);
+      coupling_of[i].emplace_back(j, k);
+      coupling_of[j].emplace_back(i, k);
+    }
+    for (std::size_t bi = 0; bi < a.n_blocks(); ++bi)
+      for (int r = 0; r < 6; ++r)
+      {
+        columns.clear();
+        values.clear();
+        for (int c = 0; c < 6; ++c)
+        {
+          columns.push_back(static_cast<int>(6 * bi) + c);
+          values.push_back(a.diagonal(bi)(r, c));
+        }
+        for (const auto& [bj, k] : coupling_of[bi])
+          for (int c = 0; c < 6; ++c)
+          {
+            columns.push_back(static_cast<int>(6 * bj) + c);
+            // Upper block (i, j) stored for i < j; the lower block is its transpose.
+            values.push_back(bi < bj ? a.upper(k)(r, c) : a.upper(k)(c, r));
+          }
+        const int row = static_cast<int>(6 * bi) + r;
+        if (insert)
+          matrix->InsertGlobalValues(row, static_cast<int>(columns.size()), values.data(),
+                                     columns.data());
+        else
+          matrix->ReplaceGlobalValues(row, static_cast<int>(columns.size()), values.data(),
+                                      columns.data());
+      }
+  }
+
+  Epetra_SerialComm comm;
+  std::unique_ptr<Epetra_Map> map;
+  std::unique_ptr<Epetra_CrsMatrix> matrix;
+  std::unique_ptr<Epetra_MultiVector> x_vec, b_vec;
+  std::unique_ptr<Epetra_LinearProblem> problem;
+  std::unique_ptr<Amesos_Klu> klu;
+  std::vector<std::vector<std::size_t>> block_neighbours;
+};
+
+} // namespace
+
+std::unique_ptr<SparseDirectSolver> make_sparse_direct_solver(SolverKind kind)
+{
+  switch (kind)
+  {
+  case SolverKind::eigen_ldlt:
+    return std::make_unique<EigenLdltSolver>();
+  case SolverKind::amesos_klu:
+    return std::make_unique<AmesosKluSolver>();
+  case SolverKind::block_ldlt:
+    return std::make_unique<BlockCholeskySolver>();
+  }
+  return nullptr;
+}
+
+// ---- FactorizationReusingSolver --------------------------------------------------------------
+
+FactorizationReusingSolver::FactorizationReusingSolver(std::unique_ptr<SparseDirectSolver> solver_,
+                                                       double tolerance_, unsigned max_refinements_)
+    : solver(std::move(solver_)), tolerance(tolerance_), max_refinements(max_refinements_)
+{
+}
+
+SolveStatus FactorizationReusingSolver::factorize_and_solve(const BlockSparseMatrix& a,
+                                                            const Eigen::VectorXd& b,
+                                                            Eigen::VectorXd& x)
+{
+  SolveStatus status;
+  if (!factored)
+    solver->analyze_pattern(a);
+  ++factorization_count;
+  if (!solver->factorize(a))
+  {
+    factored.reset();
+    status.success = false;
+    status.message = "the step matrix is singular or not positive definite (" + solver->name() +
+                     " factorization failed)";
+    return status;
+  }
+  factored = std::make_unique<BlockSparseMatrix>(a);
+  solver->solve(b, x);
+  ++solve_count;
+  status.factorized = true;
+  return status;
+}
+
+SolveStatus FactorizationReusingSolver::solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
+                                              Eigen::VectorXd& x)
+{
+  SolveStatus status;
+  if (!factored || !factored->same_structure(a))
+  {
+    factored.reset(); // a new structure needs a new symbolic analysis
+    status = factorize_and_solve(a, b, x);
+  }
+  else if (factored->same_values(a))
+  {
+    solver->solve(b, x);
+    ++solve_count;
+  }
+  else
+  {
+    const double b_norm = b.norm();
+    solver->solve(b, x);
+    ++solve_count;
+    bool converged = false;
+    for (unsigned k = 0; k <= max_refinements; ++k)
+    {
+      const Eigen::VectorXd r = b - a.multiply(x);
+      status.relative_residual = b_norm > 0.0 ? r.norm() / b_norm : r.norm();
+      if (status.relative_residual <= tolerance)
+      {
+        converged = true;
+        break;
+      }
+      if (k == max_refinements)
+        break;
+      Eigen::VectorXd dx;
+      solver->solve(r, dx);
+      x += dx;
+      ++solve_count;
+      ++refinement_count;
+      ++status.n_refinements;
+    }
+    if (!converged)
+      status = factorize_and_solve(a, b, x);
+  }
+  if (status.success && !x.allFinite())
+  {
+    status.success = false;
+    status.message = "the solution of the step contains NaN or infinity";
+  }
+  return status;
+}
+
+} // namespace ddafem::dda

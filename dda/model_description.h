@@ -1,0 +1,130 @@
+// Input of a DDA model, as read from a scene: plain data, validated by the scene reader.
+#pragma once
+
+#include "common/time_function.h"
+#include "dda/types.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace ddafem::dda
+{
+/// 2D idealisation of the blocks' elasticity.
+enum class PlaneMode
+{
+  stress, ///< plane stress (Shi's default; a thin slab or a one-block-high bar)
+  strain  ///< plane strain (a section through a long tunnel)
+};
+
+/// Linear elastic, isotropic block material.
+struct Material
+{
+  std::string name;
+  double density = 0.0;        ///< rho [kg/m^3], > 0
+  double youngs_modulus = 0.0; ///< E [Pa], > 0
+  double poisson_ratio = 0.0;  ///< nu [-], in [0, 0.5)
+};
+
+/// Properties of the joints (contacts) between blocks.
+struct JointMaterial
+{
+  std::string name;
+  double normal_stiffness = 0.0; ///< penalty spring p [N/m] at each contact point, > 0
+  double shear_ratio = 0.4;      ///< shear spring / normal spring [-] (Shi: 1/2.5)
+  double friction_angle = 0.0;   ///< phi [degrees], in [0, 90)
+  double cohesion = 0.0;         ///< c [Pa], >= 0
+  double tensile_strength = 0.0; ///< [Pa], >= 0
+  bool bonded = true; ///< true: glued until its strength is exceeded; false: frictional contact
+};
+
+/// Which joint material applies between blocks of two given materials.
+struct JointAssignment
+{
+  std::size_t material_a = 0; ///< index into ModelDescription::materials
+  std::size_t material_b = 0;
+  std::size_t joint_material = 0; ///< index into ModelDescription::joint_materials
+};
+
+/// One block: a simple polygon, anticlockwise, not closed (the last vertex is not repeated).
+struct BlockDescription
+{
+  std::vector<Point> vertices;                ///< [m]
+  std::size_t material = 0;                   ///< index into ModelDescription::materials
+  Vector2 initial_velocity = Vector2::Zero(); ///< translational velocity at t = 0 [m/s]
+  Voigt initial_stress = Voigt::Zero();       ///< (sxx, syy, sxy) [Pa], tension positive
+  std::string origin;                         ///< where it came from, for messages ("blocks[3]")
+};
+
+/// A force applied at a material point of the block that contains it: F(t) = force * f(t).
+struct PointLoad
+{
+  Point point;   ///< [m], inside or on the boundary of exactly one block
+  Vector2 force; ///< [N]
+  TimeFunction time_function;
+  std::string origin;
+};
+
+/// A material point tied by a stiff penalty spring to its initial position plus an optional
+/// prescribed displacement (ux(t), uy(t)) [m] (for a moving rigid base).
+struct FixedPoint
+{
+  Point point;            ///< [m]
+  double stiffness = 0.0; ///< penalty spring [N/m]; 0 selects the default (see System)
+  TimeFunction displacement_x = TimeFunction::constant(0.0);
+  TimeFunction displacement_y = TimeFunction::constant(0.0);
+  std::string origin;
+};
+
+/// A measurement point: the history of the material point and of its block's stress.
+struct Monitor
+{
+  std::string name;
+  Point point; ///< [m], inside exactly one block
+};
+
+/// The time integrator. Both are Newmark schemes: a1 = (d - dt v0 - dt^2 (1/2 - beta) a0) /
+/// (beta dt^2), v1 = v0 + dt ((1 - gamma) a0 + gamma a1).
+enum class Integrator
+{
+  dda,                ///< Shi's scheme, beta = 1/2, gamma = 1: first order, dissipative
+  newmark_trapezoidal ///< beta = 1/4, gamma = 1/2: second order, conserves energy
+};
+
+/// Sparse direct solver for the step's symmetric positive definite system.
+enum class SolverKind
+{
+  eigen_ldlt, ///< Eigen SimplicialLDLT (sparse Cholesky, AMD ordering)
+  amesos_klu, ///< Trilinos Amesos KLU (sparse LU)
+  /// Sparse Cholesky on the 6x6 block structure (AMD ordering of the block graph, fixed-size
+  /// dense block kernels); the fastest for DDA's block-sparse matrices
+  block_ldlt
+};
+
+struct TimeSettings
+{
+  double dt = 0.0;       ///< time step [s], > 0
+  double end_time = 0.0; ///< [s], >= dt
+  Integrator integrator = Integrator::dda;
+};
+
+/// Everything the DDA engine needs to build and run a model.
+struct ModelDescription
+{
+  PlaneMode plane_mode = PlaneMode::stress;
+  std::vector<Material> materials;
+  std::vector<JointMaterial> joint_materials;
+  /// Joint material for block pairs not named in joint_assignments; npos if none given (then
+  /// blocks sharing an edge are an error).
+  std::size_t default_joint_material = static_cast<std::size_t>(-1);
+  std::vector<JointAssignment> joint_assignments;
+  std::vector<BlockDescription> blocks;
+  std::vector<PointLoad> point_loads;
+  std::vector<FixedPoint> fixed_points;
+  std::vector<Monitor> monitors;
+  Vector2 gravity = Vector2::Zero(); ///< body acceleration [m/s^2], e.g. (0, -9.81)
+  TimeSettings time;
+  SolverKind solver = SolverKind::block_ldlt;
+};
+
+} // namespace ddafem::dda

@@ -1,0 +1,304 @@
+#include "dda/vtu_writer.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace ddafem::dda
+{
+namespace
+{
+namespace fs = std::filesystem;
+
+/// VTK cell type of a simple polygon, convex or not (vtkCellType.h).
+constexpr int vtk_polygon = 7;
+
+/// Appends the shortest decimal text that reads back as exactly `value` (std::to_chars).
+void append_number(std::string& out, double value)
+{
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  out.append(buffer, result.ptr);
+}
+
+template <typename Integer>
+void append_integer(std::string& out, Integer value)
+{
+  char buffer[24];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  out.append(buffer, result.ptr);
+}
+
+/// Escapes the characters that cannot appear literally in an XML attribute value.
+std::string xml_escape(const std::string& text)
+{
+  std::string escaped;
+  for (const char c : text)
+  {
+    switch (c)
+    {
+    case '&':
+      escaped += "&amp;";
+      break;
+    case '<':
+      escaped += "&lt;";
+      break;
+    case '>':
+      escaped += "&gt;";
+      break;
+    case '"':
+      escaped += "&quot;";
+      break;
+    default:
+      escaped += c;
+    }
+  }
+  return escaped;
+}
+
+/// Von Mises equivalent stress [Pa] of a plane stress state (sxx, syy, sxy) [Pa]:
+/// sqrt(sxx^2 - sxx syy + syy^2 + 3 sxy^2).
+double von_mises(const Voigt& stress)
+{
+  const double sxx = stress[0];
+  const double syy = stress[1];
+  const double sxy = stress[2];
+  return std::sqrt(std::max(0.0, sxx * sxx - sxx * syy + syy * syy + 3.0 * sxy * sxy));
+}
+
+/// Writes `content` to PATH.tmp and renames it to `path`, so that readers never see a
+/// half-written file. Throws std::runtime_error naming the path on failure.
+void write_file_atomically(const fs::path& path, const std::string& content)
+{
+  fs::path temporary = path;
+  temporary += ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out)
+      throw std::runtime_error("cannot open '" + temporary.string() + "' for writing");
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+    out.close();
+    if (!out)
+    {
+      std::error_code ignored;
+      fs::remove(temporary, ignored);
+      throw std::runtime_error("cannot write '" + temporary.string() + "'");
+    }
+  }
+  std::error_code error;
+  fs::rename(temporary, path, error);
+  if (error)
+  {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    throw std::runtime_error("cannot rename '" + temporary.string() + "' to '" + path.string() +
+                             "': " + error.message());
+  }
+}
+
+/// Opens a cell-data DataArray element.
+void open_array(std::string& out, const char* type, const char* name, int n_components)
+{
+  out += "        <DataArray type=\"";
+  out += type;
+  out += "\" Name=\"";
+  out += name;
+  out += '"';
+  if (n_components > 1)
+  {
+    out += " NumberOfComponents=\"";
+    append_integer(out, n_components);
+    out += '"';
+  }
+  out += " format=\"ascii\">\n";
+}
+
+constexpr const char* close_array = "        </DataArray>\n";
+
+/// Appends a 2D vector as a 3-component tuple with z = 0.
+void append_vector(std::string& out, const Vector2& v)
+{
+  out += "          ";
+  append_number(out, v[0]);
+  out += ' ';
+  append_number(out, v[1]);
+  out += " 0\n";
+}
+
+/// The complete text of one .vtu file.
+std::string vtu_text(double time, const std::vector<BlockSnapshot>& blocks)
+{
+  std::size_t n_points = 0;
+  for (const auto& block : blocks)
+    n_points += block.vertices.size();
+
+  std::string out;
+  out.reserve(256 + 64 * n_points + 256 * blocks.size());
+  out += "<?xml version=\"1.0\"?>\n"
+         "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         "  <UnstructuredGrid>\n"
+         "    <FieldData>\n"
+         "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" "
+         "format=\"ascii\">";
+  append_number(out, time);
+  out += "</DataArray>\n"
+         "    </FieldData>\n"
+         "    <Piece NumberOfPoints=\"";
+  append_integer(out, n_points);
+  out += "\" NumberOfCells=\"";
+  append_integer(out, blocks.size());
+  out += "\">\n";
+
+  // Points: the current vertices of every block, block after block, z = 0 [m].
+  out += "      <Points>\n"
+         "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const auto& block : blocks)
+    for (const auto& vertex : block.vertices)
+      append_vector(out, vertex);
+  out += close_array;
+  out += "      </Points>\n";
+
+  // Cells: one polygon per block over its own vertices.
+  out += "      <Cells>\n";
+  open_array(out, "Int64", "connectivity", 1);
+  std::size_t point = 0;
+  for (const auto& block : blocks)
+  {
+    out += "         ";
+    for (std::size_t v = 0; v < block.vertices.size(); ++v, ++point)
+    {
+      out += ' ';
+      append_integer(out, point);
+    }
+    out += '\n';
+  }
+  out += close_array;
+  open_array(out, "Int64", "offsets", 1);
+  std::size_t offset = 0;
+  for (const auto& block : blocks)
+  {
+    offset += block.vertices.size();
+    out += "          ";
+    append_integer(out, offset);
+    out += '\n';
+  }
+  out += close_array;
+  open_array(out, "UInt8", "types", 1);
+  for (std::size_t b = 0; b < blocks.size(); ++b)
+  {
+    out += "          ";
+    append_integer(out, vtk_polygon);
+    out += '\n';
+  }
+  out += close_array;
+  out += "      </Cells>\n";
+
+  // Cell data: one tuple per block.
+  out += "      <CellData Scalars=\"von_mises\" Vectors=\"displacement\">\n";
+  open_array(out, "Int64", "block_id", 1);
+  for (const auto& block : blocks)
+  {
+    out += "          ";
+    append_integer(out, block.id);
+    out += '\n';
+  }
+  out += close_array;
+  open_array(out, "Int32", "material", 1);
+  for (const auto& block : blocks)
+  {
+    out += "          ";
+    append_integer(out, block.material);
+    out += '\n';
+  }
+  out += close_array;
+  open_array(out, "Float64", "displacement", 3); // [m]
+  for (const auto& block : blocks)
+    append_vector(out, block.displacement);
+  out += close_array;
+  open_array(out, "Float64", "velocity", 3); // [m/s]
+  for (const auto& block : blocks)
+    append_vector(out, block.velocity);
+  out += close_array;
+  out += "        <DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"3\" "
+         "ComponentName0=\"sxx\" ComponentName1=\"syy\" ComponentName2=\"sxy\" "
+         "format=\"ascii\">\n"; // [Pa], tension positive
+  for (const auto& block : blocks)
+  {
+    out += "          ";
+    append_number(out, block.stress[0]);
+    out += ' ';
+    append_number(out, block.stress[1]);
+    out += ' ';
+    append_number(out, block.stress[2]);
+    out += '\n';
+  }
+  out += close_array;
+  open_array(out, "Float64", "von_mises", 1); // [Pa]
+  for (const auto& block : blocks)
+  {
+    out += "          ";
+    append_number(out, von_mises(block.stress));
+    out += '\n';
+  }
+  out += close_array;
+  out += "      </CellData>\n"
+         "    </Piece>\n"
+         "  </UnstructuredGrid>\n"
+         "</VTKFile>\n";
+  return out;
+}
+
+} // namespace
+
+VtuSeriesWriter::VtuSeriesWriter(std::string directory_name, std::string file_basename)
+    : directory(std::move(directory_name)), basename(std::move(file_basename))
+{
+  if (basename.empty() || basename.find('/') != std::string::npos)
+    throw std::invalid_argument("VtuSeriesWriter: basename '" + basename +
+                                "' must be a non-empty file name without '/'");
+}
+
+std::string VtuSeriesWriter::write(double time, const std::vector<BlockSnapshot>& blocks)
+{
+  const fs::path dir = directory.empty() ? fs::path(".") : fs::path(directory);
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error || !fs::is_directory(dir))
+    throw std::runtime_error("cannot create the output directory '" + dir.string() +
+                             "': " + (error ? error.message() : "not a directory"));
+
+  // BASENAME_00000.vtu: five digits, more once the series passes 99999 files.
+  char index[24];
+  std::snprintf(index, sizeof(index), "%05zu", entries.size());
+  const std::string name = basename + "_" + index + ".vtu";
+  const fs::path path = dir / name;
+  write_file_atomically(path, vtu_text(time, blocks));
+
+  entries.emplace_back(time, name);
+  write_pvd();
+  return path.string();
+}
+
+void VtuSeriesWriter::write_pvd() const
+{
+  std::string out = "<?xml version=\"1.0\"?>\n"
+                    "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+                    "  <Collection>\n";
+  for (const auto& [time, name] : entries)
+  {
+    out += "    <DataSet timestep=\"";
+    append_number(out, time);
+    out += "\" group=\"\" part=\"0\" file=\"" + xml_escape(name) + "\"/>\n";
+  }
+  out += "  </Collection>\n"
+         "</VTKFile>\n";
+  const fs::path dir = directory.empty() ? fs::path(".") : fs::path(directory);
+  write_file_atomically(dir / (basename + ".pvd"), out);
+}
+
+} // namespace ddafem::dda

@@ -1,0 +1,36 @@
+// VTU/PVD time series of the blocks for ParaView: one VTK_POLYGON cell per block.
+// deal.II's DataOut writes patches of quadrilaterals only; DDA blocks are arbitrary polygons, so
+// this small writer emits VTK XML UnstructuredGrid files directly.
+#pragma once
+
+#include "dda/snapshot.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ddafem::dda
+{
+/// Writes DIR/BASENAME_NNNNN.vtu per call and rewrites DIR/BASENAME.pvd after each one (so the
+/// series opens in ParaView even if the run stops early). Cell data: block_id (Int64),
+/// material (Int32), displacement, velocity (3-component Float64, z = 0), stress (Float64 with
+/// components sxx, syy, sxy) and von_mises [Pa]. Point coordinates are the current vertices.
+/// I/O failures throw std::runtime_error naming the file.
+class VtuSeriesWriter
+{
+public:
+  VtuSeriesWriter(std::string directory, std::string basename);
+
+  /// Writes one snapshot at simulated time `time` [s]; returns the .vtu path written.
+  std::string write(double time, const std::vector<BlockSnapshot>& blocks);
+
+  std::size_t n_written() const { return entries.size(); }
+
+private:
+  void write_pvd() const;
+  std::string directory;
+  std::string basename;
+  std::vector<std::pair<double, std::string>> entries; ///< (time, file name relative to dir)
+};
+
+} // namespace ddafem::dda

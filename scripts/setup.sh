@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages ddafem needs, only those that are missing.
+# Idempotent: with everything present it only runs dpkg queries (well under a second).
+set -euo pipefail
+
+packages=(
+  build-essential cmake git pkg-config clang-format
+  libdeal.ii-dev          # deal.II 9.4: Trilinos 13.2, PETSc, p4est, MPI, HDF5, UMFPACK, CGAL, Boost
+  libeigen3-dev           # small dense algebra, sparse Cholesky
+  libyaml-cpp-dev         # scene files
+  nlohmann-json3-dev      # summary.json and verification records
+  libhdf5-dev             # HDF5 headers (deal.II brings the OpenMPI build it links)
+  libcgal-dev libgmp-dev libmpfr-dev
+  libgtest-dev googletest # tests
+  python3 python3-numpy python3-matplotlib python3-h5py  # plots
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}" >&2
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then
+  sudo_cmd=(sudo)
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

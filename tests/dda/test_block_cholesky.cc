@@ -1,0 +1,258 @@
+// BlockCholeskySolver (SolverKind::block_ldlt) against Eigen's dense LLT on random symmetric
+// positive definite block-sparse matrices: a chain, a 2D grid with fill-in, a random graph.
+#include "dda/block_cholesky.h"
+#include "dda/linear_solver.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Dense>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+#include <utility>
+#include <vector>
+
+namespace ddafem::dda
+{
+namespace
+{
+using Couplings = std::vector<std::pair<std::size_t, std::size_t>>;
+
+Couplings chain_couplings(std::size_t n_blocks)
+{
+  Couplings couplings;
+  for (std::size_t i = 0; i + 1 < n_blocks; ++i)
+    couplings.emplace_back(i, i + 1);
+  return couplings;
+}
+
+/// Blocks of an n_x x n_y grid, each coupled to its right and upper neighbours.
+Couplings grid_couplings(std::size_t n_x, std::size_t n_y)
+{
+  Couplings couplings;
+  for (std::size_t y = 0; y < n_y; ++y)
+    for (std::size_t x = 0; x < n_x; ++x)
+    {
+      const std::size_t b = y * n_x + x;
+      if (x + 1 < n_x)
+        couplings.emplace_back(b, b + 1);
+      if (y + 1 < n_y)
+        couplings.emplace_back(b, b + n_x);
+    }
+  return couplings;
+}
+
+Couplings random_couplings(std::size_t n_blocks, std::size_t n_couplings, std::mt19937& rng)
+{
+  std::uniform_int_distribution<std::size_t> pick(0, n_blocks - 1);
+  std::set<std::pair<std::size_t, std::size_t>> pairs;
+  while (pairs.size() < n_couplings)
+  {
+    const std::size_t i = pick(rng);
+    const std::size_t j = pick(rng);
+    if (i != j)
+      pairs.emplace(std::min(i, j), std::max(i, j));
+  }
+  return Couplings(pairs.begin(), pairs.end());
+}
+
+/// Random values on the pattern of `a`: off-diagonal blocks uniform in [-1, 1], diagonal blocks
+/// S S^T + shift I plus enough to make the matrix diagonally dominant (hence SPD) when
+/// `positive_definite`, else an indefinite diagonal block in the middle.
+void fill_random(BlockSparseMatrix& a, std::mt19937& rng, bool positive_definite = true)
+{
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const auto random_block = [&]
+  { return Matrix6::NullaryExpr([&](Eigen::Index, Eigen::Index) { return uniform(rng); }); };
+  a.set_zero();
+  std::vector<double> row_sum(a.n_blocks(), 0.0);
+  for (std::size_t k = 0; k < a.n_couplings(); ++k)
+  {
+    a.upper(k) = random_block();
+    const auto [i, j] = a.coupling(k);
+    row_sum[i] += a.upper(k).cwiseAbs().rowwise().sum().maxCoeff();
+    row_sum[j] += a.upper(k).cwiseAbs().colwise().sum().maxCoeff();
+  }
+  for (std::size_t i = 0; i < a.n_blocks(); ++i)
+  {
+    const Matrix6 s = random_block();
+    a.diagonal(i) = s * s.transpose() + (row_sum[i] + 0.5) * Matrix6::Identity();
+  }
+  if (!positive_definite)
+    a.diagonal(a.n_blocks() / 2)(3, 3) = -100.0 * (row_sum[a.n_blocks() / 2] + 10.0);
+}
+
+Eigen::MatrixXd to_dense(const BlockSparseMatrix& a)
+{
+  const auto n = static_cast<Eigen::Index>(a.n_rows());
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  for (std::size_t i = 0; i < a.n_blocks(); ++i)
+    dense.block<6, 6>(6 * static_cast<Eigen::Index>(i), 6 * static_cast<Eigen::Index>(i)) =
+        a.diagonal(i);
+  for (std::size_t k = 0; k < a.n_couplings(); ++k)
+  {
+    const auto i = 6 * static_cast<Eigen::Index>(a.coupling(k).first);
+    const auto j = 6 * static_cast<Eigen::Index>(a.coupling(k).second);
+    dense.block<6, 6>(i, j) += a.upper(k);
+    dense.block<6, 6>(j, i) += a.upper(k).transpose();
+  }
+  return dense;
+}
+
+/// Relative error of the block Cholesky solution against the dense LLT solution.
+double relative_error(SparseDirectSolver& solver, const BlockSparseMatrix& a,
+                      const Eigen::VectorXd& b)
+{
+  const Eigen::LLT<Eigen::MatrixXd> dense(to_dense(a));
+  EXPECT_EQ(dense.info(), Eigen::Success);
+  const Eigen::VectorXd expected = dense.solve(b);
+  Eigen::VectorXd x;
+  solver.solve(b, x);
+  return (x - expected).norm() / expected.norm();
+}
+
+void check_random_matrices(const Couplings& couplings, std::size_t n_blocks, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  BlockSparseMatrix a(n_blocks, couplings);
+  fill_random(a, rng);
+  const auto solver = make_sparse_direct_solver(SolverKind::block_ldlt);
+  ASSERT_EQ(solver->name(), "block_ldlt");
+  solver->analyze_pattern(a);
+  ASSERT_TRUE(solver->factorize(a));
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const auto random_vector = [&]
+  {
+    return Eigen::VectorXd::NullaryExpr(static_cast<Eigen::Index>(a.n_rows()),
+                                        [&](Eigen::Index) { return uniform(rng); })
+        .eval();
+  };
+  for (int r = 0; r < 3; ++r)
+    EXPECT_LT(relative_error(*solver, a, random_vector()), 1e-10);
+
+  // Refactorization with new values on the same pattern.
+  fill_random(a, rng);
+  ASSERT_TRUE(solver->factorize(a));
+  EXPECT_LT(relative_error(*solver, a, random_vector()), 1e-10);
+}
+
+TEST(BlockCholesky, ChainMatchesDenseLlt)
+{
+  check_random_matrices(chain_couplings(100), 100, 1);
+}
+
+TEST(BlockCholesky, GridWithFillInMatchesDenseLlt)
+{
+  check_random_matrices(grid_couplings(12, 9), 12 * 9, 2);
+}
+
+TEST(BlockCholesky, RandomGraphMatchesDenseLlt)
+{
+  std::mt19937 rng(3);
+  check_random_matrices(random_couplings(80, 200, rng), 80, 4);
+}
+
+TEST(BlockCholesky, TinyGraphsInNaturalOrder)
+{
+  check_random_matrices({}, 1, 5);
+  check_random_matrices({{0, 1}}, 2, 6);
+  check_random_matrices({{0, 2}, {1, 2}, {0, 1}}, 3, 7);
+  check_random_matrices({}, 7, 8); // no couplings: block diagonal
+}
+
+TEST(BlockCholesky, GridOrderingCreatesFillIn)
+{
+  const std::size_t n_x = 20;
+  const std::size_t n_y = 20;
+  BlockSparseMatrix a(n_x * n_y, grid_couplings(n_x, n_y));
+  BlockCholeskySolver solver;
+  solver.analyze_pattern(a);
+  EXPECT_EQ(solver.n_blocks(), n_x * n_y);
+  // The factor contains the pattern of A plus fill-in, far less than the bandwidth n_x of the
+  // natural order would create (about n_x blocks per column).
+  EXPECT_GT(solver.n_factor_blocks(), a.n_couplings());
+  EXPECT_LT(solver.n_factor_blocks(), n_x * n_y * n_x / 2);
+}
+
+TEST(BlockCholesky, ChainHasNoFillIn)
+{
+  BlockSparseMatrix a(100, chain_couplings(100));
+  BlockCholeskySolver solver;
+  solver.analyze_pattern(a);
+  EXPECT_EQ(solver.n_factor_blocks(), a.n_couplings());
+}
+
+TEST(BlockCholesky, NotPositiveDefiniteFails)
+{
+  for (const auto& [n_blocks, couplings] : {std::make_pair(std::size_t{50}, chain_couplings(50)),
+                                            std::make_pair(std::size_t{48}, grid_couplings(8, 6))})
+  {
+    std::mt19937 rng(9);
+    BlockSparseMatrix a(n_blocks, couplings);
+    fill_random(a, rng, false);
+    BlockCholeskySolver solver;
+    solver.analyze_pattern(a);
+    EXPECT_FALSE(solver.factorize(a));
+    // A positive definite matrix on the same pattern factorizes again afterwards.
+    fill_random(a, rng);
+    ASSERT_TRUE(solver.factorize(a));
+    const Eigen::VectorXd b = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(a.n_rows()));
+    EXPECT_LT(relative_error(solver, a, b), 1e-10);
+  }
+}
+
+TEST(BlockCholesky, SingularMatrixFails)
+{
+  BlockSparseMatrix a(3, chain_couplings(3));
+  std::mt19937 rng(10);
+  fill_random(a, rng);
+  a.diagonal(1).row(2).setZero();
+  a.diagonal(1).col(2).setZero();
+  a.upper(0).col(2).setZero();
+  a.upper(1).row(2).setZero();
+  BlockCholeskySolver solver;
+  solver.analyze_pattern(a);
+  EXPECT_FALSE(solver.factorize(a));
+}
+
+TEST(BlockCholesky, NewPatternIsAnalyzedAgain)
+{
+  std::mt19937 rng(12);
+  BlockSparseMatrix a(40, chain_couplings(40));
+  fill_random(a, rng);
+  BlockCholeskySolver solver;
+  solver.analyze_pattern(a);
+  ASSERT_TRUE(solver.factorize(a));
+  // The same number of couplings between other blocks, and then more blocks.
+  Couplings couplings = chain_couplings(40);
+  couplings[10] = {3, 30};
+  BlockSparseMatrix b(40, couplings);
+  fill_random(b, rng);
+  ASSERT_TRUE(solver.factorize(b));
+  const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(b.n_rows()));
+  EXPECT_LT(relative_error(solver, b, rhs), 1e-10);
+  BlockSparseMatrix c(45, grid_couplings(9, 5));
+  fill_random(c, rng);
+  ASSERT_TRUE(solver.factorize(c));
+  EXPECT_EQ(solver.n_blocks(), 45u);
+  EXPECT_LT(relative_error(solver, c, Eigen::VectorXd::Ones(6 * 45)), 1e-10);
+}
+
+TEST(BlockCholesky, WorksInFactorizationReusingSolver)
+{
+  std::mt19937 rng(11);
+  BlockSparseMatrix a(60, grid_couplings(10, 6));
+  fill_random(a, rng);
+  FactorizationReusingSolver solver(make_sparse_direct_solver(SolverKind::block_ldlt));
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(a.n_rows()));
+  Eigen::VectorXd x;
+  const SolveStatus status = solver.solve(a, b, x);
+  ASSERT_TRUE(status.success) << status.message;
+  EXPECT_LT((a.multiply(x) - b).norm() / b.norm(), 1e-12);
+  EXPECT_EQ(solver.name(), "block_ldlt");
+}
+
+} // namespace
+} // namespace ddafem::dda

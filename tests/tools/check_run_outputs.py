@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""Checks the outputs of one `ddafem run`: summary.json, histories.h5, blocks.pvd + .vtu, and
+that tools/plot_histories.py turns the histories into PNGs.
+
+usage: check_run_outputs.py RUN_DIR EXPECTED_STATUS SOURCE_DIR
+"""
+import json
+import os
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+import h5py
+import numpy as np
+
+
+def fail(message):
+    print("FAIL: " + message)
+    sys.exit(1)
+
+
+def main():
+    run_dir, expected_status, source_dir = sys.argv[1:4]
+    with open(os.path.join(run_dir, "summary.json")) as f:
+        summary = json.load(f)
+    if summary["status"] != expected_status:
+        fail(f"status {summary['status']!r}, expected {expected_status!r}")
+    for key in ("scene", "version", "steps", "wall_time_s", "dt_s", "solver", "warnings"):
+        if key not in summary:
+            fail(f"summary.json lacks {key!r}")
+    n_blocks = summary["model"]["blocks"]
+
+    with h5py.File(os.path.join(run_dir, "histories.h5"), "r") as h5:
+        time = h5["time"][:]
+        if len(time) < 2 or np.any(np.diff(time) <= 0):
+            fail("time is not increasing")
+        if abs(time[-1] - summary["time_reached_s"]) > 1e-9:
+            fail(f"last history time {time[-1]} != time reached {summary['time_reached_s']}")
+        for name in h5["monitors"]:
+            stress = h5[f"monitors/{name}/stress"]
+            if stress.shape != (len(time), 3) or stress.attrs["unit"] not in ("Pa", b"Pa"):
+                fail(f"monitor {name}: stress shape {stress.shape} or unit wrong")
+        for name in ("kinetic", "strain", "spring", "work_of_loads", "dissipated"):
+            if h5[f"energy/{name}"].shape != (len(time),):
+                fail(f"energy/{name} has the wrong shape")
+
+    pvd = ET.parse(os.path.join(run_dir, "blocks.pvd")).getroot()
+    datasets = pvd.findall("./Collection/DataSet")
+    if len(datasets) != summary["outputs"]["snapshots"]:
+        fail(f"{len(datasets)} PVD entries, summary says {summary['outputs']['snapshots']}")
+    times = [float(d.get("timestep")) for d in datasets]
+    if times != sorted(times):
+        fail("PVD times are not increasing")
+    last = ET.parse(os.path.join(run_dir, datasets[-1].get("file"))).getroot()
+    piece = last.find("./UnstructuredGrid/Piece")
+    if int(piece.get("NumberOfCells")) != n_blocks:
+        fail(f"last VTU has {piece.get('NumberOfCells')} cells, expected {n_blocks}")
+
+    if expected_status == "completed":
+        png = os.path.join(run_dir, "check.png")
+        subprocess.run(["/usr/bin/python3", os.path.join(source_dir, "tools/plot_histories.py"),
+                        os.path.join(run_dir, "histories.h5"), "-o", png], check=True)
+        for p in (png, png.replace(".png", "_energy.png")):
+            if not os.path.exists(p) or os.path.getsize(p) < 1000:
+                fail(f"plot {p} missing or empty")
+    print(f"ok: {run_dir}: {summary['status']}, {len(time)} history rows, {len(datasets)} snapshots")
+
+
+if __name__ == "__main__":
+    main()
