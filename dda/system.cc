@@ -3,7 +3,7 @@
 #include "common/input_error.h"
 #include "dda/submatrices.h"
 
-#include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <chrono>
@@ -68,7 +68,12 @@ System::System(const ModelDescription& model_)
     gamma = 0.5;
   }
   for (const Material& m : model.materials)
+  {
     elasticity.push_back(elasticity_matrix(m.youngs_modulus, m.poisson_ratio, model.plane_mode));
+    compliance.push_back(elasticity.back().inverse());
+  }
+  for (const JointMaterial& jm : model.joint_materials)
+    tan_friction.push_back(std::tan(jm.friction_angle * M_PI / 180.0));
 
   std::vector<std::string> names;
   for (std::size_t i = 0; i < model.blocks.size(); ++i)
@@ -187,11 +192,13 @@ void System::assemble(double dt)
     const Block& b = blocks[i];
     const Material& mat = model.materials[b.material];
     const Matrix6 m = mass_matrix(b.moments, mat.density);
-    matrix.diagonal(i) +=
-        mass_factor * m + elastic_stiffness(b.moments.area, elasticity[b.material]);
-    rhs.segment<6>(6 * i) += m * (b.velocity / (beta * dt) + (0.5 / beta - 1.0) * b.acceleration) +
-                             stress_force(b.moments.area, b.stress) +
-                             body_force(b.moments.area, mat.density, model.gravity);
+    const Vector6 inertia_velocity = b.velocity / (beta * dt) + (0.5 / beta - 1.0) * b.acceleration;
+    matrix.diagonal(i).noalias() += mass_factor * m;
+    matrix.diagonal(i).noalias() += elastic_stiffness(b.moments.area, elasticity[b.material]);
+    auto f = rhs.segment<6>(6 * i);
+    f.noalias() += m * inertia_velocity;
+    f += stress_force(b.moments.area, b.stress) +
+         body_force(b.moments.area, mat.density, model.gravity);
   }
 
   // Point loads at their current positions.
@@ -224,12 +231,14 @@ void System::assemble(double dt)
     {
       const Matrix26 ta = displacement_matrix(a.moments.centroid, p.on_a.position);
       const Matrix26 tb = displacement_matrix(b.moments.centroid, p.on_b.position);
+      const Matrix26 ks_ta = ks * ta;
+      const Matrix26 ks_tb = ks * tb;
       const Vector2 force = ks * (p.on_b.position - p.on_a.position);
-      matrix.diagonal(j.block_a) += ta.transpose() * ks * ta;
-      matrix.diagonal(j.block_b) += tb.transpose() * ks * tb;
-      matrix.upper(j.coupling) -= ta.transpose() * ks * tb;
-      rhs.segment<6>(6 * j.block_a) += ta.transpose() * force;
-      rhs.segment<6>(6 * j.block_b) -= tb.transpose() * force;
+      matrix.diagonal(j.block_a).noalias() += ta.transpose() * ks_ta;
+      matrix.diagonal(j.block_b).noalias() += tb.transpose() * ks_tb;
+      matrix.upper(j.coupling).noalias() -= ta.transpose() * ks_tb;
+      rhs.segment<6>(6 * j.block_a).noalias() += ta.transpose() * force;
+      rhs.segment<6>(6 * j.block_b).noalias() -= tb.transpose() * force;
     }
   }
 }
@@ -309,7 +318,6 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
 
 StepStatus System::check_joint_strength() const
 {
-  constexpr double degree = M_PI / 180.0;
   for (const Joint& j : joints)
   {
     const JointMaterial& jm = model.joint_materials[j.joint_material];
@@ -320,7 +328,7 @@ StepStatus System::check_joint_strength() const
       const double tensile_capacity = jm.tensile_strength * half;
       const double compression = -p.normal_force;
       const double shear_capacity =
-          std::max(0.0, jm.cohesion * half + compression * std::tan(jm.friction_angle * degree));
+          std::max(0.0, jm.cohesion * half + compression * tan_friction[j.joint_material]);
       const bool tension_failure = p.normal_force > tensile_capacity;
       if (!tension_failure && std::abs(p.shear_force) <= shear_capacity)
         continue;
@@ -389,7 +397,7 @@ EnergyBalance System::energy() const
   {
     const Material& mat = model.materials[b.material];
     e.kinetic += 0.5 * b.velocity.dot(mass_matrix(b.moments, mat.density) * b.velocity);
-    e.strain += 0.5 * b.moments.area * b.stress.dot(elasticity[b.material].ldlt().solve(b.stress));
+    e.strain += 0.5 * b.moments.area * b.stress.dot(compliance[b.material] * b.stress);
   }
   e.spring = stored_spring_energy();
   e.work_of_loads = work_of_loads;

@@ -116,7 +116,9 @@ private:
   double stored_spring_energy() const;
 
   ModelDescription model;
-  std::vector<Eigen::Matrix3d> elasticity; ///< per material
+  std::vector<Eigen::Matrix3d> elasticity; ///< C per material [Pa]
+  std::vector<Eigen::Matrix3d> compliance; ///< C^-1 per material [1/Pa]
+  std::vector<double> tan_friction;        ///< tan(phi) per joint material
   std::vector<Block> blocks;
   std::vector<Joint> joints;
   std::vector<AttachedLoad> loads;
