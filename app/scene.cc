@@ -1005,6 +1005,9 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   const MapReader analysis = top.section_reader("analysis");
   model.plane_mode =
       analysis.choice("plane") == "strain" ? dda::PlaneMode::strain : dda::PlaneMode::stress;
+  model.geometry = analysis.choice("geometry") == "small_displacement"
+                       ? dda::GeometryMode::small_displacement
+                       : dda::GeometryMode::updated;
 
   std::vector<std::string> material_names;
   for (const auto& [name, r] : top.section_map("materials"))

@@ -208,8 +208,8 @@ SceneSchema::SceneSchema()
         key("description", T::string).default_yaml("''").meaning("free text"),
         key("analysis", T::section)
             .section("analysis")
-            .default_note("plane stress")
-            .meaning("2D idealisation of the blocks"),
+            .default_note("plane stress, updated geometry")
+            .meaning("2D idealisation of the blocks and geometry update"),
         key("materials", T::section_map)
             .section("materials.<name>")
             .required()
@@ -254,12 +254,19 @@ SceneSchema::SceneSchema()
 
   all_sections.push_back(
       {"analysis",
-       "How the 2D model idealises the third dimension.",
+       "How the 2D model idealises the third dimension, and whether the step matrix follows the "
+       "moving geometry.",
        {key("plane", T::choice)
             .choices({"stress", "strain"})
             .default_yaml("stress")
             .meaning("plane stress (thin slab, one-block-high bar) or plane strain (long "
-                     "section)")}});
+                     "section)"),
+        key("geometry", T::choice)
+            .choices({"updated", "small_displacement"})
+            .default_yaml("updated")
+            .meaning("updated: Shi's DDA, every step is linearised about the current block "
+                     "geometry; small_displacement: linear analysis about the initial geometry "
+                     "(matrix assembled and factorized once; for waves of small amplitude)")}});
 
   all_sections.push_back(
       {"materials.<name>",

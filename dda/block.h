@@ -13,8 +13,12 @@ namespace ddafem::dda
 struct Block
 {
   std::size_t material = 0;
-  std::vector<Point> vertices;            ///< current vertices [m], anticlockwise
-  PolygonMoments moments;                 ///< of the current vertices
+  std::vector<Point> vertices; ///< current vertices [m], anticlockwise
+  /// Of the current vertices. In a small-displacement analysis only the centroid follows the
+  /// block; area and second moments stay those of t = 0, the configuration it is linear about.
+  PolygonMoments moments;
+  std::vector<Point> initial_vertices;    ///< vertices at t = 0 [m]
+  PolygonMoments initial_moments;         ///< of the vertices at t = 0
   Point initial_centroid = Point::Zero(); ///< centroid at t = 0 [m]
   Vector6 velocity = Vector6::Zero();     ///< d/dt of the unknowns (m/s, rad/s, 1/s)
   Vector6 acceleration = Vector6::Zero(); ///< d2/dt2 of the unknowns (used by Newmark)
@@ -23,9 +27,11 @@ struct Block
 
   Block(std::size_t material, std::vector<Point> vertices);
 
-  /// Moves the vertices by T(x) d (T about the current centroid), recomputes the moments and
-  /// accumulates the strain and stress of the step (stress += C * strain increment).
-  void apply_increment(const Vector6& d, const Eigen::Matrix3d& elasticity);
+  /// Moves the vertices by T(x) d, updates the moments and accumulates the strain and stress
+  /// of the step (stress += C * strain increment). With `about_initial`, T is evaluated at the
+  /// initial vertices about the initial centroid (small-displacement analysis), else at the
+  /// current ones (Shi's updated geometry).
+  void apply_increment(const Vector6& d, const Eigen::Matrix3d& elasticity, bool about_initial);
 
   /// Centroid displacement since t = 0 [m].
   Vector2 displacement() const { return moments.centroid - initial_centroid; }

@@ -7,14 +7,15 @@
 
 namespace ddafem::dda
 {
-Vector2 Joint::tangent() const
+Vector2 Joint::tangent(bool initial) const
 {
-  return (points[1].on_a.position - points[0].on_a.position).normalized();
+  return initial ? (points[1].on_a.initial - points[0].on_a.initial).normalized()
+                 : (points[1].on_a.position - points[0].on_a.position).normalized();
 }
 
-Vector2 Joint::normal() const
+Vector2 Joint::normal(bool initial) const
 {
-  const Vector2 t = tangent();
+  const Vector2 t = tangent(initial);
   return Vector2(t.y(), -t.x());
 }
 

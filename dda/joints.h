@@ -40,10 +40,11 @@ struct Joint
   double length = 0.0;              ///< initial length of the shared stretch [m]
   std::array<JointPoint, 2> points; ///< its two ends, in a's edge direction
 
-  /// Unit tangent along a's edge at the current positions (a's anticlockwise direction).
-  Vector2 tangent() const;
+  /// Unit tangent along a's edge (a's anticlockwise direction), at the current positions or, with
+  /// `initial`, at t = 0.
+  Vector2 tangent(bool initial = false) const;
   /// Unit normal pointing out of block a, towards b: (t_y, -t_x).
-  Vector2 normal() const;
+  Vector2 normal(bool initial = false) const;
 };
 
 /// Finds every pair of blocks that share an edge stretch and makes a bonded joint there, with the

@@ -304,7 +304,7 @@ SolveStatus FactorizationReusingSolver::factorize_and_solve(const BlockSparseMat
 }
 
 SolveStatus FactorizationReusingSolver::solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
-                                              Eigen::VectorXd& x)
+                                              Eigen::VectorXd& x, MatrixChange change)
 {
   SolveStatus status;
   if (!factored || !factored->same_structure(a))
@@ -312,7 +312,7 @@ SolveStatus FactorizationReusingSolver::solve(const BlockSparseMatrix& a, const 
     factored.reset(); // a new structure needs a new symbolic analysis
     status = factorize_and_solve(a, b, x);
   }
-  else if (factored->same_values(a))
+  else if (change == MatrixChange::unchanged || factored->same_values(a))
   {
     solver->solve(b, x);
     ++solve_count;

@@ -78,6 +78,13 @@ struct SolveStatus
   std::string message;          ///< why it failed
 };
 
+/// What the caller knows about the matrix since the previous solve.
+enum class MatrixChange
+{
+  unknown,  ///< compare with the factored matrix
+  unchanged ///< the caller guarantees A is the matrix of the previous call: skip the comparison
+};
+
 /// Solves A x = b reusing the last factorization while it serves. If A equals the factored
 /// matrix, one solve. If A changed (DDA updates block geometry every step, so its entries drift
 /// by the order of the strains), the old factors precondition an iterative refinement
@@ -92,7 +99,8 @@ public:
   explicit FactorizationReusingSolver(std::unique_ptr<SparseDirectSolver> solver,
                                       double tolerance = 1e-9, unsigned max_refinements = 3);
 
-  SolveStatus solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  SolveStatus solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                    MatrixChange change = MatrixChange::unknown);
 
   std::string name() const { return solver->name(); }
   std::size_t n_factorizations() const { return factorization_count; }

@@ -17,6 +17,19 @@ enum class PlaneMode
   strain  ///< plane strain (a section through a long tunnel)
 };
 
+/// Which configuration each step is linearised about.
+enum class GeometryMode
+{
+  /// Shi's DDA: vertices, centroids and moments move every step and every submatrix is
+  /// recomputed from them (needed for large displacements, rotations and contacts).
+  updated,
+  /// Linear analysis about the initial configuration: T(x), the mass matrix and the joint
+  /// directions stay those of t = 0, so the step matrix is assembled and factorized once for a
+  /// fixed dt. Output positions still move. Valid while displacements and rotations are small
+  /// against the block size (waves); cheaper by the assembly and refinement costs.
+  small_displacement
+};
+
 /// Linear elastic, isotropic block material.
 struct Material
 {
@@ -112,6 +125,7 @@ struct TimeSettings
 struct ModelDescription
 {
   PlaneMode plane_mode = PlaneMode::stress;
+  GeometryMode geometry = GeometryMode::updated;
   std::vector<Material> materials;
   std::vector<JointMaterial> joint_materials;
   /// Joint material for block pairs not named in joint_assignments; npos if none given (then

@@ -153,12 +153,17 @@ StepStatus System::advance(double dt)
   // Bonded joints are fixed at construction; issue 4 adds the phases "find contact candidates"
   // and "update contacts" before assembly, and the open-close iteration around the solve.
   auto start = Clock::now();
-  assemble(dt);
+  // With updated geometry every step has its own matrix; a small-displacement analysis keeps
+  // the matrix of the initial configuration for as long as dt does not change.
+  const bool new_matrix = !small_displacement() || dt != matrix_dt;
+  assemble(dt, new_matrix);
+  matrix_dt = dt;
   timings.assemble += seconds_since(start);
 
   start = Clock::now();
   StepStatus status;
-  status.solve = solver.solve(matrix, rhs, solution);
+  status.solve = solver.solve(matrix, rhs, solution,
+                              new_matrix ? MatrixChange::unknown : MatrixChange::unchanged);
   timings.solve += seconds_since(start);
   if (!status.solve.success)
   {
@@ -179,44 +184,45 @@ StepStatus System::advance(double dt)
   return status;
 }
 
-void System::assemble(double dt)
+void System::assemble(double dt, bool with_matrix)
 {
-  matrix.set_zero();
+  if (with_matrix)
+    matrix.set_zero();
   rhs.setZero();
   const double t1 = current_time + dt; // loads and supports are evaluated at the step's end
 
-  // Blocks: inertia, elasticity, accumulated stress, gravity.
+  // Blocks: inertia M / (beta dt^2) and elasticity; M (v0 / (beta dt) + (1 / (2 beta) - 1) a0),
+  // the accumulated stress and gravity on the right-hand side.
   const double mass_factor = 1.0 / (beta * dt * dt);
   for (std::size_t i = 0; i < blocks.size(); ++i)
   {
     const Block& b = blocks[i];
     const Material& mat = model.materials[b.material];
-    const Matrix6 m = mass_matrix(b.moments, mat.density);
+    const PolygonMoments& g = linearisation_moments(b);
+    const Matrix6 m = mass_matrix(g, mat.density);
+    if (with_matrix)
+    {
+      matrix.diagonal(i).noalias() += mass_factor * m;
+      matrix.diagonal(i).noalias() += elastic_stiffness(g.area, elasticity[b.material]);
+    }
     const Vector6 inertia_velocity = b.velocity / (beta * dt) + (0.5 / beta - 1.0) * b.acceleration;
-    matrix.diagonal(i).noalias() += mass_factor * m;
-    matrix.diagonal(i).noalias() += elastic_stiffness(b.moments.area, elasticity[b.material]);
     auto f = rhs.segment<6>(6 * i);
     f.noalias() += m * inertia_velocity;
-    f += stress_force(b.moments.area, b.stress) +
-         body_force(b.moments.area, mat.density, model.gravity);
+    f += stress_force(g.area, b.stress) + body_force(g.area, mat.density, model.gravity);
   }
 
-  // Point loads at their current positions.
+  // Point loads at their material points.
   for (const AttachedLoad& l : loads)
-  {
-    const Block& b = blocks[l.point.block];
-    rhs.segment<6>(6 * l.point.block) +=
-        displacement_matrix(b.moments.centroid, l.point.position).transpose() *
-        (l.force * l.function.value(t1));
-  }
+    rhs.segment<6>(6 * l.point.block).noalias() +=
+        point_matrix(l.point).transpose() * (l.force * l.function.value(t1));
 
   // Fixed points: penalty spring k |x + T d - X(t1)|^2 / 2.
   for (const AttachedFixedPoint& f : fixed_points)
   {
-    const Block& b = blocks[f.point.block];
-    const Matrix26 t = displacement_matrix(b.moments.centroid, f.point.position);
-    matrix.diagonal(f.point.block) += f.stiffness * t.transpose() * t;
-    rhs.segment<6>(6 * f.point.block) +=
+    const Matrix26 t = point_matrix(f.point);
+    if (with_matrix)
+      matrix.diagonal(f.point.block).noalias() += f.stiffness * t.transpose() * t;
+    rhs.segment<6>(6 * f.point.block).noalias() +=
         f.stiffness * t.transpose() * (f.target(t1) - f.point.position);
   }
 
@@ -224,23 +230,37 @@ void System::assemble(double dt)
   for (const Joint& j : joints)
   {
     const Eigen::Matrix2d ks =
-        joint_spring(model.joint_materials[j.joint_material], j.normal(), j.tangent());
-    const Block& a = blocks[j.block_a];
-    const Block& b = blocks[j.block_b];
+        joint_spring(model.joint_materials[j.joint_material], j.normal(small_displacement()),
+                     j.tangent(small_displacement()));
     for (const JointPoint& p : j.points)
     {
-      const Matrix26 ta = displacement_matrix(a.moments.centroid, p.on_a.position);
-      const Matrix26 tb = displacement_matrix(b.moments.centroid, p.on_b.position);
-      const Matrix26 ks_ta = ks * ta;
-      const Matrix26 ks_tb = ks * tb;
+      const Matrix26 ta = point_matrix(p.on_a);
+      const Matrix26 tb = point_matrix(p.on_b);
+      if (with_matrix)
+      {
+        const Matrix26 ks_ta = ks * ta;
+        const Matrix26 ks_tb = ks * tb;
+        matrix.diagonal(j.block_a).noalias() += ta.transpose() * ks_ta;
+        matrix.diagonal(j.block_b).noalias() += tb.transpose() * ks_tb;
+        matrix.upper(j.coupling).noalias() -= ta.transpose() * ks_tb;
+      }
       const Vector2 force = ks * (p.on_b.position - p.on_a.position);
-      matrix.diagonal(j.block_a).noalias() += ta.transpose() * ks_ta;
-      matrix.diagonal(j.block_b).noalias() += tb.transpose() * ks_tb;
-      matrix.upper(j.coupling).noalias() -= ta.transpose() * ks_tb;
       rhs.segment<6>(6 * j.block_a).noalias() += ta.transpose() * force;
       rhs.segment<6>(6 * j.block_b).noalias() -= tb.transpose() * force;
     }
   }
+}
+
+const PolygonMoments& System::linearisation_moments(const Block& b) const
+{
+  return small_displacement() ? b.initial_moments : b.moments;
+}
+
+Matrix26 System::point_matrix(const MaterialPoint& p) const
+{
+  const Block& b = blocks[p.block];
+  return small_displacement() ? displacement_matrix(b.initial_centroid, p.initial)
+                              : displacement_matrix(b.moments.centroid, p.position);
 }
 
 void System::update_blocks(double dt, const Eigen::VectorXd& d)
@@ -250,33 +270,27 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
   // Work of the loads (trapezoidal in time) and of gravity, on the displacement of the step.
   for (const AttachedLoad& l : loads)
   {
-    const Block& b = blocks[l.point.block];
-    const Vector2 du =
-        displacement_matrix(b.moments.centroid, l.point.position) * d.segment<6>(6 * l.point.block);
+    const Vector2 du = point_matrix(l.point) * d.segment<6>(6 * l.point.block);
     work_of_loads += 0.5 * (l.function.value(t0) + l.function.value(t1)) * l.force.dot(du);
   }
   for (std::size_t i = 0; i < blocks.size(); ++i)
-    work_of_loads += model.materials[blocks[i].material].density * blocks[i].moments.area *
-                     model.gravity.dot(d.segment<2>(6 * i));
+    work_of_loads += model.materials[blocks[i].material].density *
+                     linearisation_moments(blocks[i]).area * model.gravity.dot(d.segment<2>(6 * i));
 
   // Work done by moving supports: -k (x - X)_mid . dX.
   for (const AttachedFixedPoint& f : fixed_points)
   {
-    const Block& b = blocks[f.point.block];
     const Point x0 = f.point.position;
-    const Point x1 =
-        x0 + displacement_matrix(b.moments.centroid, x0) * d.segment<6>(6 * f.point.block);
+    const Point x1 = x0 + point_matrix(f.point) * d.segment<6>(6 * f.point.block);
     const Point target0 = f.target(t0), target1 = f.target(t1);
     const Vector2 stretch_mid = 0.5 * ((x0 - target0) + (x1 - target1));
     work_of_supports -= f.stiffness * stretch_mid.dot(target1 - target0);
   }
 
-  // Material points move with their blocks (T about the centroid before the update).
+  // Material points move with their blocks (T of the configuration the step is linearised
+  // about, i.e. before the update).
   const auto move = [&](MaterialPoint& p)
-  {
-    const Block& b = blocks[p.block];
-    p.position += displacement_matrix(b.moments.centroid, p.position) * d.segment<6>(6 * p.block);
-  };
+  { p.position += point_matrix(p) * d.segment<6>(6 * p.block); };
   for (AttachedLoad& l : loads)
     move(l.point);
   for (AttachedFixedPoint& f : fixed_points)
@@ -299,14 +313,14 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
         (di - dt * b.velocity - dt * dt * (0.5 - beta) * b.acceleration) / (beta * dt * dt);
     b.velocity += dt * ((1.0 - gamma) * b.acceleration + gamma * a1);
     b.acceleration = a1;
-    b.apply_increment(di, elasticity[b.material]);
+    b.apply_increment(di, elasticity[b.material], small_displacement());
   }
 
   // Joint spring forces at the new gaps.
   for (Joint& j : joints)
   {
     const JointMaterial& jm = model.joint_materials[j.joint_material];
-    const Vector2 n = j.normal(), t = j.tangent();
+    const Vector2 n = j.normal(small_displacement()), t = j.tangent(small_displacement());
     for (JointPoint& p : j.points)
     {
       const Vector2 gap = p.on_b.position - p.on_a.position;
@@ -370,7 +384,7 @@ MonitorSample System::sample_monitor(std::size_t k) const
   MonitorSample s;
   s.block = p.block;
   s.displacement = p.position - p.initial;
-  s.velocity = displacement_matrix(b.moments.centroid, p.position) * b.velocity;
+  s.velocity = point_matrix(p) * b.velocity;
   s.stress = b.stress;
   return s;
 }
@@ -396,8 +410,9 @@ EnergyBalance System::energy() const
   for (const Block& b : blocks)
   {
     const Material& mat = model.materials[b.material];
-    e.kinetic += 0.5 * b.velocity.dot(mass_matrix(b.moments, mat.density) * b.velocity);
-    e.strain += 0.5 * b.moments.area * b.stress.dot(compliance[b.material] * b.stress);
+    const PolygonMoments& g = linearisation_moments(b);
+    e.kinetic += 0.5 * b.velocity.dot(mass_matrix(g, mat.density) * b.velocity);
+    e.strain += 0.5 * g.area * b.stress.dot(compliance[b.material] * b.stress);
   }
   e.spring = stored_spring_energy();
   e.work_of_loads = work_of_loads;

@@ -67,7 +67,8 @@ struct MonitorSample
 /// A DDA model advancing in time with one implicit linear system per step:
 /// (K + M / (beta dt^2)) d = f + M (v0 / (beta dt) + (1 / (2 beta) - 1) a0),
 /// Newmark with (beta, gamma) = (1/2, 1) for DDA's scheme or (1/4, 1/2) for the trapezoidal rule.
-/// Geometry is updated every step (Shi): vertices, moments and material points move.
+/// With GeometryMode::updated (Shi) every step is linearised about the current vertices, moments
+/// and material points; with small_displacement about the initial ones.
 class System
 {
 public:
@@ -110,7 +111,13 @@ private:
   };
 
   MaterialPoint attach(const Point& p, const std::string& what) const;
-  void assemble(double dt);
+  bool small_displacement() const { return model.geometry == GeometryMode::small_displacement; }
+  /// Moments of the configuration the step is linearised about (current or initial).
+  const PolygonMoments& linearisation_moments(const Block& b) const;
+  /// T at a material point, in the configuration the step is linearised about.
+  Matrix26 point_matrix(const MaterialPoint& p) const;
+  /// The step's right-hand side, and its matrix if `with_matrix`.
+  void assemble(double dt, bool with_matrix);
   void update_blocks(double dt, const Eigen::VectorXd& d);
   StepStatus check_joint_strength() const;
   double stored_spring_energy() const;
@@ -128,6 +135,7 @@ private:
   double beta = 0.5, gamma = 1.0; ///< Newmark parameters of the integrator
 
   BlockSparseMatrix matrix;
+  double matrix_dt = 0.0; ///< dt the matrix was assembled for (small-displacement reuse)
   Eigen::VectorXd rhs;
   Eigen::VectorXd solution;
   FactorizationReusingSolver solver;

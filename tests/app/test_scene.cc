@@ -220,6 +220,7 @@ TEST_F(SceneTest, DefaultsAreApplied)
   EXPECT_EQ(scene.description, "");
   const dda::ModelDescription& m = scene.model;
   EXPECT_EQ(m.plane_mode, dda::PlaneMode::stress);
+  EXPECT_EQ(m.geometry, dda::GeometryMode::updated);
   EXPECT_TRUE(m.joint_materials.empty());
   EXPECT_EQ(m.default_joint_material, static_cast<std::size_t>(-1));
   EXPECT_EQ(m.gravity, dda::Vector2::Zero());
@@ -237,7 +238,7 @@ TEST_F(SceneTest, EverySectionIsRead)
 {
   const Scene scene = read(R"(name: all
 description: every section
-analysis: {plane: strain}
+analysis: {plane: strain, geometry: small_displacement}
 materials:
   rock: {density: 2650, youngs_modulus: 50e9, poisson_ratio: 0.25}
   soft: {density: 2000, youngs_modulus: 1e9, poisson_ratio: 0.3}
@@ -269,6 +270,7 @@ output: {directory: out, interval: 0.5, history_every: 10}
   EXPECT_EQ(scene.name, "all");
   EXPECT_EQ(scene.description, "every section");
   EXPECT_EQ(m.plane_mode, dda::PlaneMode::strain);
+  EXPECT_EQ(m.geometry, dda::GeometryMode::small_displacement);
   ASSERT_EQ(m.materials.size(), 2u);
   EXPECT_EQ(m.materials[1].name, "soft"); // file order
   ASSERT_EQ(m.joint_materials.size(), 2u);
