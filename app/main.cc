@@ -18,13 +18,15 @@ namespace
 {
 const char* usage = R"(usage:
   ddafem check SCENE [--set key=value]...             validate a scene and print a model summary
-  ddafem run SCENE [-o DIR] [--quiet] [--set key=value]...   run a scene, results into DIR
+  ddafem run SCENE [-o DIR] [--quiet] [--allow-unstable] [--set key=value]...
+                                                      run a scene, results into DIR
   ddafem scene-reference                              print the scene key reference (Markdown)
   ddafem --version | --help
 
   --set path.to.key=value   override any scene key, e.g. --set time.dt=1e-4
   -o DIR                    output directory (default: the scene's output.directory)
   --quiet                   no progress line
+  --allow-unstable          run although a boundary feeds energy in at this dt (it will fail)
 exit codes: 0 success, 1 numerical failure, 2 bad input
 )";
 
@@ -34,6 +36,7 @@ struct CommandLine
   std::string scene;
   std::string output_directory;
   bool quiet = false;
+  bool allow_unstable = false;
   std::vector<ddafem::Override> overrides;
 };
 
@@ -61,6 +64,8 @@ CommandLine parse_command_line(int argc, char** argv)
       cl.output_directory = next();
     else if (a == "--quiet" || a == "-q")
       cl.quiet = true;
+    else if (a == "--allow-unstable")
+      cl.allow_unstable = true;
     else if (!a.empty() && a[0] == '-')
       throw ddafem::InputError("unknown option '" + a + "'\n" + usage);
     else if (cl.scene.empty())
@@ -108,6 +113,7 @@ int main(int argc, char** argv)
       ddafem::RunOptions options;
       options.output_directory = cl.output_directory;
       options.quiet = cl.quiet;
+      options.allow_unstable = cl.allow_unstable;
       return ddafem::run_scene(scene, options, std::cout);
     }
     catch (const ddafem::InputError& e)

@@ -112,6 +112,8 @@ std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
   channels.push_back({"energy/spring", 1, "J", "joint and fixed-point penalty springs"});
   channels.push_back({"energy/work_of_loads", 1, "J", "point loads and gravity since t = 0"});
   channels.push_back({"energy/work_of_supports", 1, "J", "prescribed support motion since t = 0"});
+  channels.push_back({"energy/work_of_boundaries", 1, "J",
+                      "viscous boundaries on the model since t = 0 (negative: absorbed)"});
   channels.push_back({"energy/dissipated", 1, "J",
                       "initial + work - stored: algorithmic damping of the integrator"});
   return channels;
@@ -135,6 +137,106 @@ std::vector<double> history_row(const dda::System& system)
 const char* integrator_name(dda::Integrator i)
 {
   return i == dda::Integrator::dda ? "dda" : "newmark_trapezoidal";
+}
+
+const char* boundary_type_name(dda::BoundaryType t)
+{
+  switch (t)
+  {
+  case dda::BoundaryType::free:
+    return "free";
+  case dda::BoundaryType::vb1:
+    return "vb1";
+  case dda::BoundaryType::vb2:
+    return "vb2";
+  case dda::BoundaryType::dashpot:
+    return "dashpot";
+  }
+  return "";
+}
+
+std::string boundary_name(const dda::ModelDescription& model, std::size_t k)
+{
+  const dda::BoundaryDescription& b = model.boundaries[k];
+  return (b.origin.empty() ? "boundary " + std::to_string(k) : b.origin) + " (" +
+         boundary_type_name(b.type) + ")";
+}
+
+/// Messages for every boundary whose edges are energy sources at the scene's dt.
+std::vector<std::string> unstable_boundaries(const dda::System& system, double dt)
+{
+  const dda::ModelDescription& model = system.get_model();
+  std::vector<std::string> messages;
+  for (std::size_t b = 0; b < model.boundaries.size(); ++b)
+  {
+    std::size_t n_sources = 0;
+    double dt_limit = std::numeric_limits<double>::infinity();
+    double x_max = 0.0;
+    for (std::size_t k = 0; k < system.get_boundary_edges().size(); ++k)
+    {
+      if (system.get_boundary_edges()[k].boundary != b)
+        continue;
+      const dda::BoundaryStability s = system.stability_of(k, dt);
+      dt_limit = std::min(dt_limit, s.dt_source);
+      x_max = std::max({x_max, s.x_n, s.x_t});
+      n_sources += s.is_source ? 1 : 0;
+    }
+    if (n_sources > 0)
+      messages.push_back("dt = " + format(dt) + " s makes " + boundary_name(model, b) +
+                         " an energy source on " + std::to_string(n_sources) +
+                         " edge(s): x = c dt / m reaches " + format(x_max, 4) + " > " +
+                         format(dda::vb1_source_threshold(), 5) + "; it absorbs only for dt < " +
+                         format(dt_limit, 4) + " s");
+  }
+  return messages;
+}
+
+/// The per-boundary lines of `check`: speeds, coefficients and stability of the worst edges.
+void describe_boundaries(const dda::System& system, double dt, std::ostream& out)
+{
+  const dda::ModelDescription& model = system.get_model();
+  const auto& edges = system.get_boundary_edges();
+  out << "  boundaries: " << model.boundaries.size() << " (" << edges.size() << " edges)\n";
+  for (std::size_t b = 0; b < model.boundaries.size(); ++b)
+  {
+    const dda::BoundaryDescription& bd = model.boundaries[b];
+    std::vector<std::size_t> mine;
+    for (std::size_t k = 0; k < edges.size(); ++k)
+      if (edges[k].boundary == b)
+        mine.push_back(k);
+    // Worst (smallest limit) first.
+    std::sort(mine.begin(), mine.end(),
+              [&](std::size_t i, std::size_t j) {
+                return system.stability_of(i, dt).dt_source < system.stability_of(j, dt).dt_source;
+              });
+    out << "    " << boundary_name(model, b) << ", "
+        << (bd.impedance == dda::ImpedanceKind::effective ? "effective" : "textbook")
+        << " impedance, a_n " << bd.a_n << ", a_t " << bd.a_t << ", " << mine.size()
+        << " edge(s)\n";
+    const std::size_t shown = std::min<std::size_t>(mine.size(), 5);
+    for (std::size_t i = 0; i < shown; ++i)
+    {
+      const dda::BoundaryEdge& e = edges[mine[i]];
+      const dda::BoundaryStability s = system.stability_of(mine[i], dt);
+      out << "      block " << e.block << " edge " << e.edge << ": l0 " << format(e.length)
+          << " m, m " << format(s.mass) << " kg; VP/VS textbook " << format(e.textbook.p, 5) << "/"
+          << format(e.textbook.s, 5) << ", effective " << format(e.effective.p, 5) << "/"
+          << format(e.effective.s, 5) << " m/s; cn " << format(e.cn) << ", ct " << format(e.ct)
+          << " N s/m; x = c dt / m: " << format(s.x_n, 3) << " (n), " << format(s.x_t, 3)
+          << " (t)\n";
+      if (bd.type == dda::BoundaryType::vb1)
+        out << "        absorbs for dt < " << format(s.dt_source, 4)
+            << " s (x = " << format(dda::vb1_source_threshold(), 5)
+            << "), an energy source beyond; paper's "
+            << "bounds: m/cn = " << format(s.dt_paper_bound, 4)
+            << " s (eq. 44), 2m/ct = " << format(s.dt_paper_source, 4) << " s"
+            << (s.is_source ? "  <-- dt is beyond" : "") << "\n";
+      else if (bd.type != dda::BoundaryType::free)
+        out << "        dissipative at every dt (positive semidefinite)\n";
+    }
+    if (mine.size() > shown)
+      out << "      ... and " << mine.size() - shown << " more edge(s)\n";
+  }
 }
 } // namespace
 
@@ -244,6 +346,10 @@ std::string check_scene(const Scene& scene)
   const TimeStepAdvice advice = suggest_time_step(scene);
   out << "  suggested dt: " << format(advice.dt_min, 3) << " to " << format(advice.dt_max, 3)
       << " s (" << advice.reason << ")\n";
+  if (!model.boundaries.empty())
+    describe_boundaries(system, model.time.dt, out);
+  for (const std::string& w : unstable_boundaries(system, model.time.dt))
+    out << "warning: " << w << " (`run` refuses it without --allow-unstable)\n";
   return out.str();
 }
 
@@ -263,6 +369,13 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   const auto n_steps = static_cast<std::size_t>(std::llround(time.end_time / time.dt));
   const TimeStepAdvice advice = suggest_time_step(scene);
   std::vector<std::string> warnings;
+  for (const std::string& w : unstable_boundaries(system, time.dt))
+  {
+    if (!options.allow_unstable)
+      throw InputError(scene.file + ": " + w +
+                       ": expected a smaller time.dt, or --allow-unstable to watch it fail");
+    warnings.push_back(w + " (run with --allow-unstable)");
+  }
   if (time.dt > advice.dt_max)
     warnings.push_back("dt = " + format(time.dt) + " s exceeds the suggested " +
                        format(advice.dt_max, 3) + " s (" + advice.reason + ")");
@@ -357,6 +470,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
                          {"spring", e.spring},
                          {"work_of_loads", e.work_of_loads},
                          {"work_of_supports", e.work_of_supports},
+                         {"work_of_boundaries", e.work_of_boundaries},
                          {"initial", e.initial},
                          {"dissipated", e.dissipated}};
   summary["warnings"] = warnings;

@@ -35,6 +35,8 @@ struct RunOptions
 {
   std::string output_directory; ///< empty: the scene's output.directory
   bool quiet = false;           ///< no progress line
+  /// Run even if a boundary is an energy source at the scene's dt (to show the failure).
+  bool allow_unstable = false;
 };
 
 /// Runs a scene and writes histories.h5, blocks.pvd (+ .vtu) and summary.json into the output

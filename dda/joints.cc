@@ -105,6 +105,8 @@ std::vector<Joint> find_joints(const std::vector<Block>& blocks, const ModelDesc
       joint.block_a = a;
       joint.block_b = b;
       joint.joint_material = jm;
+      joint.edge_a = s.a_edge;
+      joint.edge_b = s.b_edge;
       joint.length = (s.q - s.p).norm();
       const std::array<Point, 2> ends{s.p, s.q};
       for (std::size_t k = 0; k < 2; ++k)

@@ -36,6 +36,8 @@ struct Joint
   std::size_t block_a = 0; ///< block_a < block_b
   std::size_t block_b = 0;
   std::size_t joint_material = 0;
+  std::size_t edge_a = 0;           ///< edge of block a it lies on (vertex edge_a to edge_a + 1)
+  std::size_t edge_b = 0;           ///< edge of block b it lies on
   std::size_t coupling = 0;         ///< index of the (a, b) coupling block in the system matrix
   double length = 0.0;              ///< initial length of the shared stretch [m]
   std::array<JointPoint, 2> points; ///< its two ends, in a's edge direction

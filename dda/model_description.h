@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ddafem::dda
@@ -96,6 +97,44 @@ struct Monitor
   Point point; ///< [m], inside exactly one block
 };
 
+/// Treatment of the selected block edges (physics.md section 3).
+enum class BoundaryType
+{
+  free,   ///< nothing: a traction-free edge (kept so that scenes can switch type with --set)
+  vb1,    ///< Bao, Hatzor & Huang (2012) eq. 39: K += T^T R^T (C D / dt - C^2 / m) R T
+  vb2,    ///< Jiao et al. (2007), eq. 40: K += (2 / dt) T^T R^T C R T
+  dashpot ///< the consistent dashpot: the force -C v1 with the integrator's end-of-step velocity
+};
+
+/// Which wave speeds set the dashpot coefficients cn = a_n rho l0 VP, ct = a_t rho l0 VS.
+enum class ImpedanceKind
+{
+  /// VP = sqrt(E (1-nu) / (rho (1+nu)(1-2nu))), VS = sqrt(E / (2 rho (1+nu))) (physics.md)
+  textbook,
+  /// The speeds the model actually carries across the boundary block: its P modulus (E for a
+  /// plane-stress block whose side edges are free, E / (1-nu^2) in plane stress otherwise,
+  /// lambda + 2 mu in plane strain) and G, each in series with the compliance of the joint
+  /// behind the block (two springs per joint length) over the block's depth.
+  effective
+};
+
+/// An absorbing (or free) boundary: a type and the block edges it applies to. Exactly one
+/// selector is used: explicit edges, every outer edge on a line, or every outer edge.
+struct BoundaryDescription
+{
+  BoundaryType type = BoundaryType::free;
+  ImpedanceKind impedance = ImpedanceKind::textbook;
+  double a_n = 1.0; ///< normal coefficient [-]
+  double a_t = 1.0; ///< tangential coefficient [-]
+  /// Explicit edges: (block index, edge index), edge k runs from vertex k to vertex k + 1.
+  std::vector<std::pair<std::size_t, std::size_t>> edges;
+  bool on_line = false;             ///< select outer edges lying on the line below
+  Point line_point = Point::Zero(); ///< a point of the line [m]
+  Vector2 line_direction = Vector2(0.0, 1.0);
+  bool outer = false; ///< select every outer edge (not shared by a joint)
+  std::string origin; ///< for messages, e.g. "boundaries[0]"
+};
+
 /// The time integrator. Both are Newmark schemes: a1 = (d - dt v0 - dt^2 (1/2 - beta) a0) /
 /// (beta dt^2), v1 = v0 + dt ((1 - gamma) a0 + gamma a1).
 enum class Integrator
@@ -136,6 +175,7 @@ struct ModelDescription
   std::vector<PointLoad> point_loads;
   std::vector<FixedPoint> fixed_points;
   std::vector<Monitor> monitors;
+  std::vector<BoundaryDescription> boundaries;
   Vector2 gravity = Vector2::Zero(); ///< body acceleration [m/s^2], e.g. (0, -9.81)
   TimeSettings time;
   SolverKind solver = SolverKind::block_ldlt;

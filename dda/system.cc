@@ -130,6 +130,13 @@ System::System(const ModelDescription& model_)
                             f.displacement_x, f.displacement_y});
   for (const Monitor& m : model.monitors)
     monitors.push_back(attach(m.point, "monitor " + m.name));
+  for (std::size_t k = 0; k < model.boundaries.size(); ++k)
+  {
+    const std::vector<BoundaryEdge> selected =
+        select_boundary_edges(k, model, blocks, joints, 1e-6 * size);
+    boundary_edges.insert(boundary_edges.end(), selected.begin(), selected.end());
+  }
+  boundary_steps.resize(boundary_edges.size());
 
   initial_energy = energy().stored();
 }
@@ -181,6 +188,24 @@ StepStatus System::advance(double dt)
   const StepStatus strength = check_joint_strength();
   if (strength.outcome != StepOutcome::success)
     return {strength.outcome, strength.message, status.solve};
+
+  // A boundary beyond its stability limit feeds energy into the model: stop when the stored
+  // energy exceeds ten times all the energy ever put in.
+  if (!boundary_edges.empty())
+  {
+    const EnergyBalance e = energy();
+    largest_energy_input = std::max(largest_energy_input, e.work_of_loads + e.work_of_supports);
+    const double reference = e.initial + largest_energy_input;
+    if (!std::isfinite(e.stored()) || e.stored() > 10.0 * reference)
+    {
+      std::ostringstream m;
+      m << "the stored energy grew to " << e.stored() << " J, more than 10 times the " << reference
+        << " J put into the model, at t = " << format_time(current_time)
+        << ": a boundary is feeding energy into the model (see `ddafem check` for each "
+           "boundary's time-step limit)";
+      return {StepOutcome::energy_growth, m.str(), status.solve};
+    }
+  }
   return status;
 }
 
@@ -226,6 +251,20 @@ void System::assemble(double dt, bool with_matrix)
         f.stiffness * t.transpose() * (f.target(t1) - f.point.position);
   }
 
+  // Viscous boundaries at their edge midpoints.
+  for (std::size_t k = 0; k < boundary_edges.size(); ++k)
+  {
+    const BoundaryEdge& e = boundary_edges[k];
+    const Block& b = blocks[e.block];
+    const Matrix26 t = point_matrix(e.midpoint);
+    boundary_steps[k] =
+        boundary_step(model.boundaries[e.boundary].type, e, boundary_normal(e), block_mass(b), dt,
+                      beta, gamma, t * b.velocity, t * b.acceleration);
+    if (with_matrix)
+      matrix.diagonal(e.block).noalias() += t.transpose() * boundary_steps[k].k * t;
+    rhs.segment<6>(6 * e.block).noalias() += t.transpose() * boundary_steps[k].f;
+  }
+
   // Bonded joints: springs K_s on the gap g + T_b d_b - T_a d_a, with g = x_b - x_a.
   for (const Joint& j : joints)
   {
@@ -249,6 +288,25 @@ void System::assemble(double dt, bool with_matrix)
       rhs.segment<6>(6 * j.block_b).noalias() -= tb.transpose() * force;
     }
   }
+}
+
+Vector2 System::boundary_normal(const BoundaryEdge& e) const
+{
+  const Block& b = blocks[e.block];
+  const std::vector<Point>& v = small_displacement() ? b.initial_vertices : b.vertices;
+  const Vector2 t = (v[(e.edge + 1) % v.size()] - v[e.edge]).normalized();
+  return Vector2(t.y(), -t.x());
+}
+
+double System::block_mass(const Block& b) const
+{
+  return model.materials[b.material].density * linearisation_moments(b).area;
+}
+
+BoundaryStability System::stability_of(std::size_t k, double dt) const
+{
+  const BoundaryEdge& e = boundary_edges[k];
+  return boundary_stability(model.boundaries[e.boundary].type, e, block_mass(blocks[e.block]), dt);
 }
 
 const PolygonMoments& System::linearisation_moments(const Block& b) const
@@ -277,6 +335,14 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
     work_of_loads += model.materials[blocks[i].material].density *
                      linearisation_moments(blocks[i]).area * model.gravity.dot(d.segment<2>(6 * i));
 
+  // Work of the boundaries: their force in the step's equation, -k T d + f, on T d.
+  for (std::size_t k = 0; k < boundary_edges.size(); ++k)
+  {
+    const BoundaryEdge& e = boundary_edges[k];
+    const Vector2 du = point_matrix(e.midpoint) * d.segment<6>(6 * e.block);
+    work_of_boundaries += (boundary_steps[k].f - boundary_steps[k].k * du).dot(du);
+  }
+
   // Work done by moving supports: -k (x - X)_mid . dX.
   for (const AttachedFixedPoint& f : fixed_points)
   {
@@ -297,6 +363,8 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
     move(f.point);
   for (MaterialPoint& m : monitors)
     move(m);
+  for (BoundaryEdge& e : boundary_edges)
+    move(e.midpoint);
   for (Joint& j : joints)
     for (JointPoint& p : j.points)
     {
@@ -417,8 +485,10 @@ EnergyBalance System::energy() const
   e.spring = stored_spring_energy();
   e.work_of_loads = work_of_loads;
   e.work_of_supports = work_of_supports;
+  e.work_of_boundaries = work_of_boundaries;
   e.initial = initial_energy;
-  e.dissipated = e.initial + e.work_of_loads + e.work_of_supports - e.stored();
+  e.dissipated =
+      e.initial + e.work_of_loads + e.work_of_supports + e.work_of_boundaries - e.stored();
   return e;
 }
 

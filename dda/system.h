@@ -6,6 +6,7 @@
 #include "dda/linear_solver.h"
 #include "dda/model_description.h"
 #include "dda/snapshot.h"
+#include "dda/viscous_boundary.h"
 
 #include <Eigen/Core>
 
@@ -16,8 +17,9 @@
 namespace ddafem::dda
 {
 /// Energies of the model [J]. Conservation: kinetic + strain + spring = initial +
-/// work_of_loads + work_of_supports - dissipated, where `dissipated` is the residual: the
-/// algorithmic damping of the integrator (zero for trapezoidal Newmark on a linear model).
+/// work_of_loads + work_of_supports + work_of_boundaries - dissipated, where `dissipated` is
+/// the residual: the algorithmic damping of the integrator (zero for trapezoidal Newmark on a
+/// linear model).
 struct EnergyBalance
 {
   double kinetic = 0.0;          ///< sum of v^T M v / 2
@@ -25,8 +27,10 @@ struct EnergyBalance
   double spring = 0.0;           ///< joint springs and fixed-point penalty springs
   double work_of_loads = 0.0;    ///< point loads and gravity, since t = 0
   double work_of_supports = 0.0; ///< done by prescribed motions of fixed points, since t = 0
-  double initial = 0.0;          ///< kinetic + strain + spring at t = 0
-  double dissipated = 0.0;       ///< initial + work - (kinetic + strain + spring)
+  /// Done by the viscous boundaries on the blocks since t = 0: negative when they absorb.
+  double work_of_boundaries = 0.0;
+  double initial = 0.0;    ///< kinetic + strain + spring at t = 0
+  double dissipated = 0.0; ///< initial + works - (kinetic + strain + spring)
 
   double stored() const { return kinetic + strain + spring; }
 };
@@ -36,7 +40,8 @@ enum class StepOutcome
 {
   success,
   solver_failure, ///< singular / indefinite matrix, or NaN in the solution
-  joint_broken    ///< a bonded joint exceeded its strength (contact mechanics: issue 4)
+  joint_broken,   ///< a bonded joint exceeded its strength (contact mechanics: issue 4)
+  energy_growth   ///< stored energy exceeds 10x the energy put in: something feeds the model
 };
 
 struct StepStatus
@@ -88,6 +93,9 @@ public:
   const ModelDescription& get_model() const { return model; }
   const PhaseTimings& get_timings() const { return timings; }
   const FactorizationReusingSolver& get_solver() const { return solver; }
+  const std::vector<BoundaryEdge>& get_boundary_edges() const { return boundary_edges; }
+  /// Stability of boundary edge k at time step dt.
+  BoundaryStability stability_of(std::size_t k, double dt) const;
   /// Penalty stiffness of fixed points without an explicit one [N/m].
   double default_fixed_point_stiffness() const { return default_fixed_stiffness; }
 
@@ -121,6 +129,9 @@ private:
   void update_blocks(double dt, const Eigen::VectorXd& d);
   StepStatus check_joint_strength() const;
   double stored_spring_energy() const;
+  /// Outward unit normal of a boundary edge in the configuration the step is linearised about.
+  Vector2 boundary_normal(const BoundaryEdge& e) const;
+  double block_mass(const Block& b) const;
 
   ModelDescription model;
   std::vector<Eigen::Matrix3d> elasticity; ///< C per material [Pa]
@@ -131,6 +142,10 @@ private:
   std::vector<AttachedLoad> loads;
   std::vector<AttachedFixedPoint> fixed_points;
   std::vector<MaterialPoint> monitors;
+  std::vector<BoundaryEdge> boundary_edges;
+  /// Each boundary edge's stiffness and force in the current step (set by assemble, used for
+  /// the boundary's work in update_blocks).
+  std::vector<BoundaryStep> boundary_steps;
   double default_fixed_stiffness = 0.0;
   double beta = 0.5, gamma = 1.0; ///< Newmark parameters of the integrator
 
@@ -143,7 +158,9 @@ private:
   double current_time = 0.0;
   double work_of_loads = 0.0;
   double work_of_supports = 0.0;
+  double work_of_boundaries = 0.0;
   double initial_energy = 0.0;
+  double largest_energy_input = 0.0; ///< max over time of work_of_loads + work_of_supports
   PhaseTimings timings;
 };
 
