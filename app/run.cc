@@ -129,8 +129,8 @@ std::vector<double> history_row(const dda::System& system)
                            s.stress[0], s.stress[1], s.stress[2]});
   }
   const dda::EnergyBalance e = system.energy();
-  row.insert(row.end(),
-             {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports, e.dissipated});
+  row.insert(row.end(), {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
+                         e.work_of_boundaries, e.dissipated});
   return row;
 }
 
@@ -372,8 +372,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   for (const std::string& w : unstable_boundaries(system, time.dt))
   {
     if (!options.allow_unstable)
-      throw InputError(scene.file + ": " + w +
-                       ": expected a smaller time.dt, or --allow-unstable to watch it fail");
+      throw InputError(w + ": expected a smaller time.dt, or --allow-unstable to watch it fail");
     warnings.push_back(w + " (run with --allow-unstable)");
   }
   if (time.dt > advice.dt_max)

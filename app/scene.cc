@@ -216,6 +216,8 @@ std::string expected_text(const Key& key, const SceneSchema& schema)
     return "[x, y]: a list of 2 numbers" + range_text(key, true) + unit_suffix(key);
   case ValueType::integer_pair:
     return "a list of 2 integers" + range_text(key, true);
+  case ValueType::integer_pair_list:
+    return "a non-empty list of [integer, integer] pairs" + range_text(key, true);
   case ValueType::name_pair:
     return "a list of 2 names";
   case ValueType::voigt:
@@ -434,6 +436,42 @@ public:
       result[i] = *x;
     }
     return result;
+  }
+
+  /// A non-empty list of pairs of integers ([[block, edge], ...]).
+  std::vector<std::array<long long, 2>> integer_pair_list(const std::string& name) const
+  {
+    const Value v = value(name, ValueType::integer_pair_list);
+    if (!v.node.IsSequence() || v.node.size() == 0)
+      throw mismatch(v);
+    std::vector<std::array<long long, 2>> result;
+    for (std::size_t i = 0; i < v.node.size(); ++i)
+    {
+      const YAML::Node item = v.node[i];
+      std::optional<long long> a, b;
+      if (item.IsSequence() && item.size() == 2)
+      {
+        a = parse_integer(item[0]);
+        b = parse_integer(item[1]);
+      }
+      if (!a || !b || !v.key->range.contains(static_cast<double>(*a)) ||
+          !v.key->range.contains(static_cast<double>(*b)))
+        throw context->locator.error(item, v.path + "[" + std::to_string(i) + "]", yaml_text(item),
+                                     "expected a pair of integers in " +
+                                         expected_text(*v.key, context->schema));
+      result.push_back({*a, *b});
+    }
+    return result;
+  }
+
+  /// An error about item `i` of the list at key `name` (at the item's line).
+  InputError item_error(const std::string& name, std::size_t i, const std::string& expected) const
+  {
+    const YAML::Node list = child(node, name);
+    const YAML::Node& const_list = list;
+    const YAML::Node item = const_list[i];
+    return context->locator.error(item, path_of(name) + "[" + std::to_string(i) + "]",
+                                  yaml_text(item), expected);
   }
 
   std::array<std::string, 2> name_pair(const std::string& name) const
@@ -900,6 +938,87 @@ void check_point_in_blocks(const MapReader& r, const std::string& key, const Poi
                          "of a block");
 }
 
+// ---- Boundaries -----------------------------------------------------------------------------
+
+/// One `boundaries[i]` item. Only what the text can tell is checked here (types, ranges, one
+/// selector, block and edge indices); which edges a line or `outer` selects, and whether an edge
+/// is outer at all, is for the engine, which sees the geometry.
+dda::BoundaryDescription read_boundary(const MapReader& r, const dda::ModelDescription& model)
+{
+  dda::BoundaryDescription b;
+  b.origin = r.key_path();
+  const std::string type = r.choice("type");
+  b.type = type == "vb1"       ? dda::BoundaryType::vb1
+           : type == "vb2"     ? dda::BoundaryType::vb2
+           : type == "dashpot" ? dda::BoundaryType::dashpot
+                               : dda::BoundaryType::free;
+  b.impedance = r.choice("impedance") == "effective" ? dda::ImpedanceKind::effective
+                                                     : dda::ImpedanceKind::textbook;
+  b.a_n = r.number("a_n");
+  b.a_t = r.number("a_t");
+  b.outer = r.boolean("outer");
+
+  std::vector<std::string> selectors;
+  if (r.has("edges"))
+    selectors.push_back("'edges'");
+  if (r.has("on_line"))
+    selectors.push_back("'on_line'");
+  if (b.outer)
+    selectors.push_back("'outer: true'");
+  if (selectors.size() != 1)
+    throw r.ctx().locator.error(
+        r.yaml(), r.key_path(), "",
+        (selectors.empty() ? std::string("no edges selected")
+                           : "more than one selector (" + join(selectors, ", ") + ")") +
+            ": expected exactly one of 'edges: [[block, edge], ...]', 'on_line: {point: [x, y], "
+            "direction: [dx, dy]}' or 'outer: true'. Allowed keys here: " +
+            join(r.ctx().schema.section("boundaries[i]").key_names(), ", "));
+
+  if (r.has("edges"))
+  {
+    const std::vector<std::array<long long, 2>> edges = r.integer_pair_list("edges");
+    const std::size_t n_blocks = model.blocks.size();
+    for (std::size_t i = 0; i < edges.size(); ++i)
+    {
+      const auto block = static_cast<std::size_t>(edges[i][0]);
+      const auto edge = static_cast<std::size_t>(edges[i][1]);
+      if (block >= n_blocks)
+        throw r.item_error("edges", i,
+                           "block index " + std::to_string(block) +
+                               " is out of range: expected 0 to " + std::to_string(n_blocks - 1) +
+                               " (the " + std::to_string(n_blocks) +
+                               " blocks of the scene, grid cells counted one by one)");
+      const std::size_t n_edges = model.blocks[block].vertices.size();
+      if (edge >= n_edges)
+        throw r.item_error("edges", i,
+                           "edge index " + std::to_string(edge) + " is out of range: block " +
+                               std::to_string(block) + " (" + model.blocks[block].origin +
+                               ") has " + std::to_string(n_edges) + " edges, expected 0 to " +
+                               std::to_string(n_edges - 1));
+      const std::pair<std::size_t, std::size_t> e(block, edge);
+      const auto previous = std::find(b.edges.begin(), b.edges.end(), e);
+      if (previous != b.edges.end())
+        throw r.item_error("edges", i,
+                           "duplicate edge (also edges[" +
+                               std::to_string(previous - b.edges.begin()) +
+                               "]): expected each edge once");
+      b.edges.push_back(e);
+    }
+  }
+  if (r.has("on_line"))
+  {
+    const MapReader line = r.section_reader("on_line");
+    b.on_line = true;
+    b.line_point = line.vector2("point");
+    const Vector2 direction = line.vector2("direction");
+    const double scale = direction.cwiseAbs().maxCoeff();
+    if (scale == 0.0)
+      throw line.error("direction", "expected a non-zero direction [dx, dy]");
+    b.line_direction = (direction / scale).normalized(); // a unit vector
+  }
+  return b;
+}
+
 // ---- Overrides ------------------------------------------------------------------------------
 
 /// Sets the value of one --set override in the YAML tree; returns where it went.
@@ -1107,6 +1226,9 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
     model.monitors.push_back(m);
   }
 
+  for (const MapReader& r : top.section_list("boundaries"))
+    model.boundaries.push_back(read_boundary(r, model));
+
   const MapReader time = top.section_reader("time");
   model.time.dt = time.number("dt");
   model.time.end_time = time.number("end_time");
@@ -1184,7 +1306,7 @@ std::string allowed_cell(const Key& k)
   }
   const std::string r = k.range.describe();
   const bool vector = k.type == ValueType::vector2 || k.type == ValueType::integer_pair ||
-                      k.type == ValueType::voigt;
+                      k.type == ValueType::integer_pair_list || k.type == ValueType::voigt;
   return r.empty() ? "" : (vector ? "each " : "") + r;
 }
 
@@ -1244,6 +1366,8 @@ point_loads:
 gravity: [0, -9.81]
 monitors:
   - {name: top, point: [1.5, 1.5]}
+boundaries:
+  - {type: vb1, on_line: {point: [2, 0], direction: [0, 1]}}
 time: {dt: 1e-4, end_time: 0.05}
 output: {directory: results/two_blocks, interval: 0.001}
 )";

@@ -116,6 +116,8 @@ std::string describe(ValueType type)
     return "[x, y]";
   case ValueType::integer_pair:
     return "[integer, integer]";
+  case ValueType::integer_pair_list:
+    return "list of [integer, integer]";
   case ValueType::name_pair:
     return "[name, name]";
   case ValueType::voigt:
@@ -242,6 +244,10 @@ SceneSchema::SceneSchema()
             .section("monitors[i]")
             .default_note("none")
             .meaning("points whose displacement, velocity and stress histories are recorded"),
+        key("boundaries", T::section_list)
+            .section("boundaries[i]")
+            .default_note("none")
+            .meaning("absorbing (viscous) or free boundaries on outer block edges"),
         key("time", T::section).section("time").required().meaning("time step and duration"),
         key("solver", T::section)
             .section("solver")
@@ -411,6 +417,59 @@ SceneSchema::SceneSchema()
        "A measurement point; it must lie inside or on the boundary of a block.",
        {key("name", T::string).required().meaning("unique name of the history"),
         key("point", T::vector2).unit("m").required().meaning("the monitored material point")}});
+
+  all_sections.push_back(
+      {"boundaries[i]",
+       "A treatment of outer block edges (physics.md section 3). Give exactly one selector: "
+       "`edges`, `on_line` or `outer: true`. Each selected edge of length l0 gets the dashpot "
+       "coefficients cn = a_n rho l0 VP and ct = a_t rho l0 VS (rho, VP, VS of its block's "
+       "material). Edges that are not selected stay free. Which edges a line or `outer` selects "
+       "is decided by the engine: a selector that selects no edge is an error.",
+       {key("type", T::choice)
+            .required()
+            .choices({"free", "vb1", "vb2", "dashpot"})
+            .meaning("free: no boundary term (a traction-free edge; kept so that --set can "
+                     "switch types); vb1: Bao, Hatzor & Huang (2012) eq. 39; vb2: Jiao et al. "
+                     "(2007) eq. 40; dashpot: the consistent dashpot, the force -C v1 with the "
+                     "integrator's end-of-step velocity v1"),
+        key("impedance", T::choice)
+            .choices({"textbook", "effective"})
+            .default_yaml("textbook")
+            .meaning("textbook: VP = sqrt(E (1-nu) / (rho (1+nu) (1-2nu))), VS = sqrt(E / (2 rho "
+                     "(1+nu))); effective: the model's actual wave speeds (block modulus in "
+                     "series with the joint compliance behind the boundary block)"),
+        key("a_n", T::number)
+            .default_yaml("1")
+            .greater_than(0)
+            .meaning("normal coefficient in cn = a_n rho l0 VP"),
+        key("a_t", T::number)
+            .default_yaml("1")
+            .greater_than(0)
+            .meaning("tangential coefficient in ct = a_t rho l0 VS"),
+        key("edges", T::integer_pair_list)
+            .at_least(0)
+            .default_note("(give one selector)")
+            .meaning("explicit edges [[block, edge], ...]: block indexes the final block list "
+                     "(each grid cell is one block, in grid order); edge k runs from vertex k to "
+                     "vertex k + 1 of the block's polygon as stored: anticlockwise (clockwise "
+                     "vertices are reversed, a repeated first vertex is dropped), so edges 0 to 3 "
+                     "of a grid cell are its bottom, right, top and left sides"),
+        key("on_line", T::section)
+            .section("boundaries[i].on_line")
+            .default_note("(give one selector)")
+            .meaning("every outer edge lying on a straight line"),
+        key("outer", T::boolean)
+            .default_yaml("false")
+            .meaning("true selects every outer edge (an edge not shared by a joint)")}});
+
+  all_sections.push_back(
+      {"boundaries[i].on_line",
+       "A straight line through `point` along `direction`; it selects the outer block edges "
+       "that lie on it.",
+       {key("point", T::vector2).unit("m").required().meaning("a point of the line"),
+        key("direction", T::vector2)
+            .required()
+            .meaning("direction of the line [dx, dy], non-zero (any length)")}});
 
   all_sections.push_back(
       {"time",

@@ -12,21 +12,22 @@ namespace ddafem::schema
 /// What a key's value looks like in YAML.
 enum class ValueType
 {
-  string,       ///< a scalar taken as text
-  number,       ///< a real number
-  integer,      ///< a whole number
-  boolean,      ///< true or false
-  choice,       ///< one of Key::choices
-  vector2,      ///< [x, y] of numbers
-  integer_pair, ///< [nx, ny] of whole numbers
-  name_pair,    ///< [A, B] of names
-  voigt,        ///< [xx, yy, xy] of numbers
-  point_list,   ///< [[x, y], ...]
-  table,        ///< [[t, v], ...] with strictly increasing t
-  section,      ///< a map described by the Section named Key::section
-  section_map,  ///< a map from user-chosen names to maps described by Key::section
-  section_list, ///< a list of maps described by Key::section
-  time_function ///< a map whose `type` selects one of the time-function sections
+  string,            ///< a scalar taken as text
+  number,            ///< a real number
+  integer,           ///< a whole number
+  boolean,           ///< true or false
+  choice,            ///< one of Key::choices
+  vector2,           ///< [x, y] of numbers
+  integer_pair,      ///< [nx, ny] of whole numbers
+  integer_pair_list, ///< [[i, j], ...] of whole numbers
+  name_pair,         ///< [A, B] of names
+  voigt,             ///< [xx, yy, xy] of numbers
+  point_list,        ///< [[x, y], ...]
+  table,             ///< [[t, v], ...] with strictly increasing t
+  section,           ///< a map described by the Section named Key::section
+  section_map,       ///< a map from user-chosen names to maps described by Key::section
+  section_list,      ///< a list of maps described by Key::section
+  time_function      ///< a map whose `type` selects one of the time-function sections
 };
 
 /// Name of a value type as shown in the reference ("number", "[x, y]", ...).

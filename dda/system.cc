@@ -136,6 +136,16 @@ System::System(const ModelDescription& model_)
         select_boundary_edges(k, model, blocks, joints, 1e-6 * size);
     boundary_edges.insert(boundary_edges.end(), selected.begin(), selected.end());
   }
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> owner; // (block, edge) -> boundary
+  for (const BoundaryEdge& e : boundary_edges)
+  {
+    const auto [it, inserted] = owner.emplace(std::make_pair(e.block, e.edge), e.boundary);
+    if (!inserted)
+      throw InputError(model.boundaries[e.boundary].origin + " selects block " +
+                       std::to_string(e.block) + " edge " + std::to_string(e.edge) + ", which " +
+                       model.boundaries[it->second].origin +
+                       " already has: expected each edge in one boundary only");
+  }
   boundary_steps.resize(boundary_edges.size());
 
   initial_energy = energy().stored();

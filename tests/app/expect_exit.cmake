@@ -1,8 +1,10 @@
-# Runs `ddafem check SCENE [--set SET]` and asserts exit code 2 and an error on stderr that
+# Runs `ddafem DDAFEM_COMMAND SCENE [--set SET]` (DDAFEM_COMMAND defaults to check; `run` writes into a
+# scratch directory) and asserts exit code 2 and an error on stderr that
 # matches EXPECT, or, without EXPECT, the regex on the scene's first line `# expect: REGEX`
 # (CMake regex syntax).
 #
-#   cmake -DDDAFEM=path/to/ddafem -DSCENE=scene.yaml [-DSET=key=value] [-DEXPECT=REGEX]
+#   cmake -DDDAFEM=path/to/ddafem -DSCENE=scene.yaml [-DDDAFEM_COMMAND=run] [-DSET=key=value]
+#         [-DEXPECT=REGEX]
 #         -P expect_exit.cmake
 if(DEFINED EXPECT)
   set(regex "${EXPECT}")
@@ -15,7 +17,13 @@ else()
   set(regex "${CMAKE_MATCH_1}")
 endif()
 
-set(command "${DDAFEM}" check "${SCENE}")
+if(NOT DEFINED DDAFEM_COMMAND)
+  set(DDAFEM_COMMAND check)
+endif()
+set(command "${DDAFEM}" ${DDAFEM_COMMAND} "${SCENE}")
+if(DDAFEM_COMMAND STREQUAL "run")
+  list(APPEND command -o "${CMAKE_CURRENT_BINARY_DIR}/expect_exit_run" --quiet)
+endif()
 if(DEFINED SET)
   list(APPEND command --set "${SET}")
 endif()

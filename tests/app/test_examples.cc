@@ -104,8 +104,9 @@ TEST_F(PWaveBar, PulseArrivesWhenTheWaveSpeedPredicts)
   // which travels at c: t = 2.5 ms + x / c at M1 (50.5 m) and M2 (98.5 m), and the lag between
   // them is 48 m / c.
   const Scene long_bar =
-      read_scene(examples + "bao2012/p_wave_bar.yaml",
-                 {{"blocks.0.grid.count", "[200, 1]"}, {"time.end_time", "0.03"}});
+      read_scene(examples + "bao2012/p_wave_bar.yaml", {{"blocks.0.grid.count", "[200, 1]"},
+                                                        {"boundaries.0.on_line.point", "[200, 0]"},
+                                                        {"time.end_time", "0.03"}});
   const History h = run(long_bar);
   const double c = wave_speed();
   const double x[2] = {50.5, 98.5};

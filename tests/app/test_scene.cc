@@ -180,6 +180,107 @@ TEST(SceneExamples, PWaveBarIsReadAsSpecified)
   EXPECT_TRUE(m.fixed_points.empty());
   EXPECT_EQ(scene.output.directory, "results/p_wave_bar");
   EXPECT_EQ(scene.output.interval, 0.001);
+
+  // The right end x = 100 m, free by default.
+  ASSERT_EQ(m.boundaries.size(), 1u);
+  const dda::BoundaryDescription& b = m.boundaries[0];
+  EXPECT_EQ(b.type, dda::BoundaryType::free);
+  EXPECT_EQ(b.impedance, dda::ImpedanceKind::textbook);
+  EXPECT_TRUE(b.on_line);
+  EXPECT_FALSE(b.outer);
+  EXPECT_TRUE(b.edges.empty());
+  EXPECT_EQ(b.line_point, dda::Point(100.0, 0.0));
+  EXPECT_EQ(b.line_direction, dda::Vector2(0.0, 1.0));
+  EXPECT_EQ(b.origin, "boundaries[0]");
+}
+
+TEST(SceneExamples, PWaveBarSwitchesBoundaryAndFrequencyFromTheCommandLine)
+{
+  const Scene scene = read_scene(source_dir + "/examples/bao2012/p_wave_bar.yaml",
+                                 {parse_override("boundaries.0.type=vb1"),
+                                  parse_override("boundaries.0.impedance=effective"),
+                                  parse_override("point_loads.0.time_function.frequency=50")});
+  const dda::ModelDescription& m = scene.model;
+  ASSERT_EQ(m.boundaries.size(), 1u);
+  EXPECT_EQ(m.boundaries[0].type, dda::BoundaryType::vb1);
+  EXPECT_EQ(m.boundaries[0].impedance, dda::ImpedanceKind::effective);
+  const TimeFunction& f = m.point_loads[0].time_function;
+  EXPECT_EQ(f.characteristic_frequency(), 50.0);
+  EXPECT_NEAR(f.value(0.005), 1.0, 1e-12); // a quarter period of 50 Hz
+  EXPECT_NEAR(f.value(0.015), -1.0, 1e-12);
+  EXPECT_EQ(f.value(0.021), 0.0); // one cycle only
+}
+
+TEST(SceneExamples, SWaveColumnIsReadAsSpecified)
+{
+  const Scene scene = read_scene(source_dir + "/examples/bao2012/s_wave_column.yaml");
+  const dda::ModelDescription& m = scene.model;
+  EXPECT_EQ(scene.name, "s_wave_column");
+  EXPECT_EQ(m.plane_mode, dda::PlaneMode::stress);
+  ASSERT_EQ(m.materials.size(), 2u);
+  for (const dda::Material& material : m.materials)
+  {
+    EXPECT_EQ(material.density, 2650.0);
+    EXPECT_EQ(material.youngs_modulus, 50e9);
+    EXPECT_EQ(material.poisson_ratio, 0.25);
+  }
+  ASSERT_EQ(m.joint_materials.size(), 1u);
+  EXPECT_EQ(m.joint_materials[0].normal_stiffness, 2.5e12);
+  EXPECT_EQ(m.joint_materials[0].shear_ratio, 0.4);
+  EXPECT_TRUE(m.joint_materials[0].bonded);
+
+  // The base (block 0, y in [0, 1]) and 50 layers of 50 m x 1 m above it.
+  ASSERT_EQ(m.blocks.size(), 51u);
+  EXPECT_EQ(m.materials[m.blocks[0].material].name, "base");
+  for (std::size_t i = 0; i < 51; ++i)
+  {
+    const auto& v = m.blocks[i].vertices;
+    ASSERT_EQ(v.size(), 4u);
+    EXPECT_EQ(v[0], dda::Point(0.0, static_cast<double>(i))) << i;
+    EXPECT_EQ(v[2], dda::Point(50.0, static_cast<double>(i + 1))) << i;
+    EXPECT_NEAR(dda::signed_area(v), 50.0, 1e-9) << i;
+    if (i > 0)
+    {
+      EXPECT_EQ(m.materials[m.blocks[i].material].name, "rock") << i;
+    }
+  }
+
+  // One cycle of horizontal base displacement: 100 Hz, 1 mm (the paper's 0.02 m would break the
+  // bonded joints; see the scene's comment).
+  ASSERT_EQ(m.fixed_points.size(), 3u);
+  for (const dda::FixedPoint& f : m.fixed_points)
+  {
+    EXPECT_EQ(f.point.y(), 0.5);
+    EXPECT_EQ(f.stiffness, 1e14);
+    EXPECT_NEAR(f.displacement_x.value(0.0025), 0.001, 1e-15);
+    EXPECT_NEAR(f.displacement_x.value(0.0075), -0.001, 1e-15);
+    EXPECT_EQ(f.displacement_x.value(0.011), 0.0);
+    EXPECT_EQ(f.displacement_y.value(0.005), 0.0);
+  }
+  EXPECT_TRUE(m.point_loads.empty());
+
+  ASSERT_EQ(m.boundaries.size(), 1u);
+  EXPECT_EQ(m.boundaries[0].type, dda::BoundaryType::free);
+  EXPECT_TRUE(m.boundaries[0].on_line);
+  EXPECT_EQ(m.boundaries[0].line_point, dda::Point(0.0, 51.0));
+  EXPECT_EQ(m.boundaries[0].line_direction, dda::Vector2(1.0, 0.0));
+
+  ASSERT_EQ(m.monitors.size(), 3u);
+  EXPECT_EQ(m.monitors[0].point, dda::Point(25.0, 0.5));
+  EXPECT_EQ(m.monitors[1].point, dda::Point(25.0, 31.5));
+  EXPECT_EQ(m.monitors[2].point, dda::Point(25.0, 49.5));
+  EXPECT_EQ(m.time.dt, 1e-5);
+  EXPECT_EQ(m.time.end_time, 0.06);
+  EXPECT_EQ(m.time.integrator, dda::Integrator::dda);
+  EXPECT_EQ(scene.output.directory, "results/s_wave_column");
+  EXPECT_EQ(scene.output.interval, 0.002);
+
+  // The stiffer joints of the paper's second case.
+  const Scene stiff = read_scene(source_dir + "/examples/bao2012/s_wave_column.yaml",
+                                 {parse_override("joint_materials.bonded.normal_stiffness=1.25e13"),
+                                  parse_override("boundaries.0.type=vb2")});
+  EXPECT_EQ(stiff.model.joint_materials[0].normal_stiffness, 1.25e13);
+  EXPECT_EQ(stiff.model.boundaries[0].type, dda::BoundaryType::vb2);
 }
 
 TEST(SceneExamples, BlockStackIsReadAsSpecified)
@@ -232,6 +333,7 @@ TEST_F(SceneTest, DefaultsAreApplied)
   EXPECT_EQ(scene.output.directory, "results");
   EXPECT_EQ(scene.output.interval, 0.0);
   EXPECT_EQ(scene.output.history_every, 1u);
+  EXPECT_TRUE(m.boundaries.empty());
 }
 
 TEST_F(SceneTest, EverySectionIsRead)
@@ -416,6 +518,168 @@ TEST_F(SceneTest, CsvPathsAreRelativeToTheSceneFile)
                 "data/f.csv}}\n");
   const Scene scene = read_scene(file);
   EXPECT_NEAR(scene.model.point_loads[0].time_function.value(0.5), 1.5, 1e-12);
+}
+
+// ---- Boundaries -----------------------------------------------------------------------------
+
+/// Three by two unit squares (blocks 0 to 5, row by row) and the boundaries in `boundaries`.
+std::string grid_scene_with_boundaries(const std::string& boundaries)
+{
+  return replaced(minimal_scene, "vertices: [[0, 0], [1, 0], [1, 1], [0, 1]]",
+                  "grid: {origin: [0, 0], cell_size: [1, 1], count: [3, 2]}") +
+         "boundaries:\n" + boundaries;
+}
+
+TEST_F(SceneTest, EveryBoundarySelectorIsRead)
+{
+  const Scene scene = read(grid_scene_with_boundaries(
+      "  - {type: vb1, edges: [[2, 1], [5, 1]]}\n"
+      "  - type: vb2\n"
+      "    impedance: effective\n"
+      "    a_n: 0.5\n"
+      "    a_t: 2\n"
+      "    on_line: {point: [0, 0], direction: [3, 0]}\n"
+      "  - {type: dashpot, outer: true}\n"
+      "  - {type: free, on_line: {point: [0, 2], direction: [-1, 1e-300]}}\n"));
+  const std::vector<dda::BoundaryDescription>& b = scene.model.boundaries;
+  ASSERT_EQ(b.size(), 4u);
+
+  EXPECT_EQ(b[0].type, dda::BoundaryType::vb1);
+  EXPECT_EQ(b[0].impedance, dda::ImpedanceKind::textbook); // defaults
+  EXPECT_EQ(b[0].a_n, 1.0);
+  EXPECT_EQ(b[0].a_t, 1.0);
+  const std::vector<std::pair<std::size_t, std::size_t>> edges = {{2, 1}, {5, 1}};
+  EXPECT_EQ(b[0].edges, edges);
+  EXPECT_FALSE(b[0].on_line);
+  EXPECT_FALSE(b[0].outer);
+  EXPECT_EQ(b[0].origin, "boundaries[0]");
+
+  EXPECT_EQ(b[1].type, dda::BoundaryType::vb2);
+  EXPECT_EQ(b[1].impedance, dda::ImpedanceKind::effective);
+  EXPECT_EQ(b[1].a_n, 0.5);
+  EXPECT_EQ(b[1].a_t, 2.0);
+  EXPECT_TRUE(b[1].on_line);
+  EXPECT_EQ(b[1].line_point, dda::Point(0, 0));
+  EXPECT_EQ(b[1].line_direction, dda::Vector2(1, 0)); // normalized
+  EXPECT_TRUE(b[1].edges.empty());
+  EXPECT_FALSE(b[1].outer);
+
+  EXPECT_EQ(b[2].type, dda::BoundaryType::dashpot);
+  EXPECT_TRUE(b[2].outer);
+  EXPECT_FALSE(b[2].on_line);
+  EXPECT_TRUE(b[2].edges.empty());
+
+  EXPECT_EQ(b[3].type, dda::BoundaryType::free);
+  EXPECT_NEAR(b[3].line_direction.norm(), 1.0, 1e-15); // tiny but non-zero is a direction
+  EXPECT_EQ(b[3].line_direction.x(), -1.0);
+}
+
+TEST_F(SceneTest, EdgeIndicesCountGridCellsAndTheAnticlockwisePolygon)
+{
+  // A clockwise triangle after a 2-cell grid: block 2, its edges numbered anticlockwise.
+  const Scene scene =
+      read(replaced(minimal_scene, "    vertices: [[0, 0], [1, 0], [1, 1], [0, 1]]\n",
+                    "    grid: {origin: [0, 0], cell_size: [1, 1], count: [2, 1]}\n"
+                    "  - material: rock\n"
+                    "    vertices: [[2, 0], [2, 1], [3, 0]]\n") +
+           "boundaries: [{type: vb1, edges: [[2, 2]]}]\n");
+  ASSERT_EQ(scene.model.blocks.size(), 3u);
+  EXPECT_EQ(scene.model.boundaries[0].edges.front(),
+            std::make_pair(std::size_t{2}, std::size_t{2}));
+  // The triangle is stored reversed, (3, 0) (2, 1) (2, 0): its edge 2 runs from (2, 0) to (3, 0).
+  const std::vector<dda::Point> triangle = {dda::Point(3, 0), dda::Point(2, 1), dda::Point(2, 0)};
+  EXPECT_EQ(scene.model.blocks[2].vertices, triangle);
+  EXPECT_NE(error_of(replaced(minimal_scene, "    vertices: [[0, 0], [1, 0], [1, 1], [0, 1]]\n",
+                              "    vertices: [[2, 0], [2, 1], [3, 0]]\n") +
+                     "boundaries: [{type: vb1, edges: [[0, 3]]}]\n")
+                .find("key 'boundaries[0].edges[0]' = '[0, 3]': edge index 3 is out of range: "
+                      "block 0 (blocks[0]) has 3 edges, expected 0 to 2"),
+            std::string::npos);
+}
+
+TEST_F(SceneTest, BoundaryProblemsAreNamed)
+{
+  const auto message = [&](const std::string& boundaries)
+  { return error_of(grid_scene_with_boundaries(boundaries)); };
+  const auto expect_in = [](const std::string& m, const std::string& expected)
+  { EXPECT_NE(m.find(expected), std::string::npos) << m << "\n  expected: " << expected; };
+
+  expect_in(message("  - {type: vb_1, outer: true}\n"),
+            "scene.yaml:8: key 'boundaries[0].type' = 'vb_1': expected one of 'free', 'vb1', "
+            "'vb2', 'dashpot'; did you mean 'vb1'?");
+  expect_in(message("  - {outer: true}\n"),
+            "key 'boundaries[0].type': missing required key: expected one of 'free', 'vb1', "
+            "'vb2', 'dashpot'");
+  expect_in(message("  - {type: vb1, impedance: matched, outer: true}\n"),
+            "key 'boundaries[0].impedance' = 'matched': expected one of 'textbook', 'effective'");
+  expect_in(message("  - {type: vb1, a_n: 0, outer: true}\n"),
+            "key 'boundaries[0].a_n' = '0': expected a number > 0");
+  expect_in(message("  - {type: vb1, a_t: -1, outer: true}\n"),
+            "key 'boundaries[0].a_t' = '-1': expected a number > 0");
+  expect_in(message("  - {type: vb1, edge: [[0, 0]]}\n"),
+            "key 'boundaries[0].edge': unknown key; did you mean 'edges'?");
+
+  // Exactly one selector.
+  const std::string allowed = "Allowed keys here: type, impedance, a_n, a_t, edges, on_line, outer";
+  const std::string none = message("  - {type: vb1, outer: true}\n  - {type: vb1}\n");
+  expect_in(none, "scene.yaml:9: key 'boundaries[1]': no edges selected: expected exactly one of "
+                  "'edges: [[block, edge], ...]', 'on_line: {point: [x, y], direction: [dx, dy]}' "
+                  "or 'outer: true'");
+  expect_in(none, allowed);
+  expect_in(message("  - {type: vb1, outer: false}\n"), "key 'boundaries[0]': no edges selected");
+  const std::string two =
+      message("  - {type: vb1, edges: [[0, 0]], on_line: {point: [0, 0], direction: [1, 0]}}\n");
+  expect_in(two, "key 'boundaries[0]': more than one selector ('edges', 'on_line'): expected "
+                 "exactly one of");
+  expect_in(two, allowed);
+  expect_in(message("  - {type: vb1, edges: [[0, 0]], on_line: {point: [0, 0], direction: [1, "
+                    "0]}, outer: true}\n"),
+            "more than one selector ('edges', 'on_line', 'outer: true')");
+
+  // Edges: well-formed, in range, once each.
+  expect_in(message("  - {type: vb1, edges: [[6, 0]]}\n"),
+            "key 'boundaries[0].edges[0]' = '[6, 0]': block index 6 is out of range: expected 0 "
+            "to 5 (the 6 blocks of the scene, grid cells counted one by one)");
+  expect_in(message("  - {type: vb1, edges: [[0, 0], [5, 4]]}\n"),
+            "key 'boundaries[0].edges[1]' = '[5, 4]': edge index 4 is out of range: block 5 "
+            "(blocks[0] (grid cell 2, 1)) has 4 edges, expected 0 to 3");
+  expect_in(message("  - {type: vb1, edges: [[1, 0], [2, 3], [1, 0]]}\n"),
+            "key 'boundaries[0].edges[2]' = '[1, 0]': duplicate edge (also edges[0])");
+  expect_in(message("  - {type: vb1, edges: [[0, -1]]}\n"),
+            "key 'boundaries[0].edges[0]' = '[0, -1]': expected a pair of integers in a non-empty "
+            "list of [integer, integer] pairs each >= 0");
+  expect_in(message("  - {type: vb1, edges: [[0, 1.5]]}\n"), "expected a pair of integers");
+  expect_in(message("  - {type: vb1, edges: [0, 1]}\n"), "expected a pair of integers");
+  expect_in(message("  - {type: vb1, edges: []}\n"),
+            "key 'boundaries[0].edges' = '[]': expected a non-empty list of [integer, integer] "
+            "pairs each >= 0");
+
+  // Lines: a point and a non-zero direction.
+  expect_in(message("  - {type: vb1, on_line: {point: [0, 0], direction: [0, 0]}}\n"),
+            "key 'boundaries[0].on_line.direction' = '[0, 0]': expected a non-zero direction");
+  expect_in(message("  - {type: vb1, on_line: {point: [0, 0]}}\n"),
+            "key 'boundaries[0].on_line.direction': missing required key");
+  expect_in(message("  - {type: vb1, on_line: {point: [0, 0], direction: [1, 0], normal: [0, "
+                    "1]}}\n"),
+            "key 'boundaries[0].on_line.normal': unknown key. Allowed keys here: point, "
+            "direction");
+  expect_in(message("  - {type: vb1, on_line: [0, 0]}\n"),
+            "key 'boundaries[0].on_line' = '[0, 0]': expected a map with keys 'point', "
+            "'direction'");
+}
+
+TEST_F(SceneTest, BoundaryOverridesNameTheCommandLine)
+{
+  const std::string scene = grid_scene_with_boundaries("  - {type: free, edges: [[0, 0]]}\n");
+  EXPECT_EQ(read(scene, {parse_override("boundaries.0.type=dashpot")}).model.boundaries[0].type,
+            dda::BoundaryType::dashpot);
+  EXPECT_EQ(error_of(scene, {parse_override("boundaries.0.a_n=0")}),
+            "command line --set boundaries.0.a_n=0: key 'boundaries[0].a_n' = '0': expected a "
+            "number > 0");
+  EXPECT_NE(error_of(scene, {parse_override("boundaries.0.edges=[[0, 9]]")})
+                .find("command line --set boundaries.0.edges=[[0, 9]]: key "
+                      "'boundaries[0].edges[0]' = '[0, 9]': edge index 9 is out of range"),
+            std::string::npos);
 }
 
 // ---- Error messages -------------------------------------------------------------------------
