@@ -52,7 +52,8 @@ VB1_THRESHOLD = 1.68789  # root of 2 / (1 + exp(-x)) = x (dda/viscous_boundary.c
 
 
 def run(ddafem, scene, settings, allow_unstable=False):
-    """Runs a scene with --set overrides; returns (exit code, time, {monitor: (stress, disp)})."""
+    """Runs a scene with --set overrides; returns (failure or None, time,
+    {monitor: (sxx, ux)}, {energy: history})."""
     with tempfile.TemporaryDirectory() as out:
         cmd = [ddafem, "run", scene, "-o", out, "--quiet"]
         for key, value in settings.items():
@@ -62,13 +63,17 @@ def run(ddafem, scene, settings, allow_unstable=False):
         proc = subprocess.run(cmd, capture_output=True, text=True)
         if proc.returncode not in (0, 1) or not os.path.exists(os.path.join(out, "histories.h5")):
             raise SystemExit(f"failed ({proc.returncode}): {' '.join(cmd)}\n{proc.stderr}")
+        with open(os.path.join(out, "summary.json")) as f:
+            failure = json.load(f).get("failure")
+        if failure is not None and not allow_unstable:
+            raise SystemExit(f"failed: {' '.join(cmd)}\n{failure}")
         with h5py.File(os.path.join(out, "histories.h5"), "r") as f:
             time = f["time"][:]
             monitors = {name: (f[f"monitors/{name}/stress"][:, 0],
                                f[f"monitors/{name}/displacement"][:, 0])
                         for name in f["monitors"]}
             energy = {name: f[f"energy/{name}"][:] for name in f["energy"]}
-    return proc.returncode, time, monitors, energy
+    return failure, time, monitors, energy
 
 
 def window_max(time, signal, t0, t1):
@@ -206,19 +211,23 @@ def stability_map(ddafem, pool, dts):
         _, lt, lm, _ = jobs[("long", dt)].result()
         _, ft, fm, _ = jobs[("free", "textbook", dt)].result()
         for boundary, impedance in BOUNDARIES:
-            code, t, m, en = jobs[(boundary, impedance, dt)].result()
+            failure, t, m, en = jobs[(boundary, impedance, dt)].result()
             work_in = float(np.max(en["work_of_loads"]))
             stored = en["kinetic"] + en["strain"] + en["spring"]
-            growth = float(stored[-1] / work_in)
-            completed = code == 0 and t[-1] >= reflected[1]
+            growth = float(stored[-1] / work_in) if work_in > 0 else None
+            completed = failure is None and t[-1] >= reflected[1]
             eta_b = None
             if completed:
                 _, eta_b, _ = efficiencies(t, m["M1"][0], lt, lm["M1"][0], ft, fm["M1"][0],
                                            incident, reflected)
+            stopped = None
+            if failure is not None:
+                stopped = "energy growth" if "stored energy grew" in failure else \
+                    "indefinite step matrix" if "not positive definite" in failure else failure
             rows.append({"boundary": boundary, "impedance": impedance, "dt": dt,
                          "eta_boundary": None if eta_b is None else round(eta_b, 2),
-                         "final_stored_over_input": round(growth, 4),
-                         "stopped_by_energy_growth": code == 1})
+                         "final_stored_over_input": None if growth is None else round(growth, 4),
+                         "stopped_by": stopped, "stopped_at_s": float(t[-1]) if stopped else None})
     return rows
 
 
@@ -271,11 +280,12 @@ def figure_stability(rows, path):
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
     for key in BOUNDARIES:
         sub = [r for r in rows if (r["boundary"], r["impedance"]) == key]
-        dts = [r["dt"] for r in sub]
         a1.semilogx([r["dt"] for r in sub if r["eta_boundary"] is not None],
                     [r["eta_boundary"] for r in sub if r["eta_boundary"] is not None],
                     "o-", label=LABEL[key])
-        a2.loglog(dts, [max(r["final_stored_over_input"], 1e-6) for r in sub], "o-", label=LABEL[key])
+        grown = [r for r in sub if r["final_stored_over_input"] is not None]
+        a2.loglog([r["dt"] for r in grown], [max(r["final_stored_over_input"], 1e-6) for r in grown],
+                  "o-", label=LABEL[key])
     for ax in (a1, a2):
         ax.axvline(VB1_THRESHOLD * mass / cn, color="k", ls="--", lw=1)
         ax.axvline(mass / cn, color="gray", ls=":", lw=1)
@@ -318,11 +328,12 @@ def write_markdown(path, records_a, records_b, stability, quick, geometry):
         f.write("\n## Stability map (bar, 100 Hz, small-displacement analysis)\n\n")
         f.write("![stability](figures/stability_map.png)\n\n")
         f.write("| dt [s] | boundary | impedance | eta_boundary | stored / input at the end | "
-                "stopped (energy growth) |\n|---:|---|---|---:|---:|---|\n")
+                "stopped by |\n|---:|---|---|---:|---:|---|\n")
         for r in stability:
             eta = "" if r["eta_boundary"] is None else f"{r['eta_boundary']:.1f}"
-            f.write(f"| {r['dt']:g} | {r['boundary']} | {r['impedance']} | {eta} | "
-                    f"{r['final_stored_over_input']:.3g} | {'yes' if r['stopped_by_energy_growth'] else ''} |\n")
+            growth = "" if r["final_stored_over_input"] is None else f"{r['final_stored_over_input']:.3g}"
+            stop = "" if r["stopped_by"] is None else f"{r['stopped_by']} at {1e3 * r['stopped_at_s']:.1f} ms"
+            f.write(f"| {r['dt']:g} | {r['boundary']} | {r['impedance']} | {eta} | {growth} | {stop} |\n")
         f.write("\n## Figures\n\n")
         for name in sorted(os.listdir(os.path.join(os.path.dirname(path), "figures"))):
             if name != "stability_map.png":
