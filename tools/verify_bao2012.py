@@ -241,30 +241,16 @@ FIGURE_BOUNDARIES = [("free", "textbook"), ("vb1", "textbook"), ("vb2", "textboo
                      ("dashpot", "effective")]
 
 
-def figure_bar(histories, dt, f, path):
+def figure_histories(histories, case, monitors, component, scale, unit, what, path):
+    """One panel per boundary of FIGURE_BOUNDARIES: a monitor quantity against time.
+    case: the history key after (boundary, impedance); component 0 = sxx, 1 = ux."""
     fig, axes = plt.subplots(len(FIGURE_BOUNDARIES), 1, figsize=(8, 9), sharex=True)
     for ax, key in zip(axes, FIGURE_BOUNDARIES):
-        t, m = histories[(key[0], key[1], dt, f)]
-        for name in ("M1", "M2"):
-            ax.plot(1e3 * t, m[name][0] / 1e6, label=name)
-        ax.set_title(f"{LABEL[key]}: sxx, dt = {dt:g} s, {f:g} Hz", fontsize=9)
-        ax.set_ylabel("MPa")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-    axes[-1].set_xlabel("time [ms]")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-
-
-def figure_column(histories, p, path):
-    fig, axes = plt.subplots(len(FIGURE_BOUNDARIES), 1, figsize=(8, 9), sharex=True)
-    for ax, key in zip(axes, FIGURE_BOUNDARIES):
-        t, m = histories[(key[0], key[1], p)]
-        for name in ("M0", "M1", "M2"):
-            ax.plot(1e3 * t, 1e3 * m[name][1], label=name)
-        ax.set_title(f"{LABEL[key]}: ux, joint stiffness {p / 1e9:g} GN/m", fontsize=9)
-        ax.set_ylabel("mm")
+        t, m = histories[key + case]
+        for name in monitors:
+            ax.plot(1e3 * t, scale * m[name][component], label=name)
+        ax.set_title(f"{LABEL[key]}: {what}", fontsize=9)
+        ax.set_ylabel(unit)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     axes[-1].set_xlabel("time [ms]")
@@ -363,9 +349,13 @@ def main():
         stability = stability_map(ddafem, pool, sweep)
 
     for dt in dts:
-        figure_bar(hist_a, dt, 100.0, os.path.join(figures, f"bar_100Hz_dt{dt:g}.png"))
+        figure_histories(hist_a, (dt, 100.0), ("M1", "M2"), 0, 1e-6, "MPa",
+                         f"sxx, dt = {dt:g} s, 100 Hz",
+                         os.path.join(figures, f"bar_100Hz_dt{dt:g}.png"))
     for p in (2.5e12, 1.25e13):
-        figure_column(hist_b, p, os.path.join(figures, f"column_p{p / 1e9:g}GN.png"))
+        figure_histories(hist_b, (p,), ("M0", "M1", "M2"), 1, 1e3, "mm",
+                         f"ux, joint stiffness {p / 1e9:g} GN/m",
+                         os.path.join(figures, f"column_p{p / 1e9:g}GN.png"))
     figure_stability(stability, os.path.join(figures, "stability_map.png"))
 
     with open(os.path.join(args.out, "bao2012.json"), "w") as f:

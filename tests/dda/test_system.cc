@@ -1,5 +1,6 @@
 // The DDA step on small models with analytic answers.
 #include "dda/system.h"
+#include "row_of_blocks.h"
 
 #include <gtest/gtest.h>
 
@@ -8,27 +9,10 @@
 using namespace ddafem;
 using namespace ddafem::dda;
 
-namespace
-{
-constexpr double rho = 2650.0, young = 50e9, nu = 0.25;
-
-/// A row of n unit square blocks from x = 0, bonded with springs p [N/m].
-ModelDescription row_of_blocks(std::size_t n, double p)
-{
-  ModelDescription m;
-  m.materials.push_back({"rock", rho, young, nu});
-  m.joint_materials.push_back({"bond", p, 0.4, 45.0, 20e6, 10e6, true});
-  m.default_joint_material = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double x = static_cast<double>(i);
-    BlockDescription b;
-    b.vertices = {{x, 0}, {x + 1, 0}, {x + 1, 1}, {x, 1}};
-    m.blocks.push_back(b);
-  }
-  return m;
-}
-} // namespace
+using test_models::nu;
+using test_models::rho;
+using test_models::row_of_blocks;
+using test_models::young;
 
 TEST(System, FindsOneJointPerSharedEdge)
 {

@@ -2,6 +2,7 @@
 // efficiencies (Bao, Hatzor & Huang 2012, section 4.1), stability and energy accounting.
 #include "dda/system.h"
 #include "dda/viscous_boundary.h"
+#include "row_of_blocks.h"
 
 #include <gtest/gtest.h>
 
@@ -12,22 +13,15 @@ using namespace ddafem::dda;
 
 namespace
 {
-constexpr double rho = 2650.0, young = 50e9, nu = 0.25, p_joint = 2.5e12;
+using test_models::nu;
+using test_models::rho;
+using test_models::young;
+constexpr double p_joint = 2.5e12;
 
 ModelDescription bar(std::size_t n, BoundaryType type, ImpedanceKind impedance, double dt,
                      double end_time)
 {
-  ModelDescription m;
-  m.materials.push_back({"rock", rho, young, nu});
-  m.joint_materials.push_back({"bond", p_joint, 0.4, 45.0, 20e6, 10e6, true});
-  m.default_joint_material = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double x = static_cast<double>(i);
-    BlockDescription b;
-    b.vertices = {{x, 0}, {x + 1, 0}, {x + 1, 1}, {x, 1}};
-    m.blocks.push_back(b);
-  }
+  ModelDescription m = test_models::row_of_blocks(n, p_joint);
   m.point_loads.push_back({{0, 0.5}, {1e6, 0}, TimeFunction::sine_pulse(1.0, 100.0, 1, 0), ""});
   m.monitors.push_back({"M1", {50.5, 0.5}});
   BoundaryDescription bd;
