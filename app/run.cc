@@ -134,6 +134,19 @@ std::vector<double> history_row(const dda::System& system)
   return row;
 }
 
+/// Peak resident memory of this process [MB]: VmHWM from /proc/self/status (getrusage's
+/// ru_maxrss would include the image of a parent that forked us, e.g. a Python driver); 0 where
+/// /proc is not available.
+double peak_memory_mb()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0)
+      return std::stod(line.substr(6)) / 1024.0; // kB -> MB
+  return 0.0;
+}
+
 const char* integrator_name(dda::Integrator i)
 {
   return i == dda::Integrator::dda ? "dda" : "newmark_trapezoidal";
@@ -462,6 +475,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
                       {"joints", system.get_joints().size()},
                       {"dofs", system.n_dofs()}};
   summary["wall_time_s"] = wall;
+  summary["peak_memory_mb"] = peak_memory_mb();
   summary["timings_s"] = {
       {"assemble", t.assemble}, {"solve", t.solve}, {"update", t.update}, {"output", output_time}};
   summary["energy_J"] = {{"kinetic", e.kinetic},

@@ -44,14 +44,11 @@ def run(ddafem, scene, solver, extra):
     with tempfile.TemporaryDirectory() as out:
         cmd = [ddafem, "run", os.path.join(TOP, scene), "-o", out, "--quiet",
                "--set", f"solver.type={solver}"] + extra
-        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-        _, status, usage = os.wait4(proc.pid, 0)
-        if os.waitstatus_to_exitcode(status) != 0:
-            raise SystemExit(f"failed: {' '.join(cmd)}\n{proc.stderr.read().decode()}")
+        proc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        if proc.returncode != 0:
+            raise SystemExit(f"failed: {' '.join(cmd)}\n{proc.stderr}")
         with open(os.path.join(out, "summary.json")) as f:
-            summary = json.load(f)
-    summary["peak_memory_mb"] = usage.ru_maxrss / 1024.0  # ru_maxrss is in KiB on Linux
-    return summary
+            return json.load(f)  # includes the run's own peak_memory_mb (getrusage)
 
 
 def main():
