@@ -1,5 +1,7 @@
 #include "app/run.h"
 
+#include "app/run_support.h"
+
 #include "common/history_writer.h"
 #include "common/input_error.h"
 #include "dda/system.h"
@@ -22,19 +24,10 @@ namespace ddafem
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double elapsed(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string format(double value, int precision = 4)
-{
-  std::ostringstream s;
-  s << std::setprecision(precision) << value;
-  return s.str();
-}
+using run_support::Clock;
+using run_support::elapsed;
+using run_support::format;
+using run_support::Progress;
 
 /// P-wave speed that governs the scene's blocks: plate speed in plane stress, body in strain.
 double governing_p_speed(const Scene& scene, const dda::Material& m)
@@ -68,33 +61,6 @@ SmallestBlock smallest_block(const Scene& scene)
   }
   return s;
 }
-
-/// One-line progress display on a terminal, at most five updates a second.
-class Progress
-{
-public:
-  Progress(bool enabled_, std::size_t n_steps_) : enabled(enabled_), n_steps(n_steps_) {}
-  void update(std::size_t step, double time, double wall, bool force = false)
-  {
-    if (!enabled || (!force && wall - last < 0.2))
-      return;
-    last = wall;
-    const double eta = step > 0 ? wall * static_cast<double>(n_steps - step) / step : 0.0;
-    std::fprintf(stderr, "\rstep %zu/%zu  t = %.6g s  wall %.1f s  ETA %.1f s   ", step, n_steps,
-                 time, wall, eta);
-    std::fflush(stderr);
-  }
-  void finish()
-  {
-    if (enabled)
-      std::fprintf(stderr, "\n");
-  }
-
-private:
-  bool enabled;
-  std::size_t n_steps;
-  double last = -1.0;
-};
 
 std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
 {
@@ -132,19 +98,6 @@ std::vector<double> history_row(const dda::System& system)
   row.insert(row.end(), {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
                          e.work_of_boundaries, e.dissipated});
   return row;
-}
-
-/// Peak resident memory of this process [MB]: VmHWM from /proc/self/status (getrusage's
-/// ru_maxrss would include the image of a parent that forked us, e.g. a Python driver); 0 where
-/// /proc is not available.
-double peak_memory_mb()
-{
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("VmHWM:", 0) == 0)
-      return std::stod(line.substr(6)) / 1024.0; // kB -> MB
-  return 0.0;
 }
 
 const char* integrator_name(dda::Integrator i)
@@ -318,6 +271,8 @@ TimeStepAdvice suggest_time_step(const Scene& scene)
 
 std::string check_scene(const Scene& scene)
 {
+  if (scene.far_field)
+    return check_far_field(scene);
   const dda::System system(scene.model); // finds joints; throws InputError on engine-level issues
   const dda::ModelDescription& model = scene.model;
   std::ostringstream out;
@@ -368,15 +323,14 @@ std::string check_scene(const Scene& scene)
 
 int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
 {
+  if (scene.far_field)
+    return run_far_field(scene, options, log);
   const auto wall_start = Clock::now();
   dda::System system(scene.model); // input errors surface here, before anything is written
 
   const std::filesystem::path dir =
       options.output_directory.empty() ? scene.output.directory : options.output_directory;
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec)
-    throw InputError("cannot create output directory '" + dir.string() + "': " + ec.message());
+  run_support::create_output_directory(dir);
 
   const dda::TimeSettings& time = scene.model.time;
   const auto n_steps = static_cast<std::size_t>(std::llround(time.end_time / time.dt));
@@ -430,13 +384,10 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
         {
           if (step % scene.output.history_every == 0 || last)
             history.append(system.time(), history_row(system));
-          if (last ||
-              (scene.output.interval > 0.0 && system.time() >= next_snapshot - 1e-9 * time.dt))
-          {
+          if (run_support::snapshot_due(system.time(), scene.output.interval, time.dt,
+                                        next_snapshot) ||
+              last)
             vtu.write(system.time(), system.snapshot());
-            while (next_snapshot <= system.time() + 1e-9 * time.dt && scene.output.interval > 0.0)
-              next_snapshot += scene.output.interval;
-          }
         });
     progress.update(step, system.time(), elapsed(wall_start));
   }
@@ -475,7 +426,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
                       {"joints", system.get_joints().size()},
                       {"dofs", system.n_dofs()}};
   summary["wall_time_s"] = wall;
-  summary["peak_memory_mb"] = peak_memory_mb();
+  summary["peak_memory_mb"] = run_support::peak_memory_mb();
   summary["timings_s"] = {
       {"assemble", t.assemble}, {"solve", t.solve}, {"update", t.update}, {"output", output_time}};
   summary["energy_J"] = {{"kinetic", e.kinetic},

@@ -45,4 +45,11 @@ struct RunOptions
 /// far stays readable). Bad input throws InputError before anything is written.
 int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log);
 
+/// `check` of a far-field-only scene: mesh, wave speeds, elements per wavelength, boundaries.
+std::string check_far_field(const Scene& scene);
+
+/// `run` of a far-field-only scene: histories.h5 (monitors and energies), far_field.pvd (+ .vtu)
+/// and summary.json, with the exit codes of run_scene.
+int run_far_field(const Scene& scene, const RunOptions& options, std::ostream& log);
+
 } // namespace ddafem

@@ -17,6 +17,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -765,8 +766,12 @@ void read_blocks(const MapReader& top, const std::vector<std::string>& material_
                  dda::ModelDescription& model, std::vector<BlockSource>& sources)
 {
   const std::vector<MapReader> items = top.section_list("blocks");
-  if (items.empty())
-    throw top.error("blocks", "expected at least one block");
+  if (items.empty() && !top.has("far_field"))
+    throw top.error("blocks", "expected at least one block (or a `far_field`)");
+  if (!items.empty() && top.has("far_field"))
+    throw top.error("far_field", "blocks inside a far field need the DDA-FEM coupling, which is "
+                                 "not available yet (issue 6): expected either `blocks` or "
+                                 "`far_field`");
   for (std::size_t i = 0; i < items.size(); ++i)
   {
     const MapReader& r = items[i];
@@ -936,6 +941,79 @@ void check_point_in_blocks(const MapReader& r, const std::string& key, const Poi
   throw r.error(key, "the point " + format_point(p) +
                          " lies outside every block; expected a point inside or on the boundary "
                          "of a block");
+}
+
+/// Monitors of a far-field scene must lie in its rectangle.
+void check_point_in_far_field(const MapReader& r, const std::string& key, const Point& p,
+                              const fem::FarFieldDescription& far_field)
+{
+  const double tol = 1e-9 * std::hypot(far_field.upper[0] - far_field.lower[0],
+                                       far_field.upper[1] - far_field.lower[1]);
+  if (p.x() < far_field.lower[0] - tol || p.x() > far_field.upper[0] + tol ||
+      p.y() < far_field.lower[1] - tol || p.y() > far_field.upper[1] + tol)
+    throw r.error(
+        key, "the point " + format_point(p) + " lies outside the far field; expected a point in [" +
+                 format_number(far_field.lower[0]) + ", " + format_number(far_field.upper[0]) +
+                 "] x [" + format_number(far_field.lower[1]) + ", " +
+                 format_number(far_field.upper[1]) + "]");
+}
+
+/// The `far_field` section (the plane mode, time step and integrator come from the scene).
+fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDescription& model,
+                                        const std::vector<std::string>& material_names)
+{
+  fem::FarFieldDescription d;
+  const dda::Material& m =
+      model.materials[find_name(f, "material", f.string("material"), material_names, "material")];
+  d.density = m.density;
+  d.youngs_modulus = m.youngs_modulus;
+  d.poisson_ratio = m.poisson_ratio;
+  const Vector2 lower = f.vector2("lower"), upper = f.vector2("upper");
+  if (!(upper.x() > lower.x() && upper.y() > lower.y()))
+    throw f.error("upper",
+                  "expected upper > lower in both x and y, lower = " + format_point(lower));
+  d.lower = {lower.x(), lower.y()};
+  d.upper = {upper.x(), upper.y()};
+  d.element_size = f.number("element_size");
+  d.max_frequency = f.number("max_frequency");
+  d.points_per_wavelength = f.number("points_per_wavelength");
+  if (d.element_size == 0.0 && d.max_frequency == 0.0)
+    throw f.error("element_size", "expected element_size > 0, or max_frequency > 0 to choose it");
+  const long long degree = f.integer("degree");
+  if (degree != 1 && degree != 2)
+    throw f.error("degree", "expected 1 or 2");
+  d.degree = static_cast<unsigned int>(degree);
+  d.plane_mode =
+      model.plane_mode == dda::PlaneMode::stress ? fem::PlaneMode::stress : fem::PlaneMode::strain;
+  std::set<std::string> parts;
+  for (const MapReader& r : f.section_list("boundaries"))
+  {
+    fem::BoundaryCondition bc;
+    const std::string part = r.choice("part");
+    if (!parts.insert(part).second)
+      throw r.error("part", "side '" + part + "' is listed twice: expected each side once");
+    bc.part = part == "bottom"  ? fem::BoundaryPart::bottom
+              : part == "right" ? fem::BoundaryPart::right
+              : part == "top"   ? fem::BoundaryPart::top
+                                : fem::BoundaryPart::left;
+    const std::string type = r.choice("type");
+    bc.kind = type == "fixed"    ? fem::BoundaryKind::fixed
+              : type == "lysmer" ? fem::BoundaryKind::lysmer
+              : type == "input"  ? fem::BoundaryKind::input
+              : type == "roller" ? fem::BoundaryKind::roller
+                                 : fem::BoundaryKind::free;
+    bc.a = r.number("a");
+    bc.b = r.number("b");
+    d.boundaries.push_back(bc);
+  }
+  if (f.has("incident"))
+  {
+    const MapReader inc = f.section_reader("incident");
+    d.incident.type =
+        inc.choice("type") == "p" ? fem::IncidentWave::Type::p : fem::IncidentWave::Type::sv;
+    d.incident.velocity = read_time_function(inc, "velocity");
+  }
+  return d;
 }
 
 // ---- Boundaries -----------------------------------------------------------------------------
@@ -1171,19 +1249,26 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
     model.joint_assignments.push_back(a);
   }
 
+  if (top.has("far_field"))
+    scene.far_field = read_far_field(top.section_reader("far_field"), model, material_names);
+
   std::vector<BlockSource> sources;
   read_blocks(top, material_names, model, sources);
   check_overlaps(model, sources, context.locator);
 
   std::vector<Box> boxes;
-  Box all(model.blocks.front().vertices);
-  for (const dda::BlockDescription& b : model.blocks)
+  double tol = 0.0;
+  if (!model.blocks.empty())
   {
-    boxes.emplace_back(b.vertices);
-    all.lower = all.lower.cwiseMin(boxes.back().lower);
-    all.upper = all.upper.cwiseMax(boxes.back().upper);
+    Box all(model.blocks.front().vertices);
+    for (const dda::BlockDescription& b : model.blocks)
+    {
+      boxes.emplace_back(b.vertices);
+      all.lower = all.lower.cwiseMin(boxes.back().lower);
+      all.upper = all.upper.cwiseMax(boxes.back().upper);
+    }
+    tol = 1e-9 * (all.upper - all.lower).norm();
   }
-  const double tol = 1e-9 * (all.upper - all.lower).norm();
 
   for (const MapReader& r : top.section_list("point_loads"))
   {
@@ -1222,7 +1307,13 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
       throw r.error("name", "duplicate monitor name (also used by " + it->second +
                                 "): expected unique names");
     m.point = r.vector2("point");
-    check_point_in_blocks(r, "point", m.point, model, boxes, tol);
+    if (scene.far_field)
+    {
+      check_point_in_far_field(r, "point", m.point, *scene.far_field);
+      scene.far_field->monitors.push_back({m.name, {m.point.x(), m.point.y()}});
+    }
+    else
+      check_point_in_blocks(r, "point", m.point, model, boxes, tol);
     model.monitors.push_back(m);
   }
 
@@ -1238,6 +1329,14 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   model.time.integrator = time.choice("integrator") == "newmark_trapezoidal"
                               ? dda::Integrator::newmark_trapezoidal
                               : dda::Integrator::dda;
+  if (scene.far_field)
+  {
+    scene.far_field->dt = model.time.dt;
+    scene.far_field->end_time = model.time.end_time;
+    scene.far_field->integrator = model.time.integrator == dda::Integrator::dda
+                                      ? fem::Integrator::dda
+                                      : fem::Integrator::newmark_trapezoidal;
+  }
 
   const MapReader solver = top.section_reader("solver");
   const std::string solver_type = solver.choice("type");

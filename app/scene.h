@@ -2,6 +2,9 @@
 #pragma once
 
 #include "dda/model_description.h"
+#include "fem/far_field_description.h"
+
+#include <optional>
 
 #include <string>
 #include <vector>
@@ -19,10 +22,11 @@ struct OutputSettings
 /// A scene file, read and validated.
 struct Scene
 {
-  std::string file;        ///< path of the scene file as given
-  std::string name;        ///< `name:` key, or the file's stem
-  std::string description; ///< `description:` key (free text)
-  dda::ModelDescription model;
+  std::string file;            ///< path of the scene file as given
+  std::string name;            ///< `name:` key, or the file's stem
+  std::string description;     ///< `description:` key (free text)
+  dda::ModelDescription model; ///< the blocks (empty for a far-field-only scene)
+  std::optional<fem::FarFieldDescription> far_field; ///< the `far_field` section, if any
   OutputSettings output;
 };
 

@@ -226,8 +226,12 @@ SceneSchema::SceneSchema()
             .meaning("which joint material acts between blocks of which materials"),
         key("blocks", T::section_list)
             .section("blocks[i]")
-            .required()
+            .default_note("required unless `far_field` is given")
             .meaning("the blocks: polygons or grids of rectangles"),
+        key("far_field", T::section)
+            .section("far_field")
+            .default_note("none")
+            .meaning("a deal.II continuum (issue 5); without blocks the scene is FE only"),
         key("point_loads", T::section_list)
             .section("point_loads[i]")
             .default_note("none")
@@ -417,6 +421,69 @@ SceneSchema::SceneSchema()
        "A measurement point; it must lie inside or on the boundary of a block.",
        {key("name", T::string).required().meaning("unique name of the history"),
         key("point", T::vector2).unit("m").required().meaning("the monitored material point")}});
+
+  all_sections.push_back(
+      {"far_field",
+       "A rectangular elastic continuum meshed with FE_Q elements (deal.II), in the scene's "
+       "`analysis.plane` and advanced with `time.dt` and `time.integrator` (the trapezoidal rule "
+       "is exact for energy; `dda` damps like the blocks). Monitors may lie in it. Blocks and a "
+       "far field in one scene need the coupling of issue 6 and are refused for now.",
+       {key("material", T::string).required().meaning("name of a material in `materials`"),
+        key("lower", T::vector2).unit("m").required().meaning("lower-left corner [x0, y0]"),
+        key("upper", T::vector2).unit("m").required().meaning("upper-right corner [x1, y1]"),
+        key("element_size", T::number)
+            .unit("m")
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("element edge length; 0: VS / (max_frequency points_per_wavelength) x degree"),
+        key("max_frequency", T::number)
+            .unit("Hz")
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("highest frequency to resolve (needed when element_size is 0)"),
+        key("points_per_wavelength", T::number)
+            .default_yaml("10")
+            .greater_than(0)
+            .meaning("nodes per shortest S wavelength"),
+        key("degree", T::integer).default_yaml("2").at_least(1).meaning("FE_Q degree: 1 or 2"),
+        key("boundaries", T::section_list)
+            .section("far_field.boundaries[i]")
+            .default_note("all parts free")
+            .meaning("what each side of the rectangle does"),
+        key("incident", T::section)
+            .section("far_field.incident")
+            .default_note("none")
+            .meaning("a vertically incident plane wave entering through an `input` side")}});
+
+  all_sections.push_back(
+      {"far_field.boundaries[i]",
+       "One side of the far-field rectangle. Sides not listed are traction free.",
+       {key("part", T::choice)
+            .required()
+            .choices({"bottom", "right", "top", "left"})
+            .meaning("the side"),
+        key("type", T::choice)
+            .required()
+            .choices({"free", "fixed", "lysmer", "input", "roller"})
+            .meaning("fixed: zero displacement; lysmer: dashpots t = -rho (a VP (v.n) n + b VS (v "
+                     "- (v.n) n)) (Lysmer & Kuhlemeyer 1969); input: those dashpots plus the "
+                     "traction rho c 2 v_in of the incident wave (Joyner & Chen 1975); roller: the "
+                     "displacement component the incident wave does not move is fixed (uy for a "
+                     "vertical SV wave, ux for P), keeping a column one-dimensional"),
+        key("a", T::number).default_yaml("1").greater_than(0).meaning("normal dashpot factor"),
+        key("b", T::number)
+            .default_yaml("1")
+            .greater_than(0)
+            .meaning("tangential dashpot factor")}});
+
+  all_sections.push_back(
+      {"far_field.incident",
+       "A plane wave travelling up from the `input` side: particle velocity v_in(t), horizontal "
+       "for SV, vertical for P.",
+       {key("type", T::choice).required().choices({"p", "sv"}).meaning("wave type"),
+        key("velocity", T::time_function)
+            .required()
+            .meaning("v_in(t) [m/s] of the incident (upgoing) wave")}});
 
   all_sections.push_back(
       {"boundaries[i]",

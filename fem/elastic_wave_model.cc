@@ -1,0 +1,760 @@
+// deal.II elastodynamics of a rectangular far field (issue 5): mesh and matrices in the
+// constructor, one Newmark step per advance() with a factorization reused across steps.
+#include "fem/elastic_wave_model.h"
+
+#include "common/input_error.h"
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/component_mask.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/data_postprocessor.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <set>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+namespace ddafem::fem
+{
+using namespace dealii;
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Boundary ids of GridGenerator::subdivided_hyper_rectangle with colorize = true.
+types::boundary_id boundary_id_of(const BoundaryPart part)
+{
+  switch (part)
+  {
+  case BoundaryPart::left:
+    return 0;
+  case BoundaryPart::right:
+    return 1;
+  case BoundaryPart::bottom:
+    return 2;
+  case BoundaryPart::top:
+    return 3;
+  }
+  return 0;
+}
+
+const char* name_of(const BoundaryPart part)
+{
+  switch (part)
+  {
+  case BoundaryPart::left:
+    return "left";
+  case BoundaryPart::right:
+    return "right";
+  case BoundaryPart::bottom:
+    return "bottom";
+  case BoundaryPart::top:
+    return "top";
+  }
+  return "?";
+}
+
+/// Isotropic elastic constants of the plane mode.
+struct PlaneElasticity
+{
+  double lambda = 0.0; ///< lambda (plane strain) or 2 lambda mu / (lambda + 2 mu) (plane stress)
+  double mu = 0.0;
+  double nu = 0.0;
+  PlaneMode mode = PlaneMode::strain;
+
+  /// (sxx, syy, sxy) from the displacement gradient, tension positive.
+  std::array<double, 3> stress(const Tensor<1, 2>& grad_ux, const Tensor<1, 2>& grad_uy) const
+  {
+    const double exx = grad_ux[0];
+    const double eyy = grad_uy[1];
+    const double exy = 0.5 * (grad_ux[1] + grad_uy[0]);
+    const double trace = exx + eyy;
+    return {{lambda * trace + 2.0 * mu * exx, lambda * trace + 2.0 * mu * eyy, 2.0 * mu * exy}};
+  }
+
+  /// Von Mises stress; szz = nu (sxx + syy) in plane strain, 0 in plane stress.
+  double von_mises(const std::array<double, 3>& s) const
+  {
+    const double szz = mode == PlaneMode::strain ? nu * (s[0] + s[1]) : 0.0;
+    const double d =
+        (s[0] - s[1]) * (s[0] - s[1]) + (s[1] - szz) * (s[1] - szz) + (szz - s[0]) * (szz - s[0]);
+    return std::sqrt(0.5 * d + 3.0 * s[2] * s[2]);
+  }
+};
+
+/// Stress components and von Mises from the displacement field, for DataOut.
+class StressPostprocessor : public DataPostprocessor<2>
+{
+public:
+  explicit StressPostprocessor(const PlaneElasticity& elasticity_) : elasticity(elasticity_) {}
+
+  void evaluate_vector_field(const DataPostprocessorInputs::Vector<2>& inputs,
+                             std::vector<Vector<double>>& computed) const override
+  {
+    for (unsigned int q = 0; q < inputs.solution_gradients.size(); ++q)
+    {
+      const auto s =
+          elasticity.stress(inputs.solution_gradients[q][0], inputs.solution_gradients[q][1]);
+      computed[q](0) = s[0];
+      computed[q](1) = s[1];
+      computed[q](2) = s[2];
+      computed[q](3) = elasticity.von_mises(s);
+    }
+  }
+
+  std::vector<std::string> get_names() const override { return {"sxx", "syy", "sxy", "von_mises"}; }
+
+  std::vector<DataComponentInterpretation::DataComponentInterpretation>
+  get_data_component_interpretation() const override
+  {
+    return std::vector<DataComponentInterpretation::DataComponentInterpretation>(
+        4, DataComponentInterpretation::component_is_scalar);
+  }
+
+  UpdateFlags get_needed_update_flags() const override { return update_gradients; }
+
+private:
+  PlaneElasticity elasticity;
+};
+
+/// Sets entries below 1e-30 of the largest one to zero. Ahead of a wave front the discrete
+/// solution decays exponentially into subnormal numbers, which make every solve many times
+/// slower; the change is far below round-off of the field.
+void flush_negligible(Vector<double>& x)
+{
+  const double threshold = 1e-30 * x.linfty_norm();
+  for (double& entry : x)
+    if (std::abs(entry) < threshold)
+      entry = 0.0;
+}
+
+void require(const bool condition, const std::string& message)
+{
+  if (!condition)
+    throw InputError("far field: " + message);
+}
+
+std::string str(const double x)
+{
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+} // namespace
+
+class ElasticWaveModel::Impl
+{
+public:
+  explicit Impl(const FarFieldDescription& description);
+
+  StepStatus advance(double dt);
+  MonitorSample sample_monitor(std::size_t monitor) const;
+  void write_snapshot(const std::string& directory, const std::string& basename);
+
+  FarFieldDescription description;
+  PlaneElasticity elasticity;
+  double vp = 0.0;
+  double vs = 0.0;
+  double beta = 0.25;
+  double gamma = 0.5;
+  double h = 0.0;
+
+  Triangulation<2> mesh;
+  FESystem<2> fe;
+  DoFHandler<2> dof_handler;
+  AffineConstraints<double> constraints;
+  SparsityPattern sparsity;
+  SparseMatrix<double> mass;      ///< M, unconstrained
+  SparseMatrix<double> stiffness; ///< K, unconstrained
+  SparseMatrix<double> damping;   ///< C (Lysmer and input parts), unconstrained
+  SparseMatrix<double> effective; ///< K + gamma/(beta dt) C + 1/(beta dt^2) M, constrained
+  SparseDirectUMFPACK solver;
+  double factorized_dt = 0.0;
+
+  /// f(t) = input_scale * v_in(t) * input_shape: the Joyner-Chen traction 2 rho c v_in on the
+  /// incident wave's component, integrated over the input parts.
+  Vector<double> input_shape;
+  double input_scale = 0.0;
+
+  Vector<double> u, v, a;
+  Vector<double> force; ///< f at the current time
+  double t = 0.0;
+  bool initial_acceleration_done = false;
+
+  EnergyBalance energies;
+  Timings timings;
+
+  struct MonitorPoint
+  {
+    std::unique_ptr<FEValues<2>> values; ///< reinit'd once on the cell holding the point
+  };
+  std::vector<MonitorPoint> monitors;
+
+  std::vector<std::pair<double, std::string>> snapshots;
+
+private:
+  void validate() const;
+  void make_mesh();
+  void make_constraints();
+  void assemble_matrices();
+  void locate_monitors();
+  void factorize(double dt);
+  void compute_initial_acceleration();
+  void input_force(double time, Vector<double>& f) const;
+  void condense_rhs(Vector<double>& rhs) const;
+};
+
+ElasticWaveModel::Impl::Impl(const FarFieldDescription& description_)
+    : description(description_), fe(FE_Q<2>(std::max(1u, description_.degree)), 2),
+      dof_handler(mesh)
+{
+  const auto start = Clock::now();
+  validate();
+
+  const double E = description.youngs_modulus;
+  const double nu = description.poisson_ratio;
+  const double rho = description.density;
+  const double lambda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  const double mu = E / (2.0 * (1.0 + nu));
+  elasticity.mu = mu;
+  elasticity.nu = nu;
+  elasticity.mode = description.plane_mode;
+  elasticity.lambda = description.plane_mode == PlaneMode::strain
+                          ? lambda
+                          : 2.0 * lambda * mu / (lambda + 2.0 * mu);
+  vp = std::sqrt((elasticity.lambda + 2.0 * mu) / rho);
+  vs = std::sqrt(mu / rho);
+  if (description.integrator == Integrator::dda)
+  {
+    beta = 0.5;
+    gamma = 1.0;
+  }
+
+  make_mesh();
+  dof_handler.distribute_dofs(fe);
+  make_constraints();
+  assemble_matrices();
+  locate_monitors();
+
+  u.reinit(dof_handler.n_dofs());
+  v.reinit(dof_handler.n_dofs());
+  a.reinit(dof_handler.n_dofs());
+  force.reinit(dof_handler.n_dofs());
+  input_force(0.0, force);
+
+  if (description.dt > 0.0)
+    factorize(description.dt);
+  timings.setup += seconds_since(start);
+}
+
+void ElasticWaveModel::Impl::validate() const
+{
+  const auto& d = description;
+  require(d.upper[0] > d.lower[0] && d.upper[1] > d.lower[1],
+          "upper corner (" + str(d.upper[0]) + ", " + str(d.upper[1]) +
+              ") must lie above and right of lower corner (" + str(d.lower[0]) + ", " +
+              str(d.lower[1]) + ")");
+  require(d.degree == 1 || d.degree == 2,
+          "degree = " + std::to_string(d.degree) + ", expected 1 or 2");
+  require(d.density > 0.0, "density = " + str(d.density) + ", expected > 0");
+  require(d.youngs_modulus > 0.0, "youngs_modulus = " + str(d.youngs_modulus) + ", expected > 0");
+  require(d.poisson_ratio >= 0.0 && d.poisson_ratio < 0.5,
+          "poisson_ratio = " + str(d.poisson_ratio) + ", expected in [0, 0.5)");
+  require(d.element_size >= 0.0, "element_size = " + str(d.element_size) + ", expected >= 0");
+  require(d.dt >= 0.0, "dt = " + str(d.dt) + ", expected >= 0 (0: given to advance())");
+  if (d.element_size == 0.0)
+  {
+    const double f =
+        d.max_frequency > 0.0 ? d.max_frequency : d.incident.velocity.characteristic_frequency();
+    require(f > 0.0, "element_size = 0 needs max_frequency > 0 (or an incident wave with a "
+                     "frequency) to choose the element size");
+    require(d.points_per_wavelength > 0.0,
+            "points_per_wavelength = " + str(d.points_per_wavelength) + ", expected > 0");
+  }
+  std::set<BoundaryPart> seen;
+  for (const auto& bc : d.boundaries)
+  {
+    require(seen.insert(bc.part).second,
+            std::string("boundary part '") + name_of(bc.part) + "' is listed twice");
+    require(bc.a >= 0.0 && bc.b >= 0.0, std::string("boundary part '") + name_of(bc.part) +
+                                            "': Lysmer coefficients a, b must be >= 0");
+    if (bc.kind == BoundaryKind::input)
+      require(bc.part == BoundaryPart::bottom || bc.part == BoundaryPart::top,
+              std::string("boundary part '") + name_of(bc.part) +
+                  "' is 'input', but a vertically incident wave enters through bottom or top");
+  }
+  for (const auto& m : d.monitors)
+  {
+    const double tol = 1e-9 * std::max(d.upper[0] - d.lower[0], d.upper[1] - d.lower[1]);
+    require(m.point[0] >= d.lower[0] - tol && m.point[0] <= d.upper[0] + tol &&
+                m.point[1] >= d.lower[1] - tol && m.point[1] <= d.upper[1] + tol,
+            "monitor '" + m.name + "' at (" + str(m.point[0]) + ", " + str(m.point[1]) +
+                ") lies outside the far field [" + str(d.lower[0]) + ", " + str(d.upper[0]) +
+                "] x [" + str(d.lower[1]) + ", " + str(d.upper[1]) + "]");
+  }
+}
+
+void ElasticWaveModel::Impl::make_mesh()
+{
+  const auto& d = description;
+  double target = d.element_size;
+  if (target == 0.0)
+  {
+    const double f =
+        d.max_frequency > 0.0 ? d.max_frequency : d.incident.velocity.characteristic_frequency();
+    // points_per_wavelength counts nodes; an FE_Q(p) element spans p node intervals.
+    target = vs / (f * d.points_per_wavelength) * d.degree;
+  }
+  const double lx = d.upper[0] - d.lower[0];
+  const double ly = d.upper[1] - d.lower[1];
+  const auto nx = static_cast<unsigned int>(std::max(1.0, std::ceil(lx / target - 1e-9)));
+  const auto ny = static_cast<unsigned int>(std::max(1.0, std::ceil(ly / target - 1e-9)));
+  GridGenerator::subdivided_hyper_rectangle(mesh, {nx, ny}, Point<2>(d.lower[0], d.lower[1]),
+                                            Point<2>(d.upper[0], d.upper[1]), true);
+  h = std::max(lx / nx, ly / ny);
+}
+
+void ElasticWaveModel::Impl::make_constraints()
+{
+  constraints.clear();
+  // Roller: fix the component the incident wave does not move (see BoundaryKind::roller).
+  const unsigned int roller_component = description.incident.type == IncidentWave::Type::sv ? 1 : 0;
+  std::vector<bool> only(2, false);
+  only[roller_component] = true;
+  const ComponentMask roller_mask(only);
+  for (const auto& bc : description.boundaries)
+  {
+    if (bc.kind == BoundaryKind::fixed)
+      VectorTools::interpolate_boundary_values(dof_handler, boundary_id_of(bc.part),
+                                               Functions::ZeroFunction<2>(2), constraints);
+    else if (bc.kind == BoundaryKind::roller)
+      VectorTools::interpolate_boundary_values(dof_handler, boundary_id_of(bc.part),
+                                               Functions::ZeroFunction<2>(2), constraints,
+                                               roller_mask);
+  }
+  constraints.close();
+}
+
+void ElasticWaveModel::Impl::assemble_matrices()
+{
+  DynamicSparsityPattern dsp(dof_handler.n_dofs());
+  DoFTools::make_sparsity_pattern(dof_handler, dsp);
+  sparsity.copy_from(dsp);
+  mass.reinit(sparsity);
+  stiffness.reinit(sparsity);
+  damping.reinit(sparsity);
+  input_shape.reinit(dof_handler.n_dofs());
+
+  const double rho = description.density;
+  const double lambda = elasticity.lambda;
+  const double mu = elasticity.mu;
+  const unsigned int n = fe.n_dofs_per_cell();
+
+  // Domain: consistent mass and plane elastic stiffness (deal.II step-8 form).
+  const QGauss<2> quadrature(fe.degree + 1);
+  FEValues<2> fe_values(fe, quadrature, update_values | update_gradients | update_JxW_values);
+  FullMatrix<double> cell_mass(n, n), cell_stiffness(n, n);
+  std::vector<types::global_dof_index> dofs(n);
+  for (const auto& cell : dof_handler.active_cell_iterators())
+  {
+    fe_values.reinit(cell);
+    cell_mass = 0.0;
+    cell_stiffness = 0.0;
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      const unsigned int ci = fe.system_to_component_index(i).first;
+      for (unsigned int j = 0; j < n; ++j)
+      {
+        const unsigned int cj = fe.system_to_component_index(j).first;
+        for (const unsigned int q : fe_values.quadrature_point_indices())
+        {
+          const Tensor<1, 2> gi = fe_values.shape_grad(i, q);
+          const Tensor<1, 2> gj = fe_values.shape_grad(j, q);
+          double k = lambda * gi[ci] * gj[cj] + mu * gi[cj] * gj[ci];
+          double m = 0.0;
+          if (ci == cj)
+          {
+            k += mu * (gi * gj);
+            m = rho * fe_values.shape_value(i, q) * fe_values.shape_value(j, q);
+          }
+          cell_stiffness(i, j) += k * fe_values.JxW(q);
+          cell_mass(i, j) += m * fe_values.JxW(q);
+        }
+      }
+    }
+    cell->get_dof_indices(dofs);
+    mass.add(dofs, cell_mass);
+    stiffness.add(dofs, cell_stiffness);
+  }
+
+  // Boundary: Lysmer dashpots D = rho (a VP n n^T + b VS (I - n n^T)) on lysmer and input
+  // parts; the input traction shape on input parts.
+  std::map<types::boundary_id, const BoundaryCondition*> absorbing;
+  for (const auto& bc : description.boundaries)
+    if (bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input)
+      absorbing[boundary_id_of(bc.part)] = &bc;
+  const bool sv = description.incident.type == IncidentWave::Type::sv;
+  const unsigned int input_component = sv ? 0 : 1;
+  input_scale = 2.0 * rho * (sv ? vs : vp);
+
+  const QGauss<1> face_quadrature(fe.degree + 1);
+  FEFaceValues<2> face_values(fe, face_quadrature,
+                              update_values | update_normal_vectors | update_JxW_values);
+  FullMatrix<double> cell_damping(n, n);
+  Vector<double> cell_input(n);
+  for (const auto& cell : dof_handler.active_cell_iterators())
+    for (const unsigned int f : cell->face_indices())
+    {
+      if (!cell->face(f)->at_boundary())
+        continue;
+      const auto found = absorbing.find(cell->face(f)->boundary_id());
+      if (found == absorbing.end())
+        continue;
+      const BoundaryCondition& bc = *found->second;
+      face_values.reinit(cell, f);
+      cell_damping = 0.0;
+      cell_input = 0.0;
+      for (const unsigned int q : face_values.quadrature_point_indices())
+      {
+        const Tensor<1, 2> normal = face_values.normal_vector(q);
+        double D[2][2];
+        for (unsigned int r = 0; r < 2; ++r)
+          for (unsigned int c = 0; c < 2; ++c)
+            D[r][c] = rho * (bc.a * vp * normal[r] * normal[c] +
+                             bc.b * vs * ((r == c ? 1.0 : 0.0) - normal[r] * normal[c]));
+        for (unsigned int i = 0; i < n; ++i)
+        {
+          const unsigned int ci = fe.system_to_component_index(i).first;
+          const double phi_i = face_values.shape_value(i, q);
+          for (unsigned int j = 0; j < n; ++j)
+          {
+            const unsigned int cj = fe.system_to_component_index(j).first;
+            cell_damping(i, j) +=
+                phi_i * D[ci][cj] * face_values.shape_value(j, q) * face_values.JxW(q);
+          }
+          if (bc.kind == BoundaryKind::input && ci == input_component)
+            cell_input(i) += phi_i * face_values.JxW(q);
+        }
+      }
+      cell->get_dof_indices(dofs);
+      damping.add(dofs, cell_damping);
+      for (unsigned int i = 0; i < n; ++i)
+        input_shape(dofs[i]) += cell_input(i);
+    }
+}
+
+void ElasticWaveModel::Impl::locate_monitors()
+{
+  const MappingQ1<2> mapping;
+  for (const auto& m : description.monitors)
+  {
+    const Point<2> p(m.point[0], m.point[1]);
+    const auto found = GridTools::find_active_cell_around_point(mapping, dof_handler, p);
+    require(found.first.state() == IteratorState::valid, "monitor '" + m.name +
+                                                             "': no cell found around (" +
+                                                             str(p[0]) + ", " + str(p[1]) + ")");
+    const Point<2> reference = GeometryInfo<2>::project_to_unit_cell(found.second);
+    MonitorPoint monitor;
+    monitor.values =
+        std::make_unique<FEValues<2>>(mapping, fe, Quadrature<2>(std::vector<Point<2>>{reference}),
+                                      update_values | update_gradients);
+    monitor.values->reinit(found.first);
+    monitors.push_back(std::move(monitor));
+  }
+}
+
+void ElasticWaveModel::Impl::input_force(const double time, Vector<double>& f) const
+{
+  f = input_shape;
+  f *= input_scale * description.incident.velocity.value(time);
+}
+
+void ElasticWaveModel::Impl::condense_rhs(Vector<double>& rhs) const
+{
+  for (const auto& line : constraints.get_lines())
+    rhs(line.index) = 0.0;
+}
+
+void ElasticWaveModel::Impl::factorize(const double dt)
+{
+  const double c_mass = 1.0 / (beta * dt * dt);
+  const double c_damping = gamma / (beta * dt);
+  effective.reinit(sparsity);
+  effective.copy_from(stiffness);
+  effective.add(c_mass, mass);
+  effective.add(c_damping, damping);
+  // Homogeneous constraints: zero the row and column, keep the diagonal (rhs is zeroed there).
+  for (const auto& line : constraints.get_lines())
+  {
+    const auto i = line.index;
+    for (auto entry = effective.begin(i); entry != effective.end(i); ++entry)
+      if (entry->column() != i)
+      {
+        effective.set(entry->column(), i, 0.0);
+        entry->value() = 0.0;
+      }
+  }
+  solver.initialize(effective);
+  factorized_dt = dt;
+}
+
+void ElasticWaveModel::Impl::compute_initial_acceleration()
+{
+  // M a0 = f(0) - C v0 - K u0 with u0 = v0 = 0; only needed when the input starts non-zero.
+  initial_acceleration_done = true;
+  if (force.l2_norm() == 0.0)
+    return;
+  SparseMatrix<double> constrained_mass(sparsity);
+  constrained_mass.copy_from(mass);
+  for (const auto& line : constraints.get_lines())
+  {
+    const auto i = line.index;
+    for (auto entry = constrained_mass.begin(i); entry != constrained_mass.end(i); ++entry)
+      if (entry->column() != i)
+      {
+        constrained_mass.set(entry->column(), i, 0.0);
+        entry->value() = 0.0;
+      }
+  }
+  SparseDirectUMFPACK mass_solver;
+  mass_solver.initialize(constrained_mass);
+  a = force;
+  condense_rhs(a);
+  mass_solver.solve(a);
+}
+
+StepStatus ElasticWaveModel::Impl::advance(const double dt)
+{
+  require(dt > 0.0 && std::isfinite(dt), "advance: dt = " + str(dt) + ", expected > 0");
+  StepStatus status;
+  try
+  {
+    if (!initial_acceleration_done)
+    {
+      const auto start = Clock::now();
+      compute_initial_acceleration();
+      timings.setup += seconds_since(start);
+    }
+    if (dt != factorized_dt)
+    {
+      const auto start = Clock::now();
+      factorize(dt);
+      timings.setup += seconds_since(start);
+    }
+
+    // Right-hand side of K_eff u1 = f1 + M (...) + C (...) (Newmark, displacement form).
+    auto start = Clock::now();
+    const double t1 = t + dt;
+    Vector<double> force_new(force.size());
+    input_force(t1, force_new);
+    const double m_u = 1.0 / (beta * dt * dt);
+    const double m_v = 1.0 / (beta * dt);
+    const double m_a = 1.0 / (2.0 * beta) - 1.0;
+    const double c_u = gamma / (beta * dt);
+    const double c_v = gamma / beta - 1.0;
+    const double c_a = dt * (gamma / (2.0 * beta) - 1.0);
+    Vector<double> combination(u.size()), rhs(force_new), product(u.size());
+    combination.equ(m_u, u);
+    combination.add(m_v, v, m_a, a);
+    mass.vmult(product, combination);
+    rhs += product;
+    combination.equ(c_u, u);
+    combination.add(c_v, v, c_a, a);
+    damping.vmult(product, combination);
+    rhs += product;
+    condense_rhs(rhs);
+    timings.assemble += seconds_since(start);
+
+    start = Clock::now();
+    solver.solve(rhs); // rhs now holds u1
+    timings.solve += seconds_since(start);
+
+    start = Clock::now();
+    for (double x : rhs)
+      if (!std::isfinite(x))
+      {
+        status.outcome = StepOutcome::solver_failure;
+        status.message = "far field: non-finite displacement at t = " + str(t1);
+        timings.update += seconds_since(start);
+        return status;
+      }
+    Vector<double> a_new(u.size()), v_new(v);
+    a_new.equ(m_u, rhs);
+    a_new.add(-m_u, u, -m_v, v);
+    a_new.add(-m_a, a);
+    v_new.add(dt * (1.0 - gamma), a, dt * gamma, a_new);
+
+    // Energies: work over the step with mid-step forces (exact balance for the trapezoidal
+    // rule, whose du = dt (v0 + v1) / 2).
+    Vector<double> du(rhs);
+    du -= u;
+    Vector<double> v_mid(v);
+    v_mid += v_new;
+    v_mid *= 0.5;
+    damping.vmult(product, v_mid);
+    energies.work_of_dashpots -= du * product;
+    energies.work_of_input += 0.5 * (du * force + du * force_new);
+
+    u = rhs;
+    v = v_new;
+    a = a_new;
+    flush_negligible(u);
+    flush_negligible(v);
+    flush_negligible(a);
+    force = force_new;
+    t = t1;
+    ++timings.n_steps;
+    energies.kinetic = 0.5 * mass.matrix_norm_square(v);
+    energies.strain = 0.5 * stiffness.matrix_norm_square(u);
+    energies.dissipated =
+        energies.initial + energies.work_of_input + energies.work_of_dashpots - energies.stored();
+    timings.update += seconds_since(start);
+  }
+  catch (const std::exception& e)
+  {
+    status.outcome = StepOutcome::solver_failure;
+    status.message = std::string("far field: solver failed: ") + e.what();
+  }
+  return status;
+}
+
+MonitorSample ElasticWaveModel::Impl::sample_monitor(const std::size_t monitor) const
+{
+  AssertThrow(monitor < monitors.size(),
+              ExcMessage("monitor index " + std::to_string(monitor) + " out of range [0, " +
+                         std::to_string(monitors.size()) + ")"));
+  const FEValues<2>& values = *monitors[monitor].values;
+  std::vector<Vector<double>> point_u(1, Vector<double>(2)), point_v(1, Vector<double>(2));
+  std::vector<std::vector<Tensor<1, 2>>> grad_u(1, std::vector<Tensor<1, 2>>(2));
+  values.get_function_values(u, point_u);
+  values.get_function_values(v, point_v);
+  values.get_function_gradients(u, grad_u);
+  MonitorSample sample;
+  sample.displacement = {{point_u[0](0), point_u[0](1)}};
+  sample.velocity = {{point_v[0](0), point_v[0](1)}};
+  sample.stress = elasticity.stress(grad_u[0][0], grad_u[0][1]);
+  return sample;
+}
+
+void ElasticWaveModel::Impl::write_snapshot(const std::string& directory,
+                                            const std::string& basename)
+{
+  std::filesystem::create_directories(directory);
+  std::ostringstream name;
+  name << basename << "_" << std::setw(5) << std::setfill('0') << snapshots.size() << ".vtu";
+
+  const StressPostprocessor stress(elasticity);
+  const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
+      2, DataComponentInterpretation::component_is_part_of_vector);
+  DataOut<2> data_out;
+  data_out.attach_dof_handler(dof_handler);
+  data_out.add_data_vector(u, std::vector<std::string>(2, "displacement"),
+                           DataOut<2>::type_dof_data, vector_field);
+  data_out.add_data_vector(v, std::vector<std::string>(2, "velocity"), DataOut<2>::type_dof_data,
+                           vector_field);
+  data_out.add_data_vector(u, stress);
+  data_out.build_patches(fe.degree);
+  DataOutBase::VtkFlags flags;
+  flags.time = t;
+  data_out.set_flags(flags);
+  {
+    std::ofstream out(std::filesystem::path(directory) / name.str());
+    AssertThrow(out, ExcMessage("cannot write " + directory + "/" + name.str()));
+    data_out.write_vtu(out);
+  }
+  snapshots.emplace_back(t, name.str());
+  std::ofstream pvd(std::filesystem::path(directory) / (basename + ".pvd"));
+  AssertThrow(pvd, ExcMessage("cannot write " + directory + "/" + basename + ".pvd"));
+  DataOutBase::write_pvd_record(pvd, snapshots);
+}
+
+// ---- public interface ---------------------------------------------------------------------
+
+ElasticWaveModel::ElasticWaveModel(const FarFieldDescription& description)
+    : impl(std::make_unique<Impl>(description))
+{
+}
+
+ElasticWaveModel::~ElasticWaveModel() = default;
+
+StepStatus ElasticWaveModel::advance(const double dt)
+{
+  return impl->advance(dt);
+}
+double ElasticWaveModel::time() const
+{
+  return impl->t;
+}
+std::size_t ElasticWaveModel::n_dofs() const
+{
+  return impl->dof_handler.n_dofs();
+}
+std::size_t ElasticWaveModel::n_cells() const
+{
+  return impl->mesh.n_active_cells();
+}
+double ElasticWaveModel::element_size() const
+{
+  return impl->h;
+}
+double ElasticWaveModel::p_wave_speed() const
+{
+  return impl->vp;
+}
+double ElasticWaveModel::s_wave_speed() const
+{
+  return impl->vs;
+}
+const Timings& ElasticWaveModel::timings() const
+{
+  return impl->timings;
+}
+
+MonitorSample ElasticWaveModel::sample_monitor(const std::size_t monitor) const
+{
+  return impl->sample_monitor(monitor);
+}
+
+EnergyBalance ElasticWaveModel::energy() const
+{
+  return impl->energies;
+}
+
+void ElasticWaveModel::write_snapshot(const std::string& directory, const std::string& basename)
+{
+  impl->write_snapshot(directory, basename);
+}
+
+} // namespace ddafem::fem

@@ -1,0 +1,91 @@
+// deal.II elastodynamics of a rectangular far field with Lysmer-Kuhlemeyer dashpots and an
+// incident plane wave (issue 5).
+#pragma once
+
+#include "fem/far_field_description.h"
+
+#include <array>
+#include <memory>
+#include <string>
+
+namespace ddafem::fem
+{
+/// Energies [J] per unit thickness. Balance: kinetic + strain = initial + work_of_input +
+/// work_of_dashpots - dissipated (dissipated: the integrator's algorithmic loss, ~0 for the
+/// trapezoidal rule).
+struct EnergyBalance
+{
+  double kinetic = 0.0;
+  double strain = 0.0;
+  double work_of_input = 0.0;    ///< work of the incident-wave tractions since t = 0
+  double work_of_dashpots = 0.0; ///< work of the dashpot tractions since t = 0 (negative)
+  double initial = 0.0;
+  double dissipated = 0.0;
+  double stored() const { return kinetic + strain; }
+};
+
+struct MonitorSample
+{
+  std::array<double, 2> displacement{{0.0, 0.0}}; ///< [m]
+  std::array<double, 2> velocity{{0.0, 0.0}};     ///< [m/s]
+  std::array<double, 3> stress{{0.0, 0.0, 0.0}};  ///< (sxx, syy, sxy) [Pa], tension positive
+};
+
+enum class StepOutcome
+{
+  success,
+  solver_failure
+};
+
+struct StepStatus
+{
+  StepOutcome outcome = StepOutcome::success;
+  std::string message;
+};
+
+/// Wall time per phase since construction [s].
+struct Timings
+{
+  double setup = 0.0;    ///< mesh, dofs, matrices, factorization
+  double assemble = 0.0; ///< right-hand sides
+  double solve = 0.0;
+  double update = 0.0;
+  std::size_t n_steps = 0;
+};
+
+/// A rectangular far field in time. The effective matrix K + gamma/(beta dt) C + 1/(beta dt^2) M
+/// is factorized once (deal.II SparseDirectUMFPACK) and each step is one solve.
+class ElasticWaveModel
+{
+public:
+  /// Builds the mesh, the FE space and the constant matrices. Throws InputError for settings it
+  /// cannot honour (e.g. a monitor outside the domain).
+  explicit ElasticWaveModel(const FarFieldDescription& description);
+  ~ElasticWaveModel();
+  ElasticWaveModel(const ElasticWaveModel&) = delete;
+  ElasticWaveModel& operator=(const ElasticWaveModel&) = delete;
+
+  /// Advances by dt [s] (a dt other than the last one refactorizes).
+  StepStatus advance(double dt);
+
+  double time() const;
+  std::size_t n_dofs() const;
+  std::size_t n_cells() const;
+  double element_size() const; ///< [m]
+  double p_wave_speed() const; ///< [m/s] of the plane mode
+  double s_wave_speed() const; ///< [m/s]
+  const Timings& timings() const;
+
+  MonitorSample sample_monitor(std::size_t monitor) const;
+  EnergyBalance energy() const;
+
+  /// Writes DIRECTORY/BASENAME_NNNNN.vtu (deal.II DataOut: displacement, velocity, stress
+  /// components, von Mises) and rewrites DIRECTORY/BASENAME.pvd with all snapshots so far.
+  void write_snapshot(const std::string& directory, const std::string& basename);
+
+private:
+  class Impl;
+  std::unique_ptr<Impl> impl;
+};
+
+} // namespace ddafem::fem

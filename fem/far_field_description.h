@@ -1,0 +1,101 @@
+// Input of a deal.II far-field model (plain data, validated by the scene reader).
+#pragma once
+
+#include "common/time_function.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace ddafem::fem
+{
+/// 2D idealisation of the continuum.
+enum class PlaneMode
+{
+  strain, ///< plane strain (default for a far field around a long tunnel)
+  stress
+};
+
+/// Time integrator of the far field: both are Newmark schemes (physics.md section 2).
+enum class Integrator
+{
+  newmark_trapezoidal, ///< beta = 1/4, gamma = 1/2: second order, no algorithmic damping
+  dda                  ///< beta = 1/2, gamma = 1: DDA's scheme, for like-for-like comparisons
+};
+
+/// What one named boundary part does.
+enum class BoundaryKind
+{
+  free,   ///< traction free
+  fixed,  ///< zero displacement
+  lysmer, ///< Lysmer-Kuhlemeyer dashpots: t = -rho (a VP (v.n) n + b VS (v - (v.n) n))
+  /// Absorbing base with an incident plane wave (Joyner & Chen 1975, physics.md section 5):
+  /// the dashpots above plus the traction rho c (2 v_in) per component.
+  input,
+  /// Roller: zero displacement along the component the incident wave does not move: u_x = 0
+  /// for a P wave (vertical particle motion), u_y = 0 for an SV wave (horizontal particle
+  /// motion); the other component is free. On the lateral sides of a column under a vertically
+  /// incident wave this is exactly the 1D (free-field) solution: for P it is the usual roller
+  /// (zero normal displacement), for SV it holds u_y = 0 and leaves u_x free.
+  roller
+};
+
+/// Boundary parts of the rectangle, named as in scenes.
+enum class BoundaryPart
+{
+  bottom,
+  right,
+  top,
+  left
+};
+
+struct BoundaryCondition
+{
+  BoundaryPart part = BoundaryPart::bottom;
+  BoundaryKind kind = BoundaryKind::free;
+  double a = 1.0; ///< Lysmer normal coefficient [-]
+  double b = 1.0; ///< Lysmer tangential coefficient [-]
+};
+
+/// A vertically incident plane wave entering through the `input` part: particle velocity
+/// v_in(t) [m/s] of the upgoing wave, horizontal for SV and vertical for P.
+struct IncidentWave
+{
+  enum class Type
+  {
+    p,
+    sv
+  };
+  Type type = Type::sv;
+  TimeFunction velocity = TimeFunction::constant(0.0);
+};
+
+struct Monitor
+{
+  std::string name;
+  std::array<double, 2> point{{0.0, 0.0}}; ///< [m], inside the domain
+};
+
+/// A rectangular far field [x0, x1] x [y0, y1] meshed with square-ish FE_Q elements.
+struct FarFieldDescription
+{
+  std::array<double, 2> lower{{0.0, 0.0}}; ///< (x0, y0) [m]
+  std::array<double, 2> upper{{1.0, 1.0}}; ///< (x1, y1) [m]
+  /// Element size [m]; 0: chosen from `points_per_wavelength` at `max_frequency` and VS.
+  double element_size = 0.0;
+  double max_frequency = 0.0;          ///< highest frequency of interest [Hz]
+  double points_per_wavelength = 10.0; ///< nodes per shortest S wavelength
+  unsigned int degree = 2;             ///< FE_Q degree, 1 or 2
+  double density = 0.0;                ///< [kg/m^3]
+  double youngs_modulus = 0.0;         ///< [Pa]
+  double poisson_ratio = 0.0;          ///< [-]
+  PlaneMode plane_mode = PlaneMode::strain;
+  std::vector<BoundaryCondition> boundaries; ///< parts not listed are free
+  IncidentWave incident;
+  std::vector<Monitor> monitors;
+  double dt = 0.0;       ///< [s]
+  double end_time = 0.0; ///< [s]
+  Integrator integrator = Integrator::newmark_trapezoidal;
+};
+
+} // namespace ddafem::fem
