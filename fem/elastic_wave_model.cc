@@ -182,6 +182,8 @@ public:
   StepStatus advance(double dt);
   MonitorSample sample_monitor(std::size_t monitor) const;
   void write_snapshot(const std::string& directory, const std::string& basename);
+  void set_initial_state(const ElasticWaveModel::VectorField& displacement,
+                         const ElasticWaveModel::VectorField& velocity);
 
   FarFieldDescription description;
   PlaneElasticity elasticity;
@@ -532,10 +534,19 @@ void ElasticWaveModel::Impl::factorize(const double dt)
 
 void ElasticWaveModel::Impl::compute_initial_acceleration()
 {
-  // M a0 = f(0) - C v0 - K u0 with u0 = v0 = 0; only needed when the input starts non-zero.
+  // M a0 = f(t) - C v0 - K u0; nothing to solve for a state at rest without input.
   initial_acceleration_done = true;
-  if (force.l2_norm() == 0.0)
+  Vector<double> rhs(force), product(u.size());
+  stiffness.vmult(product, u);
+  rhs -= product;
+  damping.vmult(product, v);
+  rhs -= product;
+  condense_rhs(rhs);
+  if (rhs.l2_norm() == 0.0)
+  {
+    a = 0.0;
     return;
+  }
   SparseMatrix<double> constrained_mass(sparsity);
   constrained_mass.copy_from(mass);
   for (const auto& line : constraints.get_lines())
@@ -550,9 +561,47 @@ void ElasticWaveModel::Impl::compute_initial_acceleration()
   }
   SparseDirectUMFPACK mass_solver;
   mass_solver.initialize(constrained_mass);
-  a = force;
-  condense_rhs(a);
+  a = rhs;
   mass_solver.solve(a);
+}
+
+namespace
+{
+/// A VectorField as a deal.II Function.
+class FieldFunction : public Function<2>
+{
+public:
+  explicit FieldFunction(const ElasticWaveModel::VectorField& f) : Function<2>(2), field(f) {}
+  double value(const Point<2>& p, const unsigned int component) const override
+  {
+    return field(p[0], p[1])[component];
+  }
+  void vector_value(const Point<2>& p, Vector<double>& values) const override
+  {
+    const auto x = field(p[0], p[1]);
+    values(0) = x[0];
+    values(1) = x[1];
+  }
+
+private:
+  const ElasticWaveModel::VectorField& field;
+};
+} // namespace
+
+void ElasticWaveModel::Impl::set_initial_state(const ElasticWaveModel::VectorField& displacement,
+                                               const ElasticWaveModel::VectorField& velocity)
+{
+  const auto start = Clock::now();
+  VectorTools::interpolate(dof_handler, FieldFunction(displacement), u);
+  VectorTools::interpolate(dof_handler, FieldFunction(velocity), v);
+  condense_rhs(u);
+  condense_rhs(v);
+  compute_initial_acceleration();
+  energies = EnergyBalance{};
+  energies.kinetic = 0.5 * mass.matrix_norm_square(v);
+  energies.strain = 0.5 * stiffness.matrix_norm_square(u);
+  energies.initial = energies.stored();
+  timings.setup += seconds_since(start);
 }
 
 StepStatus ElasticWaveModel::Impl::advance(const double dt)
@@ -708,6 +757,12 @@ ElasticWaveModel::ElasticWaveModel(const FarFieldDescription& description)
 }
 
 ElasticWaveModel::~ElasticWaveModel() = default;
+
+void ElasticWaveModel::set_initial_state(const VectorField& displacement,
+                                         const VectorField& velocity)
+{
+  impl->set_initial_state(displacement, velocity);
+}
 
 StepStatus ElasticWaveModel::advance(const double dt)
 {

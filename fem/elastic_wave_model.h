@@ -5,6 +5,7 @@
 #include "fem/far_field_description.h"
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -64,6 +65,14 @@ public:
   ~ElasticWaveModel();
   ElasticWaveModel(const ElasticWaveModel&) = delete;
   ElasticWaveModel& operator=(const ElasticWaveModel&) = delete;
+
+  /// A displacement or velocity field u(x, y) = {u_x, u_y}.
+  using VectorField = std::function<std::array<double, 2>(double x, double y)>;
+
+  /// Replaces the state at the current time by the nodal interpolants of `displacement` and
+  /// `velocity` (constrained components set to zero) and the consistent acceleration
+  /// M a0 = f(t) - K u0 - C v0. Resets the energy balance (initial = kinetic + strain).
+  void set_initial_state(const VectorField& displacement, const VectorField& velocity);
 
   /// Advances by dt [s] (a dt other than the last one refactorizes).
   StepStatus advance(double dt);
