@@ -58,13 +58,7 @@ std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& d
 {
   std::vector<HistoryChannel> channels;
   for (const fem::Monitor& m : d.monitors)
-  {
-    const std::string base = "monitors/" + m.name + "/";
-    channels.push_back({base + "displacement", 2, "m", "(ux, uy) at the point"});
-    channels.push_back({base + "velocity", 2, "m/s", "(vx, vy) at the point"});
-    channels.push_back(
-        {base + "stress", 3, "Pa", "(sxx, syy, sxy) at the point, tension positive"});
-  }
+    run_support::add_monitor_channels(channels, m.name, "at the point", "at the point");
   channels.push_back({"energy/kinetic", 1, "J", "v^T M v / 2 per unit thickness"});
   channels.push_back({"energy/strain", 1, "J", "u^T K u / 2 per unit thickness"});
   channels.push_back({"energy/work_of_input", 1, "J", "incident-wave tractions since t = 0"});
@@ -218,23 +212,8 @@ int run_far_field(const Scene& scene, const RunOptions& options, std::ostream& l
   summary["warnings"] = nlohmann::json::array();
   summary["outputs"] = {
       {"histories", "histories.h5"}, {"far_field", "far_field.pvd"}, {"snapshots", n_snapshots}};
-  {
-    std::ofstream f(dir / "summary.json");
-    f << summary.dump(2) << "\n";
-    if (!f)
-      throw std::runtime_error("cannot write " + (dir / "summary.json").string());
-  }
-  if (failed)
-  {
-    log << "error: numerical failure: " << failure.message << "\n"
-        << "results up to t = " << model.time() << " s are in " << dir.string() << "\n";
-    return 1;
-  }
-  log << "completed " << t.n_steps << " steps to t = " << model.time() << " s in "
-      << format(wall, 3) << " s wall time\n"
-      << "results: " << (dir / "far_field.pvd").string() << " (ParaView), "
-      << (dir / "histories.h5").string() << ", " << (dir / "summary.json").string() << "\n";
-  return 0;
+  return run_support::finish_run(dir, summary, failed ? failure.message : std::string(), t.n_steps,
+                                 model.time(), wall, "far_field.pvd", log);
 }
 
 } // namespace ddafem

@@ -66,13 +66,7 @@ std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
 {
   std::vector<HistoryChannel> channels;
   for (const dda::Monitor& m : model.monitors)
-  {
-    const std::string base = "monitors/" + m.name + "/";
-    channels.push_back({base + "displacement", 2, "m", "(ux, uy) of the material point"});
-    channels.push_back({base + "velocity", 2, "m/s", "(vx, vy) of the material point"});
-    channels.push_back(
-        {base + "stress", 3, "Pa", "(sxx, syy, sxy) of its block, tension positive"});
-  }
+    run_support::add_monitor_channels(channels, m.name, "of the material point", "of its block");
   channels.push_back({"energy/kinetic", 1, "J", "sum of v^T M v / 2"});
   channels.push_back({"energy/strain", 1, "J", "elastic energy of the blocks"});
   channels.push_back({"energy/spring", 1, "J", "joint and fixed-point penalty springs"});
@@ -440,24 +434,8 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   summary["warnings"] = warnings;
   summary["outputs"] = {
       {"histories", "histories.h5"}, {"blocks", "blocks.pvd"}, {"snapshots", vtu.n_written()}};
-  {
-    std::ofstream f(dir / "summary.json");
-    f << summary.dump(2) << "\n";
-    if (!f)
-      throw std::runtime_error("cannot write " + (dir / "summary.json").string());
-  }
-
-  if (failed)
-  {
-    log << "error: numerical failure: " << failure.message << "\n"
-        << "results up to t = " << system.time() << " s are in " << dir.string() << "\n";
-    return 1;
-  }
-  log << "completed " << system.n_steps() << " steps to t = " << system.time() << " s in "
-      << format(wall, 3) << " s wall time\n"
-      << "results: " << (dir / "blocks.pvd").string() << " (ParaView), "
-      << (dir / "histories.h5").string() << ", " << (dir / "summary.json").string() << "\n";
-  return 0;
+  return run_support::finish_run(dir, summary, failed ? failure.message : std::string(),
+                                 system.n_steps(), system.time(), wall, "blocks.pvd", log);
 }
 
 } // namespace ddafem

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <stdexcept>
 
 namespace ddafem::run_support
 {
@@ -47,6 +48,39 @@ bool snapshot_due(double time, double interval, double dt, double& next)
   while (next <= time + 1e-9 * dt)
     next += interval;
   return true;
+}
+
+void add_monitor_channels(std::vector<HistoryChannel>& channels, const std::string& name,
+                          const std::string& point_where, const std::string& stress_where)
+{
+  const std::string base = "monitors/" + name + "/";
+  channels.push_back({base + "displacement", 2, "m", "(ux, uy) " + point_where});
+  channels.push_back({base + "velocity", 2, "m/s", "(vx, vy) " + point_where});
+  channels.push_back(
+      {base + "stress", 3, "Pa", "(sxx, syy, sxy) " + stress_where + ", tension positive"});
+}
+
+int finish_run(const std::filesystem::path& dir, const nlohmann::json& summary,
+               const std::string& failure, std::size_t n_steps, double time, double wall,
+               const std::string& view_file, std::ostream& log)
+{
+  {
+    std::ofstream f(dir / "summary.json");
+    f << summary.dump(2) << "\n";
+    if (!f)
+      throw std::runtime_error("cannot write " + (dir / "summary.json").string());
+  }
+  if (!failure.empty())
+  {
+    log << "error: numerical failure: " << failure << "\n"
+        << "results up to t = " << time << " s are in " << dir.string() << "\n";
+    return 1;
+  }
+  log << "completed " << n_steps << " steps to t = " << time << " s in " << format(wall, 3)
+      << " s wall time\n"
+      << "results: " << (dir / view_file).string() << " (ParaView), "
+      << (dir / "histories.h5").string() << ", " << (dir / "summary.json").string() << "\n";
+  return 0;
 }
 
 void Progress::update(std::size_t step, double time, double wall, bool force)

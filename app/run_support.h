@@ -1,10 +1,16 @@
 // Small pieces shared by the run commands of the DDA and far-field models.
 #pragma once
 
+#include "common/history_writer.h"
+
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <cstddef>
 #include <filesystem>
+#include <ostream>
 #include <string>
+#include <vector>
 
 namespace ddafem::run_support
 {
@@ -27,6 +33,18 @@ void create_output_directory(const std::filesystem::path& directory);
 /// Whether a snapshot is due at `time` with the given interval [s], advancing `next`;
 /// interval 0 writes only where the caller asks (first and last).
 bool snapshot_due(double time, double interval, double dt, double& next);
+
+/// The displacement, velocity and stress channels of one monitor in histories.h5;
+/// `where` says what the values belong to, e.g. "of the material point".
+void add_monitor_channels(std::vector<HistoryChannel>& channels, const std::string& name,
+                          const std::string& point_where, const std::string& stress_where);
+
+/// Writes DIR/summary.json and reports the end of a run on `log`: on failure the reason and
+/// where the results so far are (returns exit code 1), else the step count, wall time and the
+/// result files with `view_file` (the PVD) first (returns 0).
+int finish_run(const std::filesystem::path& dir, const nlohmann::json& summary,
+               const std::string& failure, std::size_t n_steps, double time, double wall,
+               const std::string& view_file, std::ostream& log);
 
 /// One-line progress display on a terminal, at most five updates a second.
 class Progress
