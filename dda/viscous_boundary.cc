@@ -78,18 +78,6 @@ BoundaryWaveSpeeds effective_wave_speeds(const ModelDescription& model,
   const Vector2 t = edge_direction(b.vertices, edge);
   const Vector2 n(t.y(), -t.x());
 
-  // P modulus: plane strain, plane-stress plate, or a plane-stress bar (side edges free).
-  double p_modulus = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
-  if (model.plane_mode == PlaneMode::stress)
-  {
-    const std::vector<std::vector<bool>> outer = outer_edges(blocks, joints);
-    bool sides_free = true;
-    for (std::size_t k = 0; k < b.vertices.size(); ++k)
-      if (k != edge && std::abs(edge_direction(b.vertices, k).dot(n)) > 0.5 && !outer[block][k])
-        sides_free = false;
-    p_modulus = sides_free ? e : e / (1.0 - nu * nu);
-  }
-
   // Depth of the block along the normal.
   double lo = n.dot(b.vertices[0]), hi = lo;
   for (const Point& v : b.vertices)
@@ -99,8 +87,10 @@ BoundaryWaveSpeeds effective_wave_speeds(const ModelDescription& model,
   }
   const double depth = hi - lo;
 
-  // Joints behind the edge: on an edge of this block parallel to the boundary edge.
+  // One pass over this block's joints: those on an edge parallel to the boundary edge lie behind
+  // it (in series with the block); one on a side edge (direction along the normal) confines it.
   double springs_n = 0.0, springs_s = 0.0, joint_length = 0.0;
+  bool sides_free = true;
   for (const Joint& j : joints)
   {
     if (j.block_a != block && j.block_b != block)
@@ -109,6 +99,8 @@ BoundaryWaveSpeeds effective_wave_speeds(const ModelDescription& model,
     if (k == edge)
       continue;
     const Vector2 tk = edge_direction(b.vertices, k);
+    if (std::abs(tk.dot(n)) > 0.5)
+      sides_free = false;
     if (std::abs(tk.x() * t.y() - tk.y() * t.x()) > tol)
       continue;
     const JointMaterial& jm = model.joint_materials[j.joint_material];
@@ -116,6 +108,12 @@ BoundaryWaveSpeeds effective_wave_speeds(const ModelDescription& model,
     springs_s += 2.0 * jm.shear_ratio * jm.normal_stiffness;
     joint_length += j.length;
   }
+
+  // P modulus: plane strain, plane-stress plate, or a plane-stress bar (side edges free).
+  double p_modulus = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  if (model.plane_mode == PlaneMode::stress)
+    p_modulus = sides_free ? e : e / (1.0 - nu * nu);
+
   double p_eff = p_modulus, g_eff = g_modulus;
   if (joint_length > 0.0)
   {
