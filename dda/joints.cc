@@ -1,9 +1,7 @@
 #include "dda/joints.h"
 
 #include "common/input_error.h"
-
-#include <algorithm>
-#include <numeric>
+#include "dda/contact/broad_phase.h"
 
 namespace ddafem::dda
 {
@@ -31,58 +29,17 @@ std::size_t joint_material_for(const ModelDescription& model, std::size_t materi
       return j.joint_material;
   return model.default_joint_material;
 }
-
-struct Box
-{
-  double x_min, x_max, y_min, y_max;
-};
-
-Box bounding_box(const std::vector<Point>& vertices, double pad)
-{
-  Box b{vertices[0].x(), vertices[0].x(), vertices[0].y(), vertices[0].y()};
-  for (const Point& v : vertices)
-  {
-    b.x_min = std::min(b.x_min, v.x());
-    b.x_max = std::max(b.x_max, v.x());
-    b.y_min = std::min(b.y_min, v.y());
-    b.y_max = std::max(b.y_max, v.y());
-  }
-  b.x_min -= pad;
-  b.y_min -= pad;
-  b.x_max += pad;
-  b.y_max += pad;
-  return b;
-}
 } // namespace
 
 std::vector<Joint> find_joints(const std::vector<Block>& blocks, const ModelDescription& model,
                                const std::vector<std::string>& block_names, double tol)
 {
-  // Sweep and prune along x: sort boxes by x_min, test only pairs whose x ranges overlap.
-  std::vector<Box> boxes;
+  // Candidates: blocks whose boxes, padded by tol, overlap (a superset of those sharing an edge).
+  std::vector<BoundingBox> boxes;
   boxes.reserve(blocks.size());
   for (const Block& b : blocks)
     boxes.push_back(bounding_box(b.vertices, tol));
-  std::vector<std::size_t> order(blocks.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t i, std::size_t j) { return boxes[i].x_min < boxes[j].x_min; });
-
-  std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs;
-  for (std::size_t oi = 0; oi < order.size(); ++oi)
-  {
-    const Box& bi = boxes[order[oi]];
-    for (std::size_t oj = oi + 1; oj < order.size(); ++oj)
-    {
-      const Box& bj = boxes[order[oj]];
-      if (bj.x_min > bi.x_max)
-        break;
-      if (bj.y_min > bi.y_max || bj.y_max < bi.y_min)
-        continue;
-      candidate_pairs.emplace_back(std::min(order[oi], order[oj]), std::max(order[oi], order[oj]));
-    }
-  }
-  std::sort(candidate_pairs.begin(), candidate_pairs.end());
+  const std::vector<std::pair<std::size_t, std::size_t>> candidate_pairs = overlapping_pairs(boxes);
 
   std::vector<Joint> joints;
   for (const auto& [a, b] : candidate_pairs)
