@@ -1,0 +1,266 @@
+#include "dda/contact/narrow_phase.h"
+
+#include "dda/geometry.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace ddafem::dda
+{
+namespace
+{
+/// Whether the interior angle at a vertex is below, about or above pi (within the tolerance).
+enum class VertexShape
+{
+  convex,
+  straight,
+  concave
+};
+
+double cross(const Vector2& u, const Vector2& v)
+{
+  return u.x() * v.y() - u.y() * v.x();
+}
+
+std::size_t next(std::size_t k, std::size_t n)
+{
+  return (k + 1) % n;
+}
+
+std::size_t previous(std::size_t k, std::size_t n)
+{
+  return (k + n - 1) % n;
+}
+
+/// Edge k of a polygon: from its start, unit tangent t, length [m], outward unit normal n.
+struct Edge
+{
+  Point start;
+  Vector2 tangent;
+  double length;
+  Vector2 normal;
+};
+
+Edge edge_of(const std::vector<Point>& polygon, std::size_t k)
+{
+  const Vector2 along = polygon[next(k, polygon.size())] - polygon[k];
+  const double length = along.norm();
+  const Vector2 t = along / length;
+  return {polygon[k], t, length, Vector2(t.y(), -t.x())};
+}
+
+/// Unit legs of the polygon at vertex k: towards its previous and its next vertex.
+std::array<Vector2, 2> legs_at(const std::vector<Point>& polygon, std::size_t k)
+{
+  const std::size_t n = polygon.size();
+  return {(polygon[previous(k, n)] - polygon[k]).normalized(),
+          (polygon[next(k, n)] - polygon[k]).normalized()};
+}
+
+VertexShape vertex_shape(const std::vector<Point>& polygon, std::size_t k, double angle_tolerance)
+{
+  const double angle = interior_angle(polygon, k);
+  if (angle < M_PI - angle_tolerance)
+    return VertexShape::convex;
+  if (angle > M_PI + angle_tolerance)
+    return VertexShape::concave;
+  return VertexShape::straight;
+}
+
+/// The two polygons with the shape of every vertex, and the tolerances of one search.
+class PairSearch
+{
+public:
+  PairSearch(const std::vector<Point>& a, const std::vector<Point>& b, double search_distance,
+             double angle_tolerance)
+      : polygons{&a, &b}, d0(search_distance), sin_tolerance(std::sin(angle_tolerance))
+  {
+    for (std::size_t s = 0; s < 2; ++s)
+      for (std::size_t k = 0; k < polygons[s]->size(); ++k)
+        shapes[s].push_back(vertex_shape(*polygons[s], k, angle_tolerance));
+  }
+
+  /// Rules 3 and 4, in any order (the caller sorts).
+  std::vector<VertexEdgePair> find() const
+  {
+    std::vector<VertexEdgePair> pairs;
+    for (std::size_t s = 0; s < 2; ++s)
+      for (std::size_t v = 0; v < polygons[s]->size(); ++v)
+        if (shapes[s][v] == VertexShape::convex)
+          add_vertex_edge_pairs(s, v, pairs);
+
+    const std::vector<Point>& a = *polygons[0];
+    const std::vector<Point>& b = *polygons[1];
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t j = 0; j < b.size(); ++j)
+      {
+        if ((a[i] - b[j]).norm() > d0)
+          continue;
+        if (shapes[0][i] == VertexShape::convex && shapes[1][j] == VertexShape::convex)
+          pairs.push_back(entrance_pair(i, j));
+        else if (shapes[0][i] == VertexShape::convex)
+          add_corner_pairs(0, i, j, pairs);
+        else if (shapes[1][j] == VertexShape::convex)
+          add_corner_pairs(1, j, i, pairs);
+      }
+    return pairs;
+  }
+
+private:
+  /// Vertex v of polygon s against edge e of the other polygon, with ratio and signed distance.
+  VertexEdgePair pair_of(std::size_t s, std::size_t v, std::size_t e, ContactKind kind) const
+  {
+    const Edge edge = edge_of(*polygons[1 - s], e);
+    const Vector2 from_start = (*polygons[s])[v] - edge.start;
+    return {s,
+            v,
+            e,
+            std::clamp(from_start.dot(edge.tangent) / edge.length, 0.0, 1.0),
+            from_start.dot(edge.normal),
+            kind};
+  }
+
+  /// Rule 2: both legs of polygon s at v lie on the outer side of edge e's line (within the
+  /// angle tolerance).
+  bool enters(std::size_t s, std::size_t v, std::size_t e) const
+  {
+    const Vector2 n = edge_of(*polygons[1 - s], e).normal;
+    const std::array<Vector2, 2> legs = legs_at(*polygons[s], v);
+    return legs[0].dot(n) >= -sin_tolerance && legs[1].dot(n) >= -sin_tolerance;
+  }
+
+  /// Rule 3: convex vertex v of polygon s near the inside of the other polygon's edges.
+  void add_vertex_edge_pairs(std::size_t s, std::size_t v, std::vector<VertexEdgePair>& pairs) const
+  {
+    const Point& p = (*polygons[s])[v];
+    const std::vector<Point>& other = *polygons[1 - s];
+    const std::array<Vector2, 2> legs = legs_at(*polygons[s], v);
+    for (std::size_t e = 0; e < other.size(); ++e)
+    {
+      if ((p - other[e]).norm() <= d0 || (p - other[next(e, other.size())]).norm() <= d0)
+        continue; // a vertex-vertex contact (rule 4)
+      const Edge edge = edge_of(other, e);
+      const double along = std::clamp((p - edge.start).dot(edge.tangent), 0.0, edge.length);
+      if ((p - (edge.start + along * edge.tangent)).norm() > d0 || !enters(s, v, e))
+        continue;
+      const bool parallel_leg = std::abs(legs[0].dot(edge.normal)) <= sin_tolerance ||
+                                std::abs(legs[1].dot(edge.normal)) <= sin_tolerance;
+      pairs.push_back(
+          pair_of(s, v, e, parallel_leg ? ContactKind::edge_edge : ContactKind::vertex_edge));
+    }
+  }
+
+  /// Rule 4 for convex vertex v of polygon s near a concave or straight vertex w of the other.
+  void add_corner_pairs(std::size_t s, std::size_t v, std::size_t w,
+                        std::vector<VertexEdgePair>& pairs) const
+  {
+    const std::size_t n_other = polygons[1 - s]->size();
+    std::array<std::size_t, 2> edges{previous(w, n_other), w};
+    std::sort(edges.begin(), edges.end());
+    std::vector<VertexEdgePair> entered;
+    for (const std::size_t e : edges)
+      if (enters(s, v, e))
+        entered.push_back(pair_of(s, v, e, ContactKind::vertex_vertex));
+
+    if (shapes[1 - s][w] == VertexShape::concave || entered.size() < 2)
+    {
+      pairs.insert(pairs.end(), entered.begin(), entered.end());
+      return;
+    }
+    // Straight w, both edges entered: the one on which v projects farther from the ends.
+    const auto inset = [](const VertexEdgePair& p) { return std::min(p.ratio, 1.0 - p.ratio); };
+    pairs.push_back(inset(entered[1]) > inset(entered[0]) ? entered[1] : entered[0]);
+  }
+
+  /// Rule 4 for convex vertex i of a near convex vertex j of b: Shi's entrance line.
+  VertexEdgePair entrance_pair(std::size_t i, std::size_t j) const
+  {
+    // Candidates in (vertex_polygon, vertex, edge) order: i on b's edges at j, j on a's at i.
+    std::vector<VertexEdgePair> candidates;
+    std::vector<bool> valid;
+    const std::array<std::size_t, 2> touching{i, j}; // the vertex of a and the vertex of b
+    for (std::size_t s = 0; s < 2; ++s)
+    {
+      const std::size_t v = touching[s], w = touching[1 - s];
+      const std::size_t n_other = polygons[1 - s]->size();
+      std::array<std::size_t, 2> edges{previous(w, n_other), w};
+      std::sort(edges.begin(), edges.end());
+      for (const std::size_t e : edges)
+      {
+        candidates.push_back(pair_of(s, v, e, ContactKind::vertex_vertex));
+        valid.push_back(enters(s, v, e));
+      }
+    }
+    // Interlocked wedges (no valid candidate): every candidate competes.
+    if (std::find(valid.begin(), valid.end(), true) == valid.end())
+      valid.assign(valid.size(), true);
+    double largest = -std::numeric_limits<double>::infinity();
+    for (std::size_t c = 0; c < candidates.size(); ++c)
+      if (valid[c])
+        largest = std::max(largest, candidates[c].distance);
+    // The first valid candidate within the tie tolerance of the largest distance.
+    const double tie = 1e-12 * d0;
+    std::size_t c = 0;
+    while (!(valid[c] && candidates[c].distance >= largest - tie))
+      ++c;
+    return candidates[c];
+  }
+
+  std::array<const std::vector<Point>*, 2> polygons;
+  std::array<std::vector<VertexShape>, 2> shapes;
+  double d0;            ///< search distance [m]
+  double sin_tolerance; ///< sine of the angle tolerance [-]
+};
+
+void check_polygon(const std::vector<Point>& polygon, const std::string& name)
+{
+  const double area = polygon.size() < 3 ? 0.0 : signed_area(polygon);
+  if (!(area > 0.0))
+    throw std::invalid_argument("find_vertex_edge_pairs: polygon " + name + " has " +
+                                std::to_string(polygon.size()) + " vertices and signed area " +
+                                std::to_string(area) +
+                                " m^2, expected at least 3 vertices in anticlockwise order");
+}
+} // namespace
+
+double interior_angle(const std::vector<Point>& polygon, std::size_t k)
+{
+  // pi minus the turn from the incoming to the outgoing edge (positive left, anticlockwise).
+  const std::size_t n = polygon.size();
+  const Vector2 incoming = polygon[k] - polygon[previous(k, n)];
+  const Vector2 outgoing = polygon[next(k, n)] - polygon[k];
+  return M_PI - std::atan2(cross(incoming, outgoing), incoming.dot(outgoing));
+}
+
+std::vector<VertexEdgePair> find_vertex_edge_pairs(const std::vector<Point>& a,
+                                                   const std::vector<Point>& b,
+                                                   double search_distance, double angle_tolerance)
+{
+  check_polygon(a, "a");
+  check_polygon(b, "b");
+  if (!(search_distance > 0.0))
+    throw std::invalid_argument("find_vertex_edge_pairs: search distance " +
+                                std::to_string(search_distance) + " m, expected > 0");
+  if (!(angle_tolerance >= 0.0 && angle_tolerance < M_PI / 2))
+    throw std::invalid_argument("find_vertex_edge_pairs: angle tolerance " +
+                                std::to_string(angle_tolerance) + " rad, expected in [0, pi/2)");
+
+  std::vector<VertexEdgePair> pairs = PairSearch(a, b, search_distance, angle_tolerance).find();
+  const auto key = [](const VertexEdgePair& p) {
+    return std::array<std::size_t, 3>{p.vertex_polygon, p.vertex, p.edge};
+  };
+  std::stable_sort(pairs.begin(), pairs.end(),
+                   [&](const VertexEdgePair& p, const VertexEdgePair& q)
+                   { return key(p) < key(q); });
+  pairs.erase(std::unique(pairs.begin(), pairs.end(),
+                          [&](const VertexEdgePair& p, const VertexEdgePair& q)
+                          { return key(p) == key(q); }),
+              pairs.end());
+  return pairs;
+}
+
+} // namespace ddafem::dda
