@@ -5,6 +5,7 @@
 #include "common/history_writer.h"
 #include "common/input_error.h"
 #include "dda/system.h"
+#include "dda/time_stepper.h"
 #include "dda/vtu_writer.h"
 
 #include <nlohmann/json.hpp>
@@ -75,11 +76,26 @@ std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
   channels.push_back({"energy/work_of_boundaries", 1, "J",
                       "viscous boundaries on the model since t = 0 (negative: absorbed)"});
   channels.push_back({"energy/dissipated", 1, "J",
-                      "initial + work - stored: algorithmic damping of the integrator"});
+                      "initial + work - stored: algorithmic damping of the integrator, friction "
+                      "and contact impacts"});
+  channels.push_back({"contacts/open", 1, "", "number of open contacts"});
+  channels.push_back({"contacts/slide", 1, "", "number of sliding contacts"});
+  channels.push_back({"contacts/lock", 1, "", "number of locked contacts"});
+  channels.push_back({"contacts/bonded_joints", 1, "", "number of intact bonded joints"});
+  channels.push_back({"steps/dt", 1, "s", "time step of the last step"});
+  channels.push_back(
+      {"steps/open_close_iterations", 1, "", "open-close iterations of the last step"});
   return channels;
 }
 
-std::vector<double> history_row(const dda::System& system)
+/// What the last accepted step did, for the histories.
+struct LastStep
+{
+  double dt = 0.0;
+  unsigned n_open_close_iterations = 0;
+};
+
+std::vector<double> history_row(const dda::System& system, const LastStep& last)
 {
   std::vector<double> row;
   for (std::size_t k = 0; k < system.get_model().monitors.size(); ++k)
@@ -91,6 +107,11 @@ std::vector<double> history_row(const dda::System& system)
   const dda::EnergyBalance e = system.energy();
   row.insert(row.end(), {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
                          e.work_of_boundaries, e.dissipated});
+  const dda::ContactCounts n = system.contact_counts();
+  row.insert(row.end(),
+             {static_cast<double>(n.open), static_cast<double>(n.slide),
+              static_cast<double>(n.lock), static_cast<double>(system.get_joints().size()), last.dt,
+              static_cast<double>(last.n_open_close_iterations)});
   return row;
 }
 
@@ -281,8 +302,8 @@ std::string check_scene(const Scene& scene)
 
   out << "  analysis: plane " << (model.plane_mode == dda::PlaneMode::stress ? "stress" : "strain")
       << "\n";
-  out << "  blocks: " << model.blocks.size() << ", joints: " << system.get_joints().size() << " ("
-      << n_joint_points << " spring points), DOFs: " << system.n_dofs() << "\n";
+  out << "  blocks: " << model.blocks.size() << ", bonded joints: " << system.get_joints().size()
+      << " (" << n_joint_points << " spring points), DOFs: " << system.n_dofs() << "\n";
   out << "  total mass: " << format(total_mass, 6) << " kg\n";
   out << "  smallest block: " << model.blocks[small.index].origin << ", area " << format(small.area)
       << " m^2, shortest edge " << format(small.shortest_edge) << " m\n";
@@ -305,6 +326,24 @@ std::string check_scene(const Scene& scene)
   out << "  time: dt " << format(model.time.dt) << " s, end " << format(model.time.end_time)
       << " s, " << n_steps << " steps, integrator " << integrator_name(model.time.integrator)
       << "\n";
+  out << "  time control: "
+      << (model.time.control == dda::TimeControl::fixed ? "fixed" : "adaptive (dt is the largest)")
+      << "\n";
+  out << "  contacts: w0 " << format(system.half_model_size()) << " m, step displacement bound "
+      << format(system.max_step_displacement()) << " m, search distance "
+      << format(system.search_distance()) << " m, max penetration "
+      << format(system.max_penetration()) << " m, up to "
+      << model.contacts.max_open_close_iterations << " open-close iterations\n";
+  for (const dda::Stage& st : model.stages)
+  {
+    out << "  stage " << st.name << ": ";
+    if (st.mode == dda::StageMode::static_equilibrium)
+      out << "static, dt " << format(st.dt) << " s, up to " << st.max_steps
+          << " steps, equilibrium at an out-of-balance force ratio <= " << format(st.tolerance)
+          << "\n";
+    else
+      out << "dynamic to t = " << format(st.end_time) << " s\n";
+  }
   const TimeStepAdvice advice = suggest_time_step(scene);
   out << "  suggested dt: " << format(advice.dt_min, 3) << " to " << format(advice.dt_max, 3)
       << " s (" << advice.reason << ")\n";
@@ -346,55 +385,126 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   history.set_attribute("scene", scene.file);
   history.set_attribute("version", DDAFEM_VERSION);
   dda::VtuSeriesWriter vtu(dir.string(), "blocks");
+  dda::VtuSeriesWriter contact_vtu(dir.string(), "contacts");
+
+  std::vector<dda::Stage> stages = scene.model.stages;
+  if (stages.empty())
+  {
+    dda::Stage only;
+    only.name = "dynamic";
+    only.end_time = time.end_time;
+    stages.push_back(only);
+  }
 
   double output_time = 0.0;
-  const auto timed_output = [&](auto&& write)
+  LastStep last_step;
+  const auto write_state = [&](bool snapshot)
   {
     const auto start = Clock::now();
-    write();
+    history.append(system.time(), history_row(system, last_step));
+    if (snapshot)
+    {
+      vtu.write(system.time(), system.snapshot());
+      contact_vtu.write(system.time(), system.contact_snapshot());
+    }
     output_time += elapsed(start);
   };
-  timed_output(
-      [&]
-      {
-        history.append(system.time(), history_row(system));
-        vtu.write(system.time(), system.snapshot());
-      });
 
   Progress progress(!options.quiet && isatty(fileno(stderr)), n_steps);
-  double next_snapshot = scene.output.interval;
   dda::StepStatus failure;
-  for (std::size_t step = 1; step <= n_steps; ++step)
+  nlohmann::json stage_records = nlohmann::json::array();
+  bool initial_written = false;
+  std::size_t n_cuts = 0, n_cut_steps = 0;
+  double smallest_dt = time.dt;
+  for (const dda::Stage& stage : stages)
   {
-    const dda::StepStatus status = system.advance(time.dt);
-    if (status.outcome != dda::StepOutcome::success)
+    system.begin_stage(stage.mode);
+    nlohmann::json record = {
+        {"name", stage.name},
+        {"mode", stage.mode == dda::StageMode::dynamic ? "dynamic" : "static"}};
+    const std::size_t first_step = system.n_steps();
+    if (stage.mode == dda::StageMode::static_equilibrium)
     {
-      failure = status;
-      break;
-    }
-    const bool last = step == n_steps;
-    timed_output(
-        [&]
+      // Equilibrium: out-of-balance forces below tolerance x the applied ones.
+      dda::TimeStepper stepper(system, time, stage.dt);
+      bool converged = false;
+      double last_ratio = 0.0;
+      for (std::size_t k = 0; k < stage.max_steps && !converged; ++k)
+      {
+        const dda::StepStatus status = stepper.step();
+        if (status.outcome != dda::StepOutcome::success)
         {
-          if (step % scene.output.history_every == 0 || last)
-            history.append(system.time(), history_row(system));
-          if (run_support::snapshot_due(system.time(), scene.output.interval, time.dt,
-                                        next_snapshot) ||
-              last)
-            vtu.write(system.time(), system.snapshot());
-        });
-    progress.update(step, system.time(), elapsed(wall_start));
+          failure = status;
+          break;
+        }
+        last_ratio = status.unbalanced_force_ratio;
+        converged = last_ratio <= stage.tolerance;
+        smallest_dt = std::min(smallest_dt, stepper.last_dt());
+        progress.update(system.n_steps(), system.time(), elapsed(wall_start));
+      }
+      n_cuts += stepper.n_cuts();
+      n_cut_steps += stepper.n_cut_steps();
+      record["steps"] = system.n_steps() - first_step;
+      record["converged"] = converged;
+      record["unbalanced_force_ratio"] = last_ratio;
+      record["tolerance"] = stage.tolerance;
+      stage_records.push_back(record);
+      if (failure.outcome != dda::StepOutcome::success)
+        break;
+      if (!converged)
+      {
+        failure.outcome = dda::StepOutcome::not_converged;
+        failure.message = "static stage '" + stage.name + "' did not reach equilibrium in " +
+                          std::to_string(stage.max_steps) + " steps: the out-of-balance force " +
+                          "ratio is " + format(last_ratio) + ", above the tolerance " +
+                          format(stage.tolerance) +
+                          " (expected a larger `max_steps` or "
+                          "`tolerance`, or a model that can be in equilibrium)";
+        break;
+      }
+      continue;
+    }
+
+    if (!initial_written)
+    {
+      write_state(true);
+      initial_written = true;
+    }
+    dda::TimeStepper stepper(system, time);
+    double next_snapshot = system.time() + scene.output.interval;
+    while (system.time() < stage.end_time - 1e-9 * time.dt)
+    {
+      const dda::StepStatus status = stepper.step(stage.end_time - system.time());
+      if (status.outcome != dda::StepOutcome::success)
+      {
+        failure = status;
+        break;
+      }
+      last_step = {stepper.last_dt(), status.n_open_close_iterations};
+      smallest_dt = std::min(smallest_dt, stepper.last_dt());
+      const bool last = system.time() >= stage.end_time - 1e-9 * time.dt;
+      const bool snapshot =
+          run_support::snapshot_due(system.time(), scene.output.interval, time.dt, next_snapshot) ||
+          last;
+      if ((system.n_steps() - first_step) % scene.output.history_every == 0 || last || snapshot)
+        write_state(snapshot);
+      progress.update(system.n_steps(), system.time(), elapsed(wall_start));
+    }
+    n_cuts += stepper.n_cuts();
+    n_cut_steps += stepper.n_cut_steps();
+    record["steps"] = system.n_steps() - first_step;
+    record["end_time_s"] = stage.end_time;
+    stage_records.push_back(record);
+    if (failure.outcome != dda::StepOutcome::success)
+      break;
   }
   progress.update(system.n_steps(), system.time(), elapsed(wall_start), true);
   progress.finish();
 
   const bool failed = failure.outcome != dda::StepOutcome::success;
-  if (failed)
-  {
-    // Keep the state reached readable: a last row and snapshot at the failure time.
-    history.append(system.time(), history_row(system));
-    vtu.write(system.time(), system.snapshot());
-  }
+  // Keep the state reached readable (a static-only analysis writes its equilibrium here).
+  if (failed || !initial_written)
+    write_state(true);
   history.flush();
 
   const dda::PhaseTimings& t = system.get_timings();
@@ -411,18 +521,35 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   summary["end_time_s"] = time.end_time;
   summary["steps"] = system.n_steps();
   summary["dt_s"] = time.dt;
+  summary["time_step"] = {
+      {"control", time.control == dda::TimeControl::fixed ? "fixed" : "adaptive"},
+      {"dt_max_s", time.dt},
+      {"smallest_dt_s", smallest_dt},
+      {"attempts", system.get_timings().n_attempts},
+      {"cuts", n_cuts},
+      {"steps_cut", n_cut_steps}};
+  summary["stages"] = stage_records;
   summary["integrator"] = integrator_name(time.integrator);
   summary["solver"] = {{"name", system.get_solver().name()},
                        {"factorizations", system.get_solver().n_factorizations()},
                        {"solves", system.get_solver().n_solves()},
                        {"refinement_iterations", system.get_solver().n_refinements()}};
   summary["model"] = {{"blocks", system.get_blocks().size()},
-                      {"joints", system.get_joints().size()},
+                      {"bonded_joints", system.get_joints().size()},
                       {"dofs", system.n_dofs()}};
+  const dda::ContactCounts counts = system.contact_counts();
+  summary["contacts"] = {{"open", counts.open},
+                         {"slide", counts.slide},
+                         {"lock", counts.lock},
+                         {"broken_joints", system.n_broken_joints()},
+                         {"open_close_iterations", system.get_timings().n_open_close_iterations},
+                         {"search_distance_m", system.search_distance()},
+                         {"max_step_displacement_m", system.max_step_displacement()}};
   summary["wall_time_s"] = wall;
   summary["peak_memory_mb"] = run_support::peak_memory_mb();
-  summary["timings_s"] = {
-      {"assemble", t.assemble}, {"solve", t.solve}, {"update", t.update}, {"output", output_time}};
+  summary["timings_s"] = {{"broad_phase", t.broad_phase}, {"narrow_phase", t.narrow_phase},
+                          {"assemble", t.assemble},       {"solve", t.solve},
+                          {"update", t.update},           {"output", output_time}};
   summary["energy_J"] = {{"kinetic", e.kinetic},
                          {"strain", e.strain},
                          {"spring", e.spring},
@@ -432,8 +559,10 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
                          {"initial", e.initial},
                          {"dissipated", e.dissipated}};
   summary["warnings"] = warnings;
-  summary["outputs"] = {
-      {"histories", "histories.h5"}, {"blocks", "blocks.pvd"}, {"snapshots", vtu.n_written()}};
+  summary["outputs"] = {{"histories", "histories.h5"},
+                        {"blocks", "blocks.pvd"},
+                        {"contacts", "contacts.pvd"},
+                        {"snapshots", vtu.n_written()}};
   return run_support::finish_run(dir, summary, failed ? failure.message : std::string(),
                                  system.n_steps(), system.time(), wall, "blocks.pvd", log);
 }

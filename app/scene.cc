@@ -1329,6 +1329,58 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   model.time.integrator = time.choice("integrator") == "newmark_trapezoidal"
                               ? dda::Integrator::newmark_trapezoidal
                               : dda::Integrator::dda;
+  model.time.control =
+      time.choice("control") == "fixed" ? dda::TimeControl::fixed : dda::TimeControl::adaptive;
+  if (time.has("dt_min"))
+  {
+    model.time.dt_min = time.number("dt_min");
+    if (model.time.dt_min > model.time.dt)
+      throw time.error("dt_min", "expected dt_min <= dt = " + format_number(model.time.dt) + " s");
+  }
+  model.time.cut_factor = time.number("cut_factor");
+  model.time.growth_factor = time.number("growth_factor");
+
+  const MapReader contacts = top.section_reader("contacts");
+  model.contacts.max_displacement_ratio = contacts.number("max_displacement_ratio");
+  if (contacts.has("search_distance"))
+    model.contacts.search_distance = contacts.number("search_distance");
+  if (contacts.has("max_penetration"))
+    model.contacts.max_penetration = contacts.number("max_penetration");
+  model.contacts.max_open_close_iterations =
+      static_cast<unsigned>(contacts.integer("max_open_close_iterations"));
+  model.contacts.angle_tolerance_deg = contacts.number("angle_tolerance");
+
+  for (const MapReader& r : top.section_list("stages"))
+  {
+    dda::Stage stage;
+    stage.name = r.string("name");
+    stage.mode =
+        r.choice("mode") == "static" ? dda::StageMode::static_equilibrium : dda::StageMode::dynamic;
+    stage.dt = r.has("dt") ? r.number("dt") : model.time.dt;
+    stage.end_time = r.has("end_time") ? r.number("end_time") : model.time.end_time;
+    stage.max_steps = static_cast<std::size_t>(r.integer("max_steps"));
+    stage.tolerance = r.number("tolerance");
+    if (stage.mode == dda::StageMode::dynamic)
+    {
+      if (r.has("dt"))
+        throw r.error("dt", "a dynamic stage steps with time.dt: expected no `dt` here");
+      const double start = model.stages.empty() ? 0.0
+                                                : [&]
+      {
+        for (auto it = model.stages.rbegin(); it != model.stages.rend(); ++it)
+          if (it->mode == dda::StageMode::dynamic)
+            return it->end_time;
+        return 0.0;
+      }();
+      if (stage.end_time <= start)
+        throw r.error("end_time", "expected a time after the previous dynamic stage's end (" +
+                                      format_number(start) + " s)");
+    }
+    model.stages.push_back(stage);
+  }
+  if (scene.far_field && !model.stages.empty())
+    throw top.error("stages", "stages apply to block models: expected no `stages` with "
+                              "`far_field`");
   if (scene.far_field)
   {
     scene.far_field->dt = model.time.dt;

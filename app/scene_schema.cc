@@ -253,6 +253,15 @@ SceneSchema::SceneSchema()
             .default_note("none")
             .meaning("absorbing (viscous) or free boundaries on outer block edges"),
         key("time", T::section).section("time").required().meaning("time step and duration"),
+        key("contacts", T::section)
+            .section("contacts")
+            .default_note("see `contacts`")
+            .meaning("contact detection and the open-close iteration"),
+        key("stages", T::section_list)
+            .section("stages[i]")
+            .default_note("one dynamic stage up to time.end_time")
+            .meaning("stages run in sequence, e.g. static equilibrium under gravity, then the "
+                     "dynamic load"),
         key("solver", T::section)
             .section("solver")
             .default_note("block_ldlt")
@@ -320,20 +329,25 @@ SceneSchema::SceneSchema()
             .unit("Pa")
             .default_yaml("0")
             .at_least(0)
-            .meaning("cohesion c of a bonded joint"),
+            .meaning("cohesion c: of a bonded joint, or of a frictional contact until it first "
+                     "slides or opens (per unit joint length carried by the contact)"),
         key("tensile_strength", T::number)
             .unit("Pa")
             .default_yaml("0")
             .at_least(0)
-            .meaning("tensile strength of a bonded joint"),
+            .meaning("tensile strength: of a bonded joint, or of a frictional contact until it "
+                     "first slides or opens"),
         key("bonded", T::boolean)
             .default_yaml("true")
-            .meaning("true: glued until its strength is exceeded; false: frictional contact")}});
+            .meaning("true: blocks sharing an edge are glued by springs until the strength is "
+                     "exceeded, then they meet through frictional contacts (residual friction, no "
+                     "cohesion); false: frictional contacts from the start")}});
 
   all_sections.push_back(
       {"joints",
-       "Assigns joint materials to pairs of block materials. Blocks that share an edge need a "
-       "joint material, from a pair entry or the default.",
+       "Assigns joint materials to pairs of block materials. Any two blocks may come into "
+       "contact, so every pair of materials in use needs a joint material, from a pair entry or "
+       "the default.",
        {key("default", T::string)
             .default_note("none")
             .meaning("name of the joint material for pairs not listed in `pairs`"),
@@ -551,7 +565,95 @@ SceneSchema::SceneSchema()
             .choices({"dda", "newmark_trapezoidal"})
             .default_yaml("dda")
             .meaning("dda: Shi's dissipative first-order scheme; newmark_trapezoidal: "
-                     "energy-conserving, second order")}});
+                     "energy-conserving, second order"),
+        key("control", T::choice)
+            .choices({"adaptive", "fixed"})
+            .default_yaml("adaptive")
+            .meaning("adaptive: dt is the largest step, cut by cut_factor when a step fails "
+                     "(open-close iteration not converged, a vertex moving more than "
+                     "contacts.max_displacement_ratio allows, too deep a penetration) and grown "
+                     "back by growth_factor; fixed: every step has dt and such a failure stops "
+                     "the run (wave problems)"),
+        key("dt_min", T::number)
+            .unit("s")
+            .default_note("dt / 10^4")
+            .greater_than(0)
+            .meaning("smallest step of adaptive control; a step that needs less stops the run"),
+        key("cut_factor", T::number)
+            .default_yaml("0.3")
+            .greater_than(0)
+            .less_than(1)
+            .meaning("dt multiplier after a failed step (Shi: 0.3)"),
+        key("growth_factor", T::number)
+            .default_yaml("1.2")
+            .at_least(1)
+            .meaning("dt multiplier after an accepted step, up to dt")}});
+
+  all_sections.push_back(
+      {"contacts",
+       "Contact detection and the open-close iteration (Shi 1988). w0 is half the model's size "
+       "(the larger side of the blocks' bounding box, halved). The step displacement bound is "
+       "g2 w0, but at most a tenth of the shortest block edge.",
+       {key("max_displacement_ratio", T::number)
+            .default_yaml("0.01")
+            .greater_than(0)
+            .less_than(1)
+            .meaning("Shi's g2: the largest vertex displacement of a step over w0 (the bound is "
+                     "at most a tenth of the shortest edge); a step beyond is cut"),
+        key("search_distance", T::number)
+            .unit("m")
+            .default_note("2.5 x the step displacement bound")
+            .greater_than(0)
+            .meaning("how close a vertex must come to an edge to be a contact candidate"),
+        key("max_penetration", T::number)
+            .unit("m")
+            .default_note("the step displacement bound")
+            .greater_than(0)
+            .meaning("deepest penetration a step may leave; a step beyond is cut"),
+        key("max_open_close_iterations", T::integer)
+            .default_yaml("6")
+            .at_least(1)
+            .meaning("open-close iterations before the step is cut (Shi: 6)"),
+        key("angle_tolerance", T::number)
+            .unit("deg")
+            .default_yaml("1")
+            .greater_than(0)
+            .less_than(30)
+            .meaning("edges this close to parallel touch edge to edge; vertices this close to "
+                     "180 degrees are straight (never enter)")}});
+
+  all_sections.push_back(
+      {"stages[i]",
+       "A stage of the analysis. A static stage (Shi's static analysis) zeroes the velocities "
+       "before every step and keeps the clock at its time, so the blocks creep to equilibrium "
+       "under gravity, loads and initial stress; it ends when the largest out-of-balance force "
+       "on a block falls below tolerance x the largest applied force (gravity and loads) on a "
+       "block. A dynamic stage after it starts at rest from that equilibrium; histories and "
+       "monitor displacements start there.",
+       {key("name", T::string).required().meaning("shown in messages and summary.json"),
+        key("mode", T::choice)
+            .choices({"static", "dynamic"})
+            .required()
+            .meaning("static: seek equilibrium; dynamic: integrate the motion"),
+        key("dt", T::number)
+            .unit("s")
+            .default_note("time.dt")
+            .greater_than(0)
+            .meaning("static stages: the (largest) pseudo time step"),
+        key("end_time", T::number)
+            .unit("s")
+            .default_note("time.end_time")
+            .greater_than(0)
+            .meaning("dynamic stages: the time the stage runs to"),
+        key("max_steps", T::integer)
+            .default_yaml("10000")
+            .at_least(1)
+            .meaning("static stages: the run fails if equilibrium is not reached in this many "
+                     "steps"),
+        key("tolerance", T::number)
+            .default_yaml("1e-5")
+            .greater_than(0)
+            .meaning("static stages: the out-of-balance force ratio of equilibrium")}});
 
   all_sections.push_back({"solver",
                           "Sparse direct solver for each step's linear system.",

@@ -17,9 +17,6 @@ Vector2 Joint::normal(bool initial) const
   return Vector2(t.y(), -t.x());
 }
 
-namespace
-{
-/// Joint material for two block materials: a matching pair assignment, else the default.
 std::size_t joint_material_for(const ModelDescription& model, std::size_t material_a,
                                std::size_t material_b)
 {
@@ -29,7 +26,6 @@ std::size_t joint_material_for(const ModelDescription& model, std::size_t materi
       return j.joint_material;
   return model.default_joint_material;
 }
-} // namespace
 
 std::vector<Joint> find_joints(const std::vector<Block>& blocks, const ModelDescription& model,
                                const std::vector<std::string>& block_names, double tol)

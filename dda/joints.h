@@ -11,13 +11,6 @@
 
 namespace ddafem::dda
 {
-/// State of a joint contact point. Issue 4 adds open / slide / lock for frictional contacts.
-enum class JointState
-{
-  bonded, ///< glued: normal and shear springs carry tension and shear
-  broken  ///< its strength was exceeded
-};
-
 /// One end of a joint: the same point attached to both blocks, joined by a normal spring p and a
 /// shear spring p * shear_ratio (Shi's edge-to-edge contact as two vertex springs).
 struct JointPoint
@@ -26,10 +19,9 @@ struct JointPoint
   MaterialPoint on_b;        ///< the point as part of block b
   double normal_force = 0.0; ///< spring force [N], tension positive (blocks pulled together)
   double shear_force = 0.0;  ///< spring force [N] along the joint tangent t (see Joint::tangent)
-  JointState state = JointState::bonded;
 };
 
-/// A joint along the shared stretch of an edge of block a and an edge of block b.
+/// A bonded joint along the shared stretch of an edge of block a and an edge of block b.
 struct Joint
 {
   std::size_t id = 0;      ///< stable over the run
@@ -48,6 +40,11 @@ struct Joint
   /// Unit normal pointing out of block a, towards b: (t_y, -t_x).
   Vector2 normal(bool initial = false) const;
 };
+
+/// Joint material between blocks of two materials: a matching `joint_assignments` entry, else
+/// the default (npos if there is none).
+std::size_t joint_material_for(const ModelDescription& model, std::size_t material_a,
+                               std::size_t material_b);
 
 /// Finds every pair of blocks that share an edge stretch and makes a bonded joint there, with the
 /// joint material assigned to the pair's materials. Blocks are paired by a sweep over their

@@ -49,7 +49,10 @@ struct JointMaterial
   double friction_angle = 0.0;   ///< phi [degrees], in [0, 90)
   double cohesion = 0.0;         ///< c [Pa], >= 0
   double tensile_strength = 0.0; ///< [Pa], >= 0
-  bool bonded = true; ///< true: glued until its strength is exceeded; false: frictional contact
+  /// true: joints along shared edges are glued springs until their strength is exceeded, then
+  /// frictional contacts; false: every contact is a frictional contact from the start (with
+  /// cohesion and tensile strength until it first slides or opens)
+  bool bonded = true;
 };
 
 /// Which joint material applies between blocks of two given materials.
@@ -153,11 +156,65 @@ enum class SolverKind
   block_ldlt
 };
 
+/// How the time step is chosen.
+enum class TimeControl
+{
+  /// dt starts at TimeSettings::dt (its upper bound) and is cut when a step fails (open-close
+  /// iteration not converged, a vertex moving more than the allowed step displacement, too deep
+  /// a penetration), then grows back gradually
+  adaptive,
+  /// every step has dt; a step that would need a cut stops the run (wave problems)
+  fixed
+};
+
 struct TimeSettings
 {
-  double dt = 0.0;       ///< time step [s], > 0
+  double dt = 0.0;       ///< time step [s], > 0; the largest one with adaptive control
   double end_time = 0.0; ///< [s], >= dt
   Integrator integrator = Integrator::dda;
+  TimeControl control = TimeControl::adaptive;
+  double dt_min = 0.0;        ///< smallest dt before the run stops [s]; 0: dt * 1e-4
+  double cut_factor = 0.3;    ///< dt multiplier after a failed step (Shi: 0.3)
+  double growth_factor = 1.2; ///< dt multiplier after a successful step, up to `dt`
+};
+
+/// Settings of contact detection and of the open-close iteration (Shi 1988, ch. 4).
+struct ContactSettings
+{
+  /// Shi's g2: the largest vertex displacement allowed in one step, over half the model's size
+  /// w0 [-]. A step beyond it is cut (adaptive control).
+  double max_displacement_ratio = 0.01;
+  /// Search distance d0 [m] of the narrow phase; 0: 2.5 g2 w0 (twice and a half the largest
+  /// step displacement, so that no vertex crosses an edge unseen).
+  double search_distance = 0.0;
+  /// Largest penetration a converged step may leave [m]; 0: g2 w0 (the step displacement bound).
+  double max_penetration = 0.0;
+  unsigned max_open_close_iterations = 6; ///< Shi: 6, then the step is cut
+  double angle_tolerance_deg = 1.0; ///< parallel edges and straight vertices within this [deg]
+};
+
+/// Whether a stage integrates the motion or seeks static equilibrium.
+enum class StageMode
+{
+  /// Shi's static analysis: velocities are reset to zero before each step, so each step moves
+  /// the blocks towards equilibrium under the loads; the clock does not advance
+  static_equilibrium,
+  dynamic ///< the motion in time
+};
+
+/// A stage of the analysis. Stages run in sequence; each starts from the state the previous one
+/// left (a dynamic stage after a static one starts from the equilibrium, at rest, at t = 0).
+struct Stage
+{
+  std::string name;
+  StageMode mode = StageMode::dynamic;
+  /// Time step [s] of a static stage (0: TimeSettings::dt). Dynamic stages use TimeSettings.
+  double dt = 0.0;
+  double end_time = 0.0;         ///< dynamic: the time it runs to [s]
+  std::size_t max_steps = 10000; ///< static: stop (failed) after this many steps
+  /// static: equilibrium when the largest out-of-balance force on a block falls below
+  /// tolerance x the largest applied force on a block (StepStatus::unbalanced_force_ratio)
+  double tolerance = 1e-5;
 };
 
 /// Everything the DDA engine needs to build and run a model.
@@ -178,6 +235,9 @@ struct ModelDescription
   std::vector<BoundaryDescription> boundaries;
   Vector2 gravity = Vector2::Zero(); ///< body acceleration [m/s^2], e.g. (0, -9.81)
   TimeSettings time;
+  ContactSettings contacts;
+  /// The stages in order; empty: one dynamic stage up to time.end_time.
+  std::vector<Stage> stages;
   SolverKind solver = SolverKind::block_ldlt;
 };
 

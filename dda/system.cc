@@ -1,6 +1,7 @@
 #include "dda/system.h"
 
 #include "common/input_error.h"
+#include "dda/contact/broad_phase.h"
 #include "dda/submatrices.h"
 
 #include <Eigen/LU>
@@ -52,7 +53,55 @@ std::string format_time(double t)
   s << t << " s";
   return s.str();
 }
+
+/// Adds a spring K2 [N/m] between point i (T_i) and point j (T_j) of two different blocks, with
+/// the force `force` [N] acting on i (and -force on j), to the matrix and the right-hand side.
+void add_pair_spring(BlockSparseMatrix& matrix, Eigen::VectorXd& rhs, std::size_t coupling,
+                     std::size_t i, const Matrix26& t_i, std::size_t j, const Matrix26& t_j,
+                     const Eigen::Matrix2d& k2, const Vector2& force)
+{
+  const Matrix26 k_ti = k2 * t_i;
+  const Matrix26 k_tj = k2 * t_j;
+  matrix.diagonal(i).noalias() += t_i.transpose() * k_ti;
+  matrix.diagonal(j).noalias() += t_j.transpose() * k_tj;
+  if (i < j)
+    matrix.upper(coupling).noalias() -= t_i.transpose() * k_tj;
+  else
+    matrix.upper(coupling).noalias() -= t_j.transpose() * k_ti;
+  rhs.segment<6>(6 * i).noalias() += t_i.transpose() * force;
+  rhs.segment<6>(6 * j).noalias() -= t_j.transpose() * force;
+}
+
+/// Length [m] over which the leg of `poly` at `vertex` that runs parallel to the edge [e0, e1]
+/// overlaps it, halved (each end of an edge-to-edge contact carries half); 0 if no leg is
+/// parallel within `angle_tolerance` [rad].
+double carried_length(const std::vector<Point>& poly, std::size_t vertex, const Point& e0,
+                      const Point& e1, double angle_tolerance)
+{
+  const std::size_t n = poly.size();
+  const Point& v = poly[vertex];
+  const double edge_length = (e1 - e0).norm();
+  const Vector2 t = (e1 - e0) / edge_length;
+  double best = 0.0;
+  for (const Point& w : {poly[(vertex + 1) % n], poly[(vertex + n - 1) % n]})
+  {
+    const Vector2 leg = w - v;
+    if (std::abs(t.x() * leg.y() - t.y() * leg.x()) > std::sin(angle_tolerance) * leg.norm())
+      continue;
+    const double s0 = t.dot(v - e0), s1 = t.dot(w - e0);
+    const double overlap =
+        std::min(std::max(s0, s1), edge_length) - std::max(std::min(s0, s1), 0.0);
+    best = std::max(best, 0.5 * std::max(overlap, 0.0));
+  }
+  return best;
+}
 } // namespace
+
+bool can_retry_with_smaller_step(StepOutcome outcome)
+{
+  return outcome == StepOutcome::not_converged || outcome == StepOutcome::displacement_too_large ||
+         outcome == StepOutcome::penetration_too_large;
+}
 
 Point System::AttachedFixedPoint::target(double t) const
 {
@@ -60,7 +109,8 @@ Point System::AttachedFixedPoint::target(double t) const
 }
 
 System::System(const ModelDescription& model_)
-    : model(model_), matrix(0, {}), solver(make_sparse_direct_solver(model_.solver))
+    : model(model_), matrix(0, {}), base_matrix(0, {}),
+      solver(make_sparse_direct_solver(model_.solver))
 {
   if (model.time.integrator == Integrator::newmark_trapezoidal)
   {
@@ -89,26 +139,63 @@ System::System(const ModelDescription& model_)
     throw InputError("the model has no blocks: expected at least one entry in `blocks`");
 
   const double size = model_size(blocks);
-  joints = find_joints(blocks, model, names, 1e-9 * size);
-  for (const Joint& j : joints)
-    if (!model.joint_materials[j.joint_material].bonded)
-      throw InputError("joint material '" + model.joint_materials[j.joint_material].name +
-                       "' (between " + names[j.block_a] + " and " + names[j.block_b] +
-                       ") has `bonded: false`: frictional contacts are not available yet "
-                       "(contact mechanics, issue 4); expected `bonded: true`");
+  // Blocks that share an edge through a frictional joint material meet through contacts.
+  std::vector<Joint> found = find_joints(blocks, model, names, 1e-9 * size);
+  for (const Joint& j : found)
+    if (model.joint_materials[j.joint_material].bonded)
+      joints.push_back(j);
+  contacts_enabled = !small_displacement();
+  if (!contacts_enabled)
+    for (const Joint& j : found)
+      if (!model.joint_materials[j.joint_material].bonded)
+        throw InputError("joint material '" + model.joint_materials[j.joint_material].name +
+                         "' (between " + names[j.block_a] + " and " + names[j.block_b] +
+                         ") is frictional (`bonded: false`), but `analysis.geometry: "
+                         "small_displacement` cannot follow contacts: expected `geometry: "
+                         "updated` or a bonded joint material");
 
-  // One coupling block per pair of joined blocks.
-  std::map<std::pair<std::size_t, std::size_t>, std::size_t> coupling_index;
-  std::vector<std::pair<std::size_t, std::size_t>> couplings;
-  for (Joint& j : joints)
+  // Any two blocks may come into contact: every pair of materials needs a joint material.
+  if (contacts_enabled && blocks.size() > 1)
   {
-    const auto key = std::make_pair(j.block_a, j.block_b);
-    const auto [it, inserted] = coupling_index.emplace(key, couplings.size());
-    if (inserted)
-      couplings.push_back(key);
-    j.coupling = it->second;
+    std::vector<bool> used(model.materials.size(), false);
+    for (const Block& b : blocks)
+      used[b.material] = true;
+    for (std::size_t m1 = 0; m1 < used.size(); ++m1)
+      for (std::size_t m2 = m1; m2 < used.size(); ++m2)
+        if (used[m1] && used[m2] &&
+            joint_material_for(model, m1, m2) >= model.joint_materials.size())
+          throw InputError("blocks of materials '" + model.materials[m1].name + "' and '" +
+                           model.materials[m2].name +
+                           "' may come into contact but no joint material applies to them: "
+                           "expected `joints: {default: NAME}` or a `joints.pairs` entry");
   }
-  matrix = BlockSparseMatrix(blocks.size(), couplings);
+
+  for (const Block& b : blocks)
+  {
+    bool is_convex = true;
+    const std::size_t n = b.vertices.size();
+    for (std::size_t k = 0; k < n; ++k)
+      is_convex = is_convex && interior_angle(b.vertices, k) < M_PI;
+    convex.push_back(is_convex);
+  }
+
+  // Shi's w0 and the contact distances derived from it. Shi's bound g2 w0 alone would let a
+  // long model of small blocks (a bar) move vertices farther than a block in one step; the
+  // bound is also kept below a tenth of the shortest edge, so that the search distance
+  // (2.5 times the bound) stays below a quarter of it and only neighbours are candidates.
+  w0 = 0.5 * size;
+  double shortest_edge = size;
+  for (const Block& b : blocks)
+    for (std::size_t k = 0; k < b.vertices.size(); ++k)
+      shortest_edge =
+          std::min(shortest_edge, (b.vertices[(k + 1) % b.vertices.size()] - b.vertices[k]).norm());
+  const ContactSettings& cs = model.contacts;
+  step_displacement_limit = std::min(cs.max_displacement_ratio * w0, 0.1 * shortest_edge);
+  contact_search_distance =
+      cs.search_distance > 0.0 ? cs.search_distance : 2.5 * step_displacement_limit;
+  penetration_limit = cs.max_penetration > 0.0 ? cs.max_penetration : step_displacement_limit;
+  angle_tolerance = cs.angle_tolerance_deg * M_PI / 180.0;
+
   rhs.setZero(static_cast<Eigen::Index>(n_dofs()));
   solution.setZero(static_cast<Eigen::Index>(n_dofs()));
 
@@ -129,7 +216,10 @@ System::System(const ModelDescription& model_)
                             f.stiffness > 0.0 ? f.stiffness : default_fixed_stiffness,
                             f.displacement_x, f.displacement_y});
   for (const Monitor& m : model.monitors)
+  {
     monitors.push_back(attach(m.point, "monitor " + m.name));
+    monitor_origins.push_back(m.point);
+  }
   for (std::size_t k = 0; k < model.boundaries.size(); ++k)
   {
     const std::vector<BoundaryEdge> selected =
@@ -148,6 +238,8 @@ System::System(const ModelDescription& model_)
   }
   boundary_steps.resize(boundary_edges.size());
 
+  // The step's matrix structure: joints now, contacts once found.
+  set_matrix_structure({});
   initial_energy = energy().stored();
 }
 
@@ -167,41 +259,123 @@ MaterialPoint System::attach(const Point& p, const std::string& what) const
 
 StepStatus System::advance(double dt)
 {
-  // Bonded joints are fixed at construction; issue 4 adds the phases "find contact candidates"
-  // and "update contacts" before assembly, and the open-close iteration around the solve.
+  const std::string when =
+      "at t = " + format_time(current_time) + " (dt = " + format_time(dt) + ")";
+  ++timings.n_attempts;
+  if (mode == StageMode::static_equilibrium)
+    for (Block& b : blocks)
+    {
+      b.velocity.setZero();
+      b.acceleration.setZero();
+    }
+
+  // 1. Find contact candidates, 2. update contacts.
   auto start = Clock::now();
-  // With updated geometry every step has its own matrix; a small-displacement analysis keeps
-  // the matrix of the initial configuration for as long as dt does not change.
+  const std::vector<std::pair<std::size_t, std::size_t>> pairs =
+      contacts_enabled ? find_contact_candidates()
+                       : std::vector<std::pair<std::size_t, std::size_t>>{};
+  timings.broad_phase += seconds_since(start);
+  start = Clock::now();
+  update_contacts(pairs);
+  timings.narrow_phase += seconds_since(start);
+
+  // 3. Assemble. With updated geometry every step has its own matrix; a small-displacement
+  // analysis (no contacts) keeps the matrix of the initial configuration while dt is unchanged.
+  start = Clock::now();
   const bool new_matrix = !small_displacement() || dt != matrix_dt;
   assemble(dt, new_matrix);
   matrix_dt = dt;
   timings.assemble += seconds_since(start);
 
+  // 4. Solve with the open-close iteration.
   start = Clock::now();
   StepStatus status;
-  status.solve = solver.solve(matrix, rhs, solution,
-                              new_matrix ? MatrixChange::unknown : MatrixChange::unchanged);
-  timings.solve += seconds_since(start);
-  if (!status.solve.success)
+  if (trial_contacts.empty())
   {
-    status.outcome = StepOutcome::solver_failure;
-    status.message = status.solve.message + " at t = " + format_time(current_time);
+    status.solve = solver.solve(matrix, rhs, solution,
+                                new_matrix ? MatrixChange::unknown : MatrixChange::unchanged);
+    if (!status.solve.success)
+    {
+      status.outcome = StepOutcome::solver_failure;
+      status.message = status.solve.message + " " + when;
+    }
+  }
+  else
+    status = solve_with_open_close(when);
+  timings.solve += seconds_since(start);
+  if (status.outcome != StepOutcome::success)
+    return status;
+
+  if (mode == StageMode::static_equilibrium)
+  {
+    // With zero velocity the right-hand side is the out-of-balance force at the step start.
+    double unbalanced = 0.0, applied = 0.0;
+    std::vector<double> applied_on(blocks.size(), 0.0);
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+    {
+      unbalanced = std::max(unbalanced, rhs.segment<2>(6 * i).norm());
+      applied_on[i] = block_mass(blocks[i]) * model.gravity.norm();
+    }
+    for (const AttachedLoad& l : loads)
+      applied_on[l.point.block] += std::abs(l.function.value(current_time)) * l.force.norm();
+    for (const double f : applied_on)
+      applied = std::max(applied, f);
+    status.unbalanced_force_ratio = applied > 0.0 ? unbalanced / applied : 0.0;
+  }
+
+  // Step control: no vertex may move farther than g2 w0, no contact penetrate too deep.
+  status.max_displacement = largest_vertex_displacement(solution);
+  if (status.max_displacement > step_displacement_limit)
+  {
+    std::ostringstream m;
+    m << "a vertex moves " << status.max_displacement << " m in one step, more than the "
+      << step_displacement_limit << " m allowed (g2 w0) " << when;
+    status.outcome = StepOutcome::displacement_too_large;
+    status.message = m.str();
+    return status;
+  }
+  for (const Contact& c : trial_contacts)
+    if (c.trial.state != ContactState::open)
+      status.max_penetration = std::max(status.max_penetration, -c.end_gap);
+  if (status.max_penetration > penetration_limit)
+  {
+    std::ostringstream m;
+    m << "a contact penetrates " << status.max_penetration << " m, deeper than the "
+      << penetration_limit << " m allowed " << when
+      << " (a stiffer joint normal_stiffness or a smaller dt reduces it)";
+    status.outcome = StepOutcome::penetration_too_large;
+    status.message = m.str();
     return status;
   }
 
+  // 5. Update blocks and contacts.
   start = Clock::now();
   update_blocks(dt, solution);
+  for (Contact& c : trial_contacts)
+  {
+    if (c.trial.state == ContactState::slide)
+      c.total_slip += c.step_slip;
+    c.forces = c.trial;
+  }
+  contacts.swap(trial_contacts);
+  if (mode == StageMode::static_equilibrium)
+    for (Block& b : blocks)
+    {
+      b.velocity.setZero();
+      b.acceleration.setZero();
+    }
+  else
+    current_time += dt;
   timings.update += seconds_since(start);
   ++timings.n_steps;
-  current_time += dt;
 
-  const StepStatus strength = check_joint_strength();
-  if (strength.outcome != StepOutcome::success)
-    return {strength.outcome, strength.message, status.solve};
+  const std::string broken = break_joints();
+  if (!broken.empty())
+    return {StepOutcome::joint_broken, broken, status.solve};
 
   // A boundary beyond its stability limit feeds energy into the model: stop when the stored
   // energy exceeds ten times all the energy ever put in.
-  if (!boundary_edges.empty())
+  if (!boundary_edges.empty() && mode == StageMode::dynamic)
   {
     const EnergyBalance e = energy();
     largest_energy_input = std::max(largest_energy_input, e.work_of_loads + e.work_of_supports);
@@ -213,10 +387,318 @@ StepStatus System::advance(double dt)
         << " J put into the model, at t = " << format_time(current_time)
         << ": a boundary is feeding energy into the model (see `ddafem check` for each "
            "boundary's time-step limit)";
-      return {StepOutcome::energy_growth, m.str(), status.solve};
+      status.outcome = StepOutcome::energy_growth;
+      status.message = m.str();
     }
   }
   return status;
+}
+
+void System::begin_stage(StageMode new_mode)
+{
+  const bool after_static = mode == StageMode::static_equilibrium;
+  mode = new_mode;
+  if (mode == StageMode::dynamic && !after_static)
+    return;
+  for (Block& b : blocks)
+  {
+    b.velocity.setZero();
+    b.acceleration.setZero();
+  }
+  if (mode == StageMode::dynamic)
+  {
+    // Measure the dynamic stage from the equilibrium reached.
+    for (std::size_t k = 0; k < monitors.size(); ++k)
+      monitor_origins[k] = monitors[k].position;
+    work_of_loads = work_of_supports = work_of_boundaries = 0.0;
+    largest_energy_input = 0.0;
+    initial_energy = energy().stored();
+  }
+}
+
+// ---- contacts --------------------------------------------------------------------------------
+
+std::vector<std::pair<std::size_t, std::size_t>> System::find_contact_candidates() const
+{
+  std::vector<BoundingBox> boxes;
+  boxes.reserve(blocks.size());
+  for (const Block& b : blocks)
+    boxes.push_back(bounding_box(b.vertices, 0.5 * contact_search_distance));
+  return overlapping_pairs(boxes);
+}
+
+void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs)
+{
+  // Vertices tied by an intact bonded joint to the other block do not make contacts there.
+  jointed_vertices.clear();
+  const double tol = 1e-6 * w0;
+  for (const Joint& j : joints)
+  {
+    const Point& p = j.points[0].on_a.position;
+    const Vector2 t = j.tangent();
+    const double length = (j.points[1].on_a.position - p).norm();
+    const auto mark = [&](std::size_t block, std::size_t edge, std::size_t other)
+    {
+      const std::vector<Point>& v = blocks[block].vertices;
+      for (const std::size_t k : {edge, (edge + 1) % v.size()})
+      {
+        const double s = t.dot(v[k] - p);
+        if (s > -tol && s < length + tol)
+          jointed_vertices.emplace_back(block, k, other);
+      }
+    };
+    mark(j.block_a, j.edge_a, j.block_b);
+    mark(j.block_b, j.edge_b, j.block_a);
+  }
+  std::sort(jointed_vertices.begin(), jointed_vertices.end());
+  const auto jointed = [&](std::size_t block, std::size_t vertex, std::size_t other)
+  {
+    return std::binary_search(jointed_vertices.begin(), jointed_vertices.end(),
+                              std::make_tuple(block, vertex, other));
+  };
+
+  // Two convex blocks held by an intact joint touch only along it (their other vertices lie
+  // more than d0 away, d0 being below a quarter of the shortest edge): no narrow phase.
+  bonded_pairs.clear();
+  for (const Joint& j : joints)
+    if (convex[j.block_a] && convex[j.block_b])
+      bonded_pairs.emplace_back(j.block_a, j.block_b);
+  std::sort(bonded_pairs.begin(), bonded_pairs.end());
+
+  trial_contacts.clear();
+  for (const auto& [a, b] : pairs)
+  {
+    if (std::binary_search(bonded_pairs.begin(), bonded_pairs.end(), std::make_pair(a, b)))
+      continue;
+    const std::vector<VertexEdgePair> found = find_vertex_edge_pairs(
+        blocks[a].vertices, blocks[b].vertices, contact_search_distance, angle_tolerance);
+    for (const VertexEdgePair& f : found)
+    {
+      Contact c;
+      c.vertex_block = f.vertex_polygon == 0 ? a : b;
+      c.edge_block = f.vertex_polygon == 0 ? b : a;
+      if (jointed(c.vertex_block, f.vertex, c.edge_block))
+        continue;
+      c.vertex = f.vertex;
+      c.edge = f.edge;
+      c.kind = f.kind;
+      c.ratio = f.ratio;
+      c.gap = f.distance;
+      c.joint_material = joint_material_for(model, blocks[a].material, blocks[b].material);
+      const std::vector<Point>& ev = blocks[c.edge_block].vertices;
+      c.length = carried_length(blocks[c.vertex_block].vertices, c.vertex, ev[c.edge],
+                                ev[(c.edge + 1) % ev.size()], angle_tolerance);
+      trial_contacts.push_back(c);
+    }
+  }
+  std::sort(trial_contacts.begin(), trial_contacts.end(),
+            [](const Contact& x, const Contact& y) { return x.key() < y.key(); });
+
+  // Keep id, state and forces of contacts that persist; a vertex that moved on to another edge
+  // of the same block inherits its previous contact there (sliding past a corner).
+  for (Contact& c : trial_contacts)
+  {
+    const auto same =
+        std::lower_bound(contacts.begin(), contacts.end(), c.key(),
+                         [](const Contact& x, const auto& key) { return x.key() < key; });
+    const Contact* previous = nullptr;
+    if (same != contacts.end() && same->key() == c.key())
+      previous = &*same;
+    else
+      for (auto it = std::lower_bound(
+               contacts.begin(), contacts.end(),
+               std::make_tuple(c.vertex_block, c.vertex, c.edge_block, std::size_t{0}),
+               [](const Contact&x, const auto&key) { return x.key() < key; });
+           it != contacts.end() && it->vertex_block == c.vertex_block && it->vertex == c.vertex &&
+           it->edge_block == c.edge_block;
+           ++it)
+        if (it->forces.state != ContactState::open)
+          previous = &*it;
+    if (previous)
+    {
+      c.id = previous->id;
+      c.forces = previous->forces;
+      c.total_slip = previous->total_slip;
+    }
+    else
+    {
+      c.id = next_contact_id++;
+      c.forces.state = c.gap < 0.0 ? ContactState::lock : ContactState::open;
+    }
+    c.trial = c.forces;
+  }
+
+  // The matrix couples joined blocks and blocks in contact.
+  std::vector<std::pair<std::size_t, std::size_t>> couplings;
+  for (const Joint& j : joints)
+    couplings.emplace_back(j.block_a, j.block_b);
+  for (const Contact& c : trial_contacts)
+    couplings.emplace_back(std::min(c.vertex_block, c.edge_block),
+                           std::max(c.vertex_block, c.edge_block));
+  set_matrix_structure(std::move(couplings));
+  for (Contact& c : trial_contacts)
+    c.coupling = coupling_of(c.vertex_block, c.edge_block);
+
+  // The contacts' frames in the configuration at the step start.
+  frames.resize(trial_contacts.size());
+  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
+  {
+    const Contact& c = trial_contacts[k];
+    const Block& vb = blocks[c.vertex_block];
+    const Block& eb = blocks[c.edge_block];
+    const Point& e0 = eb.vertices[c.edge];
+    const Point& e1 = eb.vertices[(c.edge + 1) % eb.vertices.size()];
+    ContactFrame& f = frames[k];
+    f.tangent = (e1 - e0).normalized();
+    f.normal = Vector2(f.tangent.y(), -f.tangent.x());
+    f.t_vertex = displacement_matrix(vb.moments.centroid, vb.vertices[c.vertex]);
+    f.t_edge = displacement_matrix(eb.moments.centroid, e0 + c.ratio * (e1 - e0));
+  }
+}
+
+void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings)
+{
+  std::sort(couplings.begin(), couplings.end());
+  couplings.erase(std::unique(couplings.begin(), couplings.end()), couplings.end());
+  if (couplings != coupling_pairs || matrix.n_blocks() != blocks.size())
+  {
+    coupling_pairs = std::move(couplings);
+    matrix = BlockSparseMatrix(blocks.size(), coupling_pairs);
+  }
+  for (Joint& j : joints)
+    j.coupling = coupling_of(j.block_a, j.block_b);
+}
+
+std::size_t System::coupling_of(std::size_t i, std::size_t j) const
+{
+  const auto key = std::make_pair(std::min(i, j), std::max(i, j));
+  return static_cast<std::size_t>(
+      std::lower_bound(coupling_pairs.begin(), coupling_pairs.end(), key) - coupling_pairs.begin());
+}
+
+ContactLaw System::contact_law(const Contact& c) const
+{
+  const JointMaterial& jm = model.joint_materials[c.joint_material];
+  ContactLaw law;
+  law.normal_stiffness = jm.normal_stiffness;
+  law.shear_stiffness = jm.shear_ratio * jm.normal_stiffness;
+  law.tan_friction = tan_friction[c.joint_material];
+  // A bonded joint material's contacts come from broken joints: residual friction only.
+  law.cohesive_force = jm.bonded ? 0.0 : jm.cohesion * c.length;
+  law.tensile_capacity = jm.bonded ? 0.0 : jm.tensile_strength * c.length;
+  return law;
+}
+
+StepStatus System::solve_with_open_close(const std::string& when)
+{
+  base_matrix = matrix;
+  base_rhs = rhs;
+  StepStatus status;
+  const unsigned max_iterations = std::max(1u, model.contacts.max_open_close_iterations);
+  for (unsigned iteration = 1; iteration <= max_iterations; ++iteration)
+  {
+    if (iteration > 1)
+    {
+      matrix = base_matrix;
+      rhs = base_rhs;
+    }
+    add_contact_terms();
+    status.solve = solver.solve(matrix, rhs, solution, MatrixChange::unknown);
+    ++status.n_open_close_iterations;
+    ++timings.n_open_close_iterations;
+    if (!status.solve.success)
+    {
+      status.outcome = StepOutcome::solver_failure;
+      status.message = status.solve.message + " " + when;
+      return status;
+    }
+    const std::size_t n_changes = update_trial_states();
+    status.n_state_changes += n_changes;
+    if (n_changes == 0)
+      return status;
+  }
+  status.outcome = StepOutcome::not_converged;
+  status.message = "the open-close iteration did not converge in " +
+                   std::to_string(max_iterations) + " iterations " + when;
+  return status;
+}
+
+void System::add_contact_terms()
+{
+  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
+  {
+    const Contact& c = trial_contacts[k];
+    if (c.trial.state == ContactState::open)
+      continue;
+    const ContactFrame& f = frames[k];
+    const ContactLaw law = contact_law(c);
+    Eigen::Matrix2d k2 = law.normal_stiffness * (f.normal * f.normal.transpose());
+    // Lock: the shear spring on the step's slip, starting from the previous shear force;
+    // slide: the friction force of the trial, no shear spring.
+    const bool was_closed = c.forces.state != ContactState::open;
+    double shear = c.trial.shear_force;
+    if (c.trial.state == ContactState::lock)
+    {
+      k2 += law.shear_stiffness * (f.tangent * f.tangent.transpose());
+      shear = was_closed ? c.forces.shear_force : 0.0;
+    }
+    const Vector2 force_on_vertex = -law.normal_stiffness * c.gap * f.normal - shear * f.tangent;
+    add_pair_spring(matrix, rhs, c.coupling, c.vertex_block, f.t_vertex, c.edge_block, f.t_edge, k2,
+                    force_on_vertex);
+  }
+}
+
+std::size_t System::update_trial_states()
+{
+  std::size_t n_changes = 0;
+  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
+  {
+    Contact& c = trial_contacts[k];
+    const ContactFrame& f = frames[k];
+    const Vector2 relative = f.t_vertex * solution.segment<6>(6 * c.vertex_block) -
+                             f.t_edge * solution.segment<6>(6 * c.edge_block);
+    c.end_gap = c.gap + f.normal.dot(relative);
+    c.step_slip = f.tangent.dot(relative);
+    const ContactForces next = evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip);
+    if (state_changed(c.trial, next))
+      ++n_changes;
+    c.trial = next;
+  }
+  return n_changes;
+}
+
+double System::largest_vertex_displacement(const Eigen::VectorXd& d) const
+{
+  double largest = 0.0;
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+  {
+    const Block& b = blocks[i];
+    const Vector6 di = d.segment<6>(6 * i);
+    const std::vector<Point>& v = small_displacement() ? b.initial_vertices : b.vertices;
+    const Point& c = small_displacement() ? b.initial_centroid : b.moments.centroid;
+    for (const Point& x : v)
+      largest = std::max(largest, (displacement_matrix(c, x) * di).norm());
+  }
+  return largest;
+}
+
+ContactCounts System::contact_counts() const
+{
+  ContactCounts n;
+  for (const Contact& c : contacts)
+    switch (c.forces.state)
+    {
+    case ContactState::open:
+      ++n.open;
+      break;
+    case ContactState::slide:
+      ++n.slide;
+      break;
+    case ContactState::lock:
+      ++n.lock;
+      break;
+    }
+  return n;
 }
 
 void System::assemble(double dt, bool with_matrix)
@@ -224,7 +706,8 @@ void System::assemble(double dt, bool with_matrix)
   if (with_matrix)
     matrix.set_zero();
   rhs.setZero();
-  const double t1 = current_time + dt; // loads and supports are evaluated at the step's end
+  // Loads and supports are evaluated at the step's end (the clock stands still in a static stage).
+  const double t1 = mode == StageMode::static_equilibrium ? current_time : current_time + dt;
 
   // Blocks: inertia M / (beta dt^2) and elasticity; M (v0 / (beta dt) + (1 / (2 beta) - 1) a0),
   // the accumulated stress and gravity on the right-hand side.
@@ -333,7 +816,8 @@ Matrix26 System::point_matrix(const MaterialPoint& p) const
 
 void System::update_blocks(double dt, const Eigen::VectorXd& d)
 {
-  const double t0 = current_time, t1 = current_time + dt;
+  const double t0 = current_time;
+  const double t1 = mode == StageMode::static_equilibrium ? current_time : current_time + dt;
 
   // Work of the loads (trapezoidal in time) and of gravity, on the displacement of the step.
   for (const AttachedLoad& l : loads)
@@ -408,37 +892,40 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
   }
 }
 
-StepStatus System::check_joint_strength() const
+std::string System::break_joints()
 {
+  std::string failure;
+  std::vector<Joint> intact;
+  intact.reserve(joints.size());
   for (const Joint& j : joints)
   {
     const JointMaterial& jm = model.joint_materials[j.joint_material];
     // Each end spring carries half of the joint's length.
     const double half = 0.5 * j.length;
+    bool broken = false;
     for (const JointPoint& p : j.points)
     {
-      const double tensile_capacity = jm.tensile_strength * half;
       const double compression = -p.normal_force;
       const double shear_capacity =
           std::max(0.0, jm.cohesion * half + compression * tan_friction[j.joint_material]);
-      const bool tension_failure = p.normal_force > tensile_capacity;
-      if (!tension_failure && std::abs(p.shear_force) <= shear_capacity)
-        continue;
-      std::ostringstream s;
-      s << "bonded joint " << j.id << " between blocks " << j.block_a << " and " << j.block_b;
-      if (tension_failure)
-        s << " exceeded its tensile strength (" << p.normal_force << " N > " << tensile_capacity
-          << " N)";
-      else
-        s << " exceeded its shear strength (|" << p.shear_force << "| N > " << shear_capacity
-          << " N)";
-      s << " at t = " << format_time(current_time)
-        << "; a broken joint becomes a frictional contact, which needs the contact mechanics of "
-           "issue 4";
-      return {StepOutcome::joint_broken, s.str(), {}};
+      broken = broken || p.normal_force > jm.tensile_strength * half ||
+               std::abs(p.shear_force) > shear_capacity;
     }
+    if (!broken)
+    {
+      intact.push_back(j);
+      continue;
+    }
+    ++broken_joint_count;
+    if (small_displacement() && failure.empty())
+      failure = "bonded joint " + std::to_string(j.id) + " between blocks " +
+                std::to_string(j.block_a) + " and " + std::to_string(j.block_b) +
+                " exceeded its strength at t = " + format_time(current_time) +
+                "; a broken joint becomes a frictional contact, which a small-displacement "
+                "analysis cannot follow: expected `analysis.geometry: updated`";
   }
-  return {};
+  joints.swap(intact);
+  return failure;
 }
 
 // ---- observers -------------------------------------------------------------------------------
@@ -455,13 +942,54 @@ std::vector<BlockSnapshot> System::snapshot() const
   return out;
 }
 
+std::vector<ContactSnapshot> System::contact_snapshot() const
+{
+  std::vector<ContactSnapshot> out;
+  out.reserve(contacts.size() + 2 * joints.size());
+  for (const Contact& c : contacts)
+  {
+    const std::vector<Point>& ev = blocks[c.edge_block].vertices;
+    const Vector2 t = (ev[(c.edge + 1) % ev.size()] - ev[c.edge]).normalized();
+    ContactSnapshot s;
+    s.id = c.id;
+    s.block_a = c.vertex_block;
+    s.block_b = c.edge_block;
+    s.state = c.forces.state == ContactState::open    ? ContactPointState::open
+              : c.forces.state == ContactState::slide ? ContactPointState::slide
+                                                      : ContactPointState::lock;
+    s.position = blocks[c.vertex_block].vertices[c.vertex];
+    s.normal = Vector2(t.y(), -t.x());
+    s.normal_force = c.forces.normal_force;
+    s.shear_force = c.forces.shear_force;
+    s.gap = c.end_gap;
+    s.slip = c.total_slip;
+    out.push_back(s);
+  }
+  for (const Joint& j : joints)
+    for (const JointPoint& p : j.points)
+    {
+      ContactSnapshot s;
+      s.id = j.id;
+      s.block_a = j.block_a;
+      s.block_b = j.block_b;
+      s.state = ContactPointState::bonded;
+      s.position = p.on_a.position;
+      s.normal = j.normal(small_displacement());
+      s.normal_force = -p.normal_force;
+      s.shear_force = p.shear_force;
+      s.gap = s.normal.dot(p.on_b.position - p.on_a.position);
+      out.push_back(s);
+    }
+  return out;
+}
+
 MonitorSample System::sample_monitor(std::size_t k) const
 {
   const MaterialPoint& p = monitors[k];
   const Block& b = blocks[p.block];
   MonitorSample s;
   s.block = p.block;
-  s.displacement = p.position - p.initial;
+  s.displacement = p.position - monitor_origins[k];
   s.velocity = point_matrix(p) * b.velocity;
   s.stress = b.stress;
   return s;
@@ -479,6 +1007,13 @@ double System::stored_spring_energy() const
   }
   for (const AttachedFixedPoint& f : fixed_points)
     e += 0.5 * f.stiffness * (f.point.position - f.target(current_time)).squaredNorm();
+  for (const Contact& c : contacts)
+    if (c.forces.state != ContactState::open)
+    {
+      const ContactLaw law = contact_law(c);
+      e += 0.5 * (c.forces.normal_force * c.forces.normal_force / law.normal_stiffness +
+                  c.forces.shear_force * c.forces.shear_force / law.shear_stiffness);
+    }
   return e;
 }
 

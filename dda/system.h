@@ -2,6 +2,7 @@
 #pragma once
 
 #include "dda/block.h"
+#include "dda/contact/contact.h"
 #include "dda/joints.h"
 #include "dda/linear_solver.h"
 #include "dda/model_description.h"
@@ -12,6 +13,8 @@
 
 #include <cstddef>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace ddafem::dda
@@ -35,29 +38,58 @@ struct EnergyBalance
   double stored() const { return kinetic + strain + spring; }
 };
 
-/// What a step did. The caller acts on failures (stop, or cut the step in later issues).
+/// What a step did. On a failure the model is left as it was before the step; the caller acts
+/// on it: cut dt and retry (see can_retry_with_smaller_step) or stop.
 enum class StepOutcome
 {
   success,
   solver_failure, ///< singular / indefinite matrix, or NaN in the solution
-  joint_broken,   ///< a bonded joint exceeded its strength (contact mechanics: issue 4)
-  energy_growth   ///< stored energy exceeds 10x the energy put in: something feeds the model
+  /// the open-close iteration did not settle within ContactSettings::max_open_close_iterations
+  not_converged,
+  /// a vertex moved more than the allowed step displacement (g2 w0)
+  displacement_too_large,
+  /// a closed contact penetrates deeper than ContactSettings::max_penetration
+  penetration_too_large,
+  /// a bonded joint broke in a small-displacement analysis, which cannot follow contacts
+  joint_broken,
+  energy_growth ///< stored energy exceeds 10x the energy put in: something feeds the model
 };
+
+/// Whether a smaller dt can cure the outcome.
+bool can_retry_with_smaller_step(StepOutcome outcome);
 
 struct StepStatus
 {
   StepOutcome outcome = StepOutcome::success;
   std::string message; ///< why it failed, with the time reached
-  SolveStatus solve;
+  SolveStatus solve;   ///< of the last solve
+  unsigned n_open_close_iterations = 0;
+  std::size_t n_state_changes = 0; ///< contact state changes over the iteration
+  double max_displacement = 0.0;   ///< largest vertex displacement of the step [m]
+  double max_penetration = 0.0;    ///< deepest closed contact at the end of the step [m]
+  /// Static stages: the largest out-of-balance force on a block at the start of the step (the
+  /// translational part of the step's right-hand side with zero velocity) over the largest
+  /// applied force (gravity and point loads) on a block [-]; 0 in dynamic stages.
+  double unbalanced_force_ratio = 0.0;
 };
 
-/// Wall time spent in each phase of the step since construction [s].
+/// Wall time spent in each phase of the step since construction [s], and work counters.
 struct PhaseTimings
 {
-  double assemble = 0.0;
-  double solve = 0.0;
+  double broad_phase = 0.0;  ///< candidate block pairs
+  double narrow_phase = 0.0; ///< vertex-edge contacts of the pairs, matched to the previous ones
+  double assemble = 0.0;     ///< the step's matrix and right-hand side without contacts
+  double solve = 0.0;        ///< the open-close iteration: contact terms, solves, trial states
   double update = 0.0;
-  std::size_t n_steps = 0;
+  std::size_t n_steps = 0;                 ///< accepted steps
+  std::size_t n_attempts = 0;              ///< steps tried, accepted or not
+  std::size_t n_open_close_iterations = 0; ///< over all attempts
+};
+
+/// Number of contacts in each state.
+struct ContactCounts
+{
+  std::size_t open = 0, slide = 0, lock = 0;
 };
 
 /// History record of a monitor.
@@ -82,14 +114,32 @@ public:
   /// material, a frictional joint material, a point outside every block).
   explicit System(const ModelDescription& model);
 
-  /// Advances by dt [s]: assemble, solve, update blocks, check joint strength.
+  /// One step of dt [s] in named phases: find contact candidates, update contacts, assemble,
+  /// solve with the open-close iteration, update blocks (then bonded joints beyond their
+  /// strength break). On a failure nothing changes (the caller may retry with a smaller dt).
   StepStatus advance(double dt);
+
+  /// Starts a stage. Static (Shi's static analysis): velocities are zeroed before every step and
+  /// the clock stands still. A dynamic stage after a static one starts at rest from the state
+  /// reached, with the energy balance and the monitors' displacements measured from there.
+  void begin_stage(StageMode mode);
+  StageMode stage_mode() const { return mode; }
 
   double time() const { return current_time; }
   std::size_t n_steps() const { return timings.n_steps; }
   std::size_t n_dofs() const { return 6 * blocks.size(); }
   const std::vector<Block>& get_blocks() const { return blocks; }
+  /// The intact bonded joints (broken ones are gone: their blocks meet through contacts).
   const std::vector<Joint>& get_joints() const { return joints; }
+  std::size_t n_broken_joints() const { return broken_joint_count; }
+  /// The contacts of the last accepted step, ordered by (vertex block, vertex, edge block, edge).
+  const std::vector<Contact>& get_contacts() const { return contacts; }
+  ContactCounts contact_counts() const;
+  /// Half the model's size w0 [m] (Shi), the reference of the step displacement bound.
+  double half_model_size() const { return w0; }
+  double max_step_displacement() const { return step_displacement_limit; } ///< g2 w0 [m]
+  double search_distance() const { return contact_search_distance; }       ///< d0 [m]
+  double max_penetration() const { return penetration_limit; }             ///< [m]
   const ModelDescription& get_model() const { return model; }
   const PhaseTimings& get_timings() const { return timings; }
   const FactorizationReusingSolver& get_solver() const { return solver; }
@@ -100,6 +150,8 @@ public:
   double default_fixed_point_stiffness() const { return default_fixed_stiffness; }
 
   std::vector<BlockSnapshot> snapshot() const;
+  /// The contacts of the last accepted step and the end springs of the intact bonded joints.
+  std::vector<ContactSnapshot> contact_snapshot() const;
   MonitorSample sample_monitor(std::size_t monitor) const;
   EnergyBalance energy() const;
 
@@ -118,7 +170,32 @@ private:
     Point target(double t) const;
   };
 
+  /// Geometry of a contact over the step: T of the vertex and of its projection on the edge,
+  /// the edge's outward unit normal and unit tangent, in the configuration at the step start.
+  struct ContactFrame
+  {
+    Matrix26 t_vertex, t_edge;
+    Vector2 normal, tangent;
+  };
+
   MaterialPoint attach(const Point& p, const std::string& what) const;
+  /// Phase 1: block pairs whose boxes, inflated by d0, overlap.
+  std::vector<std::pair<std::size_t, std::size_t>> find_contact_candidates() const;
+  /// Phase 2: the vertex-edge contacts of the pairs, matched to the previous step's to keep
+  /// id, state and forces; sets trial_contacts and the matrix structure.
+  void update_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
+  ContactLaw contact_law(const Contact& c) const;
+  /// Phase 4: solves with the contacts in their trial states until no state changes.
+  StepStatus solve_with_open_close(const std::string& when);
+  void add_contact_terms();
+  /// Sets each trial from the solution; returns the number of state changes.
+  std::size_t update_trial_states();
+  double largest_vertex_displacement(const Eigen::VectorXd& d) const;
+  void set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings);
+  std::size_t coupling_of(std::size_t i, std::size_t j) const;
+  /// After an accepted step: bonded joints beyond their strength break. Returns the message of
+  /// a failure (small-displacement analysis), else empty.
+  std::string break_joints();
   bool small_displacement() const { return model.geometry == GeometryMode::small_displacement; }
   /// Moments of the configuration the step is linearised about (current or initial).
   const PolygonMoments& linearisation_moments(const Block& b) const;
@@ -127,7 +204,6 @@ private:
   /// The step's right-hand side, and its matrix if `with_matrix`.
   void assemble(double dt, bool with_matrix);
   void update_blocks(double dt, const Eigen::VectorXd& d);
-  StepStatus check_joint_strength() const;
   double stored_spring_energy() const;
   /// Outward unit normal of a boundary edge in the configuration the step is linearised about.
   Vector2 boundary_normal(const BoundaryEdge& e) const;
@@ -142,14 +218,35 @@ private:
   std::vector<AttachedLoad> loads;
   std::vector<AttachedFixedPoint> fixed_points;
   std::vector<MaterialPoint> monitors;
+  std::vector<Point> monitor_origins; ///< where each monitor's displacement is measured from
   std::vector<BoundaryEdge> boundary_edges;
   /// Each boundary edge's stiffness and force in the current step (set by assemble, used for
   /// the boundary's work in update_blocks).
   std::vector<BoundaryStep> boundary_steps;
+  std::vector<Contact> contacts;       ///< of the last accepted step
+  std::vector<Contact> trial_contacts; ///< of the step being tried
+  std::vector<ContactFrame> frames;    ///< of trial_contacts
+  std::size_t next_contact_id = 0;
+  std::size_t broken_joint_count = 0;
+  /// Where a bonded joint ties a vertex to the other block: (vertex block, vertex, other block).
+  std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> jointed_vertices;
+  /// Pairs of convex blocks joined by an intact joint, sorted (no contacts between them).
+  std::vector<std::pair<std::size_t, std::size_t>> bonded_pairs;
+  std::vector<bool> convex;             ///< whether each block is convex (at t = 0)
+  double w0 = 0.0;                      ///< half the model size [m]
+  double step_displacement_limit = 0.0; ///< g2 w0 [m]
+  double contact_search_distance = 0.0; ///< d0 [m]
+  double penetration_limit = 0.0;       ///< [m]
+  double angle_tolerance = 0.0;         ///< [rad]
+  bool contacts_enabled = true;         ///< false in a small-displacement analysis
+  StageMode mode = StageMode::dynamic;
   double default_fixed_stiffness = 0.0;
   double beta = 0.5, gamma = 1.0; ///< Newmark parameters of the integrator
 
+  std::vector<std::pair<std::size_t, std::size_t>> coupling_pairs; ///< the matrix's, sorted
   BlockSparseMatrix matrix;
+  BlockSparseMatrix base_matrix; ///< the step's matrix without contacts (when there are some)
+  Eigen::VectorXd base_rhs;
   double matrix_dt = 0.0; ///< dt the matrix was assembled for (small-displacement reuse)
   Eigen::VectorXd rhs;
   Eigen::VectorXd solution;

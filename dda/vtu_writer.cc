@@ -8,6 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
+#include <type_traits>
 
 namespace ddafem::dda
 {
@@ -15,8 +16,9 @@ namespace
 {
 namespace fs = std::filesystem;
 
-/// VTK cell type of a simple polygon, convex or not (vtkCellType.h).
+/// VTK cell types (vtkCellType.h): a simple polygon, convex or not, and a single point.
 constexpr int vtk_polygon = 7;
+constexpr int vtk_vertex = 1;
 
 /// Appends the shortest decimal text that reads back as exactly `value` (std::to_chars).
 void append_number(std::string& out, double value)
@@ -130,15 +132,9 @@ void append_vector(std::string& out, const Vector2& v)
   out += " 0\n";
 }
 
-/// The complete text of one .vtu file.
-std::string vtu_text(double time, const std::vector<BlockSnapshot>& blocks)
+/// The opening of a .vtu file up to the <Piece> element.
+void open_piece(std::string& out, double time, std::size_t n_points, std::size_t n_cells)
 {
-  std::size_t n_points = 0;
-  for (const auto& block : blocks)
-    n_points += block.vertices.size();
-
-  std::string out;
-  out.reserve(256 + 64 * n_points + 256 * blocks.size());
   out += "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
          "  <UnstructuredGrid>\n"
@@ -151,9 +147,20 @@ std::string vtu_text(double time, const std::vector<BlockSnapshot>& blocks)
          "    <Piece NumberOfPoints=\"";
   append_integer(out, n_points);
   out += "\" NumberOfCells=\"";
-  append_integer(out, blocks.size());
+  append_integer(out, n_cells);
   out += "\">\n";
+}
 
+/// The complete text of one .vtu file.
+std::string vtu_text(double time, const std::vector<BlockSnapshot>& blocks)
+{
+  std::size_t n_points = 0;
+  for (const auto& block : blocks)
+    n_points += block.vertices.size();
+
+  std::string out;
+  out.reserve(256 + 64 * n_points + 256 * blocks.size());
+  open_piece(out, time, n_points, blocks.size());
   // Points: the current vertices of every block, block after block, z = 0 [m].
   out += "      <Points>\n"
          "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
@@ -253,6 +260,92 @@ std::string vtu_text(double time, const std::vector<BlockSnapshot>& blocks)
   return out;
 }
 
+/// One integer or number per line of a cell-data array.
+template <typename Value>
+void append_column(std::string& out, const std::vector<ContactSnapshot>& contacts, const char* type,
+                   const char* name, Value (*get)(const ContactSnapshot&))
+{
+  open_array(out, type, name, 1);
+  for (const ContactSnapshot& c : contacts)
+  {
+    out += "          ";
+    if constexpr (std::is_floating_point_v<Value>)
+      append_number(out, get(c));
+    else
+      append_integer(out, get(c));
+    out += '\n';
+  }
+  out += close_array;
+}
+
+std::string contact_vtu_text(double time, const std::vector<ContactSnapshot>& contacts)
+{
+  std::string out;
+  out.reserve(512 + 256 * contacts.size());
+  open_piece(out, time, contacts.size(), contacts.size());
+  out += "      <Points>\n"
+         "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const ContactSnapshot& c : contacts)
+    append_vector(out, c.position);
+  out += close_array;
+  out += "      </Points>\n"
+         "      <Cells>\n";
+  std::vector<std::size_t> index(contacts.size());
+  for (std::size_t k = 0; k < index.size(); ++k)
+    index[k] = k;
+  open_array(out, "Int64", "connectivity", 1);
+  for (const std::size_t k : index)
+  {
+    out += "          ";
+    append_integer(out, k);
+    out += '\n';
+  }
+  out += close_array;
+  open_array(out, "Int64", "offsets", 1);
+  for (const std::size_t k : index)
+  {
+    out += "          ";
+    append_integer(out, k + 1);
+    out += '\n';
+  }
+  out += close_array;
+  open_array(out, "UInt8", "types", 1);
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+  {
+    out += "          ";
+    append_integer(out, vtk_vertex);
+    out += '\n';
+  }
+  out += close_array;
+  out += "      </Cells>\n"
+         "      <CellData Scalars=\"state\" Vectors=\"normal\">\n";
+  append_column<std::size_t>(out, contacts, "Int64", "id",
+                             [](const ContactSnapshot& c) { return c.id; });
+  append_column<std::size_t>(out, contacts, "Int64", "block_a",
+                             [](const ContactSnapshot& c) { return c.block_a; });
+  append_column<std::size_t>(out, contacts, "Int64", "block_b",
+                             [](const ContactSnapshot& c) { return c.block_b; });
+  append_column<int>(out, contacts, "Int32", "state",
+                     [](const ContactSnapshot& c) { return static_cast<int>(c.state); });
+  open_array(out, "Float64", "normal", 3);
+  for (const ContactSnapshot& c : contacts)
+    append_vector(out, c.normal);
+  out += close_array;
+  append_column<double>(out, contacts, "Float64", "normal_force",
+                        [](const ContactSnapshot& c) { return c.normal_force; });
+  append_column<double>(out, contacts, "Float64", "shear_force",
+                        [](const ContactSnapshot& c) { return c.shear_force; });
+  append_column<double>(out, contacts, "Float64", "gap",
+                        [](const ContactSnapshot& c) { return c.gap; });
+  append_column<double>(out, contacts, "Float64", "slip",
+                        [](const ContactSnapshot& c) { return c.slip; });
+  out += "      </CellData>\n"
+         "    </Piece>\n"
+         "  </UnstructuredGrid>\n"
+         "</VTKFile>\n";
+  return out;
+}
+
 } // namespace
 
 VtuSeriesWriter::VtuSeriesWriter(std::string directory_name, std::string file_basename)
@@ -264,6 +357,16 @@ VtuSeriesWriter::VtuSeriesWriter(std::string directory_name, std::string file_ba
 }
 
 std::string VtuSeriesWriter::write(double time, const std::vector<BlockSnapshot>& blocks)
+{
+  return write_text(time, vtu_text(time, blocks));
+}
+
+std::string VtuSeriesWriter::write(double time, const std::vector<ContactSnapshot>& contacts)
+{
+  return write_text(time, contact_vtu_text(time, contacts));
+}
+
+std::string VtuSeriesWriter::write_text(double time, const std::string& text)
 {
   const fs::path dir = directory.empty() ? fs::path(".") : fs::path(directory);
   std::error_code error;
@@ -277,7 +380,7 @@ std::string VtuSeriesWriter::write(double time, const std::vector<BlockSnapshot>
   std::snprintf(index, sizeof(index), "%05zu", entries.size());
   const std::string name = basename + "_" + index + ".vtu";
   const fs::path path = dir / name;
-  write_file_atomically(path, vtu_text(time, blocks));
+  write_file_atomically(path, text);
 
   entries.emplace_back(time, name);
   write_pvd();

@@ -23,10 +23,16 @@ public:
 
   /// Writes one snapshot at simulated time `time` [s]; returns the .vtu path written.
   std::string write(double time, const std::vector<BlockSnapshot>& blocks);
+  /// Writes one snapshot of contact points (a series holds either blocks or contacts): one
+  /// VTK_VERTEX cell per point with cell data id, block_a, block_b, state (Int32: 0 open,
+  /// 1 slide, 2 lock, 3 bonded joint end), normal (3-component), normal_force [N, compression
+  /// positive], shear_force [N], gap [m, negative: penetration] and slip [m].
+  std::string write(double time, const std::vector<ContactSnapshot>& contacts);
 
   std::size_t n_written() const { return entries.size(); }
 
 private:
+  std::string write_text(double time, const std::string& text);
   void write_pvd() const;
   std::string directory;
   std::string basename;

@@ -2,6 +2,7 @@
 // and a block stack at rest under gravity.
 #include "app/scene.h"
 #include "dda/system.h"
+#include "dda/time_stepper.h"
 
 #include <gtest/gtest.h>
 
@@ -156,11 +157,21 @@ TEST(BlockStack, ReachesTheStaticStressOfItsWeight)
   // A unit block with a load P on top and the support below carries mean
   // syy = -(2P + W) / (2 w) (virtual work of a uniform strain); W = rho g (1 m^2).
   const Scene scene = read_scene(examples + "block_stack/stack.yaml");
+  ASSERT_EQ(scene.model.stages.size(), 2u);
+  const Stage& settle = scene.model.stages[0];
+  ASSERT_EQ(settle.mode, StageMode::static_equilibrium);
   System system(scene.model);
-  const double dt = scene.model.time.dt;
-  const auto n = static_cast<std::size_t>(std::llround(scene.model.time.end_time / dt));
-  for (std::size_t k = 0; k < n; ++k)
-    ASSERT_EQ(system.advance(dt).outcome, StepOutcome::success);
+  system.begin_stage(StageMode::static_equilibrium);
+  TimeStepper stepper(system, scene.model.time, settle.dt);
+  bool converged = false;
+  for (std::size_t k = 0; k < settle.max_steps && !converged; ++k)
+  {
+    const StepStatus status = stepper.step();
+    ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
+    converged = status.unbalanced_force_ratio <= settle.tolerance;
+  }
+  ASSERT_TRUE(converged);
+  EXPECT_EQ(system.time(), 0.0); // the clock stands still in a static stage
   const Material& m = scene.model.materials[0];
   const double w = m.density * std::abs(scene.model.gravity.y()) * 1.0;
   // Blocks 1, 2, 3 are stacked bottom to top on the base block 0.
@@ -172,7 +183,15 @@ TEST(BlockStack, ReachesTheStaticStressOfItsWeight)
     const double expected = -(2 * load_on_top[i] + w) / 2.0;
     EXPECT_NEAR(blocks[i + 1].stress[1], expected, 0.01 * std::abs(expected)) << "block " << i + 1;
   }
-  // At rest: kinetic energy negligible against the strain energy.
-  const EnergyBalance e = system.energy();
-  EXPECT_LT(e.kinetic, 1e-6 * (e.strain + e.spring));
+  // Every contact of the stack is closed and locked (4 pairs of corners).
+  EXPECT_EQ(system.contact_counts().lock, 6u);
+  EXPECT_EQ(system.contact_counts().slide, 0u);
+
+  // The dynamic stage starts at rest from the equilibrium and stays there until the push.
+  system.begin_stage(StageMode::dynamic);
+  TimeStepper dynamic(system, scene.model.time);
+  while (system.time() < 0.1) // the push starts at 0.1 s
+    ASSERT_EQ(dynamic.step().outcome, StepOutcome::success);
+  EXPECT_LT(system.sample_monitor(0).displacement.norm(), 1e-6);
+  EXPECT_LT(system.energy().kinetic, 1e-6 * (system.energy().strain + system.energy().spring));
 }

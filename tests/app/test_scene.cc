@@ -308,7 +308,18 @@ TEST(SceneExamples, BlockStackIsReadAsSpecified)
   EXPECT_EQ(m.monitors[0].name, "top");
   EXPECT_EQ(m.monitors[1].name, "bottom");
   EXPECT_EQ(m.time.dt, 1e-3);
-  EXPECT_EQ(m.time.end_time, 1.0);
+  EXPECT_EQ(m.time.end_time, 0.7);
+  EXPECT_EQ(m.time.control, dda::TimeControl::adaptive);
+  EXPECT_FALSE(m.joint_materials.at(0).bonded);
+  ASSERT_EQ(m.point_loads.size(), 1u);
+  EXPECT_NEAR(m.point_loads[0].time_function.value(0.35), 0.5, 1e-12);
+  ASSERT_EQ(m.stages.size(), 2u);
+  EXPECT_EQ(m.stages[0].name, "settle");
+  EXPECT_EQ(m.stages[0].mode, dda::StageMode::static_equilibrium);
+  EXPECT_EQ(m.stages[0].max_steps, 2000u);
+  EXPECT_EQ(m.stages[0].dt, 1e-3);
+  EXPECT_EQ(m.stages[1].mode, dda::StageMode::dynamic);
+  EXPECT_EQ(m.stages[1].end_time, 0.7);
   EXPECT_EQ(scene.output.interval, 0.1);
 }
 
@@ -983,9 +994,10 @@ TEST_F(SceneTest, ProblemsWithOverriddenValuesNameTheCommandLine)
   { return error_of(minimal_scene, {parse_override(argument)}); };
   EXPECT_EQ(message("time.dt=-1"),
             "command line --set time.dt=-1: key 'time.dt' = '-1': expected a number > 0 [s]");
-  EXPECT_EQ(message("time.dtt=1e-4"),
-            "command line --set time.dtt=1e-4: key 'time.dtt': unknown key; did you mean 'dt'? "
-            "Allowed keys here: dt, end_time, integrator");
+  EXPECT_EQ(
+      message("time.dtt=1e-4"),
+      "command line --set time.dtt=1e-4: key 'time.dtt': unknown key; did you mean 'dt'? "
+      "Allowed keys here: dt, end_time, integrator, control, dt_min, cut_factor, growth_factor");
   EXPECT_NE(message("blocks.0.vertices=[[0, 0], [1, 1]]")
                 .find("command line --set blocks.0.vertices=[[0, 0], [1, 1]]: key "
                       "'blocks[0].vertices'"),

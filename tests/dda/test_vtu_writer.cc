@@ -200,7 +200,7 @@ TEST(VtuSeriesWriter, EmptySnapshotIsValid)
 {
   const fs::path dir = temporary_path("_dir");
   VtuSeriesWriter writer(dir.string(), "empty");
-  const std::string text = read_text(writer.write(0.0, {}));
+  const std::string text = read_text(writer.write(0.0, std::vector<BlockSnapshot>{}));
   EXPECT_EQ(attribute(text, "NumberOfPoints"), "0");
   EXPECT_EQ(attribute(text, "NumberOfCells"), "0");
   EXPECT_TRUE(data_array(text, "offsets").empty());

@@ -1,0 +1,55 @@
+// Constitutive law of a DDA contact point: penalty springs and Mohr-Coulomb with cohesion and
+// tensile strength (Shi 1988, ch. 4). Pure functions, no geometry.
+#pragma once
+
+namespace ddafem::dda
+{
+/// State of a contact, as decided by the open-close iteration.
+enum class ContactState
+{
+  open,  ///< no contact force: the vertex is off the edge (or the contact failed in tension)
+  slide, ///< closed, the shear force is the Mohr-Coulomb limit (friction opposes the slip)
+  lock   ///< closed, normal and shear springs (p and p_s) act
+};
+
+/// Properties of one contact point.
+struct ContactLaw
+{
+  double normal_stiffness = 0.0; ///< p [N/m]
+  double shear_stiffness = 0.0;  ///< p_s [N/m]
+  double tan_friction = 0.0;     ///< tan(phi) [-]
+  double cohesive_force = 0.0;   ///< cohesion x the joint length the contact carries [N]
+  double tensile_capacity = 0.0; ///< tensile strength x that length [N]
+};
+
+/// A contact's state and forces. Sign conventions: `normal_force` is compression positive;
+/// `shear_force` S acts on the vertex block as -S t and on the edge block as +S t, with t the
+/// edge's unit tangent (anticlockwise around the edge block), so S > 0 when the vertex has moved
+/// along +t relative to the edge.
+struct ContactForces
+{
+  ContactState state = ContactState::open;
+  double normal_force = 0.0; ///< N [N]
+  double shear_force = 0.0;  ///< S [N]
+  /// Cohesion and tensile strength still act: the contact has never slid nor failed in tension.
+  bool intact = true;
+};
+
+/// The state and forces of a contact at the end of a step (one open-close trial), from its
+/// state at the start of the step (`start`), its normal gap at the end of the step `gap` [m]
+/// (negative: penetration) and the tangential relative displacement of the step `slip` [m]
+/// (vertex relative to the edge, along t).
+/// - A contact that was open closes when gap < 0. A closed contact opens when the normal spring
+///   pulls (gap > 0), unless it is intact and the pull p gap stays within its tensile capacity.
+///   Failing in tension ends its cohesion and tensile strength.
+/// - A closed contact locks when the elastic trial S0 + p_s slip is within the Mohr-Coulomb
+///   limit N tan(phi) + c (c only while intact), and slides otherwise with S = +-limit in the
+///   direction of the trial; sliding ends cohesion and tensile strength.
+ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start, double gap,
+                               double slip);
+
+/// Whether two trials differ in what the next iteration assembles: the state, or the direction
+/// of sliding.
+bool state_changed(const ContactForces& a, const ContactForces& b);
+
+} // namespace ddafem::dda
