@@ -32,6 +32,8 @@ const char* part_name(fem::BoundaryPart p)
     return "top";
   case fem::BoundaryPart::left:
     return "left";
+  case fem::BoundaryPart::hole:
+    return "hole";
   }
   return "";
 }
@@ -95,8 +97,15 @@ std::string check_far_field(const Scene& scene)
   out << "  material: rho " << format(d.density) << " kg/m^3, E " << format(d.youngs_modulus)
       << " Pa, nu " << d.poisson_ratio << "; VP " << format(model.p_wave_speed(), 5) << " m/s, VS "
       << format(model.s_wave_speed(), 5) << " m/s\n";
-  out << "  mesh: " << model.n_cells() << " cells of " << format(model.element_size())
-      << " m, FE_Q(" << d.degree << "), " << model.n_dofs() << " DOFs\n";
+  out << "  mesh: " << model.n_cells() << " cells of " << format(model.smallest_element_size())
+      << " to " << format(model.element_size()) << " m, FE_Q(" << d.degree << "), "
+      << model.n_dofs() << " DOFs, " << model.n_constraints() << " constrained\n";
+  if (!d.mesh_file.file.empty())
+    out << "  mesh file: " << d.mesh_file.file << "\n";
+  if (model.boundary_length(fem::BoundaryPart::hole) > 0.0)
+    out << "  hole: perimeter " << format(model.boundary_length(fem::BoundaryPart::hole))
+        << " m, meshed area " << format(model.area()) << " m^2\n";
+  out << "  solver: " << model.solver_name() << "\n";
   const double f = std::max(d.max_frequency, d.incident.velocity.characteristic_frequency());
   if (f > 0.0)
     out << "  resolution at " << format(f)
@@ -190,10 +199,13 @@ int run_far_field(const Scene& scene, const RunOptions& options, std::ostream& l
   summary["steps"] = t.n_steps;
   summary["dt_s"] = d.dt;
   summary["integrator"] = d.integrator == fem::Integrator::dda ? "dda" : "newmark_trapezoidal";
-  summary["solver"] = {{"name", "umfpack"}, {"factorizations", 1}};
+  summary["solver"] = {{"name", model.solver_name()},
+                       {"factorizations", 1},
+                       {"linear_iterations", t.linear_iterations}};
   summary["model"] = {{"far_field_cells", model.n_cells()},
                       {"far_field_dofs", model.n_dofs()},
                       {"element_size_m", model.element_size()},
+                      {"smallest_element_size_m", model.smallest_element_size()},
                       {"degree", d.degree},
                       {"blocks", 0}};
   summary["wall_time_s"] = wall;

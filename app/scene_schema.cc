@@ -429,8 +429,14 @@ SceneSchema::SceneSchema()
        "is exact for energy; `dda` damps like the blocks). Monitors may lie in it. Blocks and a "
        "far field in one scene need the coupling of issue 6 and are refused for now.",
        {key("material", T::string).required().meaning("name of a material in `materials`"),
-        key("lower", T::vector2).unit("m").required().meaning("lower-left corner [x0, y0]"),
-        key("upper", T::vector2).unit("m").required().meaning("upper-right corner [x1, y1]"),
+        key("lower", T::vector2)
+            .unit("m")
+            .default_note("required unless `mesh` is given")
+            .meaning("lower-left corner [x0, y0]"),
+        key("upper", T::vector2)
+            .unit("m")
+            .default_note("required unless `mesh` is given")
+            .meaning("upper-right corner [x1, y1]"),
         key("element_size", T::number)
             .unit("m")
             .default_yaml("0")
@@ -446,6 +452,25 @@ SceneSchema::SceneSchema()
             .greater_than(0)
             .meaning("nodes per shortest S wavelength"),
         key("degree", T::integer).default_yaml("2").at_least(1).meaning("FE_Q degree: 1 or 2"),
+        key("hole", T::section)
+            .section("far_field.hole")
+            .default_note("none")
+            .meaning("a hole in the rectangle (for the near field), elements graded towards it"),
+        key("mesh", T::section)
+            .section("far_field.mesh")
+            .default_note("none: the generated rectangle")
+            .meaning("a Gmsh mesh instead of the rectangle"),
+        key("solver", T::choice)
+            .default_yaml("direct")
+            .choices({"direct", "cg"})
+            .meaning("direct: sparse LU factorized once; cg: conjugate gradients (Jacobi), "
+                     "warm-started from the predicted displacement: faster on large models"),
+        key("solver_tolerance", T::number)
+            .default_yaml("1e-12")
+            .greater_than(0)
+            .less_than(1)
+            .meaning("cg: residual relative to the right-hand side (1e-12: monitors agree with "
+                     "`direct` to about 1e-8)"),
         key("boundaries", T::section_list)
             .section("far_field.boundaries[i]")
             .default_note("all parts free")
@@ -460,8 +485,8 @@ SceneSchema::SceneSchema()
        "One side of the far-field rectangle. Sides not listed are traction free.",
        {key("part", T::choice)
             .required()
-            .choices({"bottom", "right", "top", "left"})
-            .meaning("the side"),
+            .choices({"bottom", "right", "top", "left", "hole"})
+            .meaning("the side, or the hole's boundary"),
         key("type", T::choice)
             .required()
             .choices({"free", "fixed", "lysmer", "input", "roller"})
@@ -475,6 +500,69 @@ SceneSchema::SceneSchema()
             .default_yaml("1")
             .greater_than(0)
             .meaning("tangential dashpot factor")}});
+
+  all_sections.push_back(
+      {"far_field.hole",
+       "A hole in the far-field rectangle, its boundary the part `hole`. The mesh is an O-grid of "
+       "quadrilaterals between the hole and a box twice its size, a Cartesian grid outside, "
+       "refined near the hole (hanging nodes) until each element's longest edge is at most "
+       "min(far size, element_size + (growth_ratio - 1) d), d the distance from the hole. Give "
+       "the keys of the shape: rectangle `lower`, `upper`; polygon `vertices`; circle `center`, "
+       "`radius`.",
+       {key("shape", T::choice)
+            .required()
+            .choices({"rectangle", "polygon", "circle"})
+            .meaning("the hole's shape"),
+        key("lower", T::vector2)
+            .unit("m")
+            .default_note("rectangle only")
+            .meaning("lower-left "
+                     "corner"),
+        key("upper", T::vector2)
+            .unit("m")
+            .default_note("rectangle only")
+            .meaning("upper-right "
+                     "corner"),
+        key("vertices", T::point_list)
+            .unit("m")
+            .default_note("polygon only")
+            .meaning("at least 3 vertices, star-shaped about their centroid (e.g. convex)"),
+        key("center", T::vector2).unit("m").default_note("circle only").meaning("centre"),
+        key("radius", T::number)
+            .unit("m")
+            .default_note("circle only")
+            .greater_than(0)
+            .meaning("radius; the boundary follows the circle under refinement"),
+        key("element_size", T::number)
+            .unit("m")
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("element size at the hole; 0: the far size (no grading)"),
+        key("growth_ratio", T::number)
+            .default_yaml("1.3")
+            .greater_than(1)
+            .meaning("size ratio of neighbouring elements away from the hole")}});
+
+  all_sections.push_back(
+      {"far_field.mesh",
+       "A quadrilateral mesh from a Gmsh file (ASCII msh 2 or 4, read by deal.II GridIn) instead "
+       "of the rectangle: the far field is the file's mesh, not refined. Its physical line tags "
+       "name the boundary parts; boundary lines with other tags or none are free.",
+       {key("file", T::string).required().meaning("path of the .msh file, relative to the scene"),
+        key("parts", T::section)
+            .section("far_field.mesh.parts")
+            .default_note("none: all boundary lines free")
+            .meaning("physical line tag of each named part")}});
+
+  all_sections.push_back(
+      {"far_field.mesh.parts",
+       "Physical line tags of the parts used in `far_field.boundaries` (each tag must occur in "
+       "the file).",
+       {key("bottom", T::integer).at_least(1).default_note("none").meaning("tag of `bottom`"),
+        key("right", T::integer).at_least(1).default_note("none").meaning("tag of `right`"),
+        key("top", T::integer).at_least(1).default_note("none").meaning("tag of `top`"),
+        key("left", T::integer).at_least(1).default_note("none").meaning("tag of `left`"),
+        key("hole", T::integer).at_least(1).default_note("none").meaning("tag of `hole`")}});
 
   all_sections.push_back(
       {"far_field.incident",

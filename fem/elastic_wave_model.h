@@ -52,10 +52,12 @@ struct Timings
   double solve = 0.0;
   double update = 0.0;
   std::size_t n_steps = 0;
+  std::size_t linear_iterations = 0; ///< summed over steps (iterative solver; 0 for direct)
 };
 
-/// A rectangular far field in time. The effective matrix K + gamma/(beta dt) C + 1/(beta dt^2) M
-/// is factorized once (deal.II SparseDirectUMFPACK) and each step is one solve.
+/// A far field in time (a rectangle, optionally with a graded hole, or a Gmsh mesh). The
+/// effective matrix K + gamma/(beta dt) C + 1/(beta dt^2) M is set up once (factorized, or a
+/// preconditioner for CG) and each step is one solve (fem/linear_solvers.h).
 class ElasticWaveModel
 {
 public:
@@ -80,9 +82,15 @@ public:
   double time() const;
   std::size_t n_dofs() const;
   std::size_t n_cells() const;
-  double element_size() const; ///< [m]
-  double p_wave_speed() const; ///< [m/s] of the plane mode
-  double s_wave_speed() const; ///< [m/s]
+  double element_size() const;          ///< longest element edge [m]
+  double smallest_element_size() const; ///< shortest longest-edge of an element [m] (graded)
+  double area() const;                  ///< meshed area [m^2] (the rectangle less any hole)
+  /// Length [m] of the boundary faces of a part (0 if the mesh has none).
+  double boundary_length(BoundaryPart part) const;
+  std::size_t n_constraints() const; ///< constrained DOFs: fixed, roller, hanging nodes
+  std::string solver_name() const;   ///< "umfpack", "klu" or "cg_jacobi"
+  double p_wave_speed() const;       ///< [m/s] of the plane mode
+  double s_wave_speed() const;       ///< [m/s]
   const Timings& timings() const;
 
   MonitorSample sample_monitor(std::size_t monitor) const;

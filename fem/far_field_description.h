@@ -4,6 +4,7 @@
 #include "common/time_function.h"
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -40,13 +41,15 @@ enum class BoundaryKind
   roller
 };
 
-/// Boundary parts of the rectangle, named as in scenes.
+/// Boundary parts of the far field, named as in scenes: the sides of the rectangle and the
+/// boundary of the hole (a generated hole, or the part a Gmsh file tags as `hole`).
 enum class BoundaryPart
 {
   bottom,
   right,
   top,
-  left
+  left,
+  hole
 };
 
 struct BoundaryCondition
@@ -76,7 +79,56 @@ struct Monitor
   std::array<double, 2> point{{0.0, 0.0}}; ///< [m], inside the domain
 };
 
-/// A rectangular far field [x0, x1] x [y0, y1] meshed with square-ish FE_Q elements.
+/// Shape of the hole in a generated far-field mesh (for the DDA near field).
+enum class HoleShape
+{
+  none,
+  rectangle, ///< [lower, upper]
+  polygon,   ///< vertices, star-shaped about their area centroid
+  circle     ///< center, radius (the boundary follows the circle under refinement)
+};
+
+/// A hole in the rectangle. The mesh is an O-grid of quadrilaterals between the hole and a box
+/// about twice its size, a Cartesian grid outside the box, and local refinement (hanging nodes)
+/// until every element is at most min(far size, element_size + (growth_ratio - 1) d), d the
+/// distance of its centre from the hole.
+struct HoleDescription
+{
+  HoleShape shape = HoleShape::none;
+  std::array<double, 2> lower{{0.0, 0.0}};     ///< rectangle [m]
+  std::array<double, 2> upper{{0.0, 0.0}};     ///< rectangle [m]
+  std::vector<std::array<double, 2>> vertices; ///< polygon [m], either orientation
+  std::array<double, 2> center{{0.0, 0.0}};    ///< circle [m]
+  double radius = 0.0;                         ///< circle [m]
+  double element_size = 0.0;                   ///< element size at the hole [m]; 0: the far size
+  double growth_ratio = 1.3; ///< size ratio of neighbouring elements away from the hole, > 1
+};
+
+/// A mesh read from a Gmsh file (ASCII msh 2 or 4) instead of the generated rectangle: its
+/// physical line tags name the boundary parts; untagged boundary lines are free.
+struct MeshFile
+{
+  std::string file;                           ///< empty: generated mesh
+  std::map<BoundaryPart, unsigned int> parts; ///< physical line tag of each named part
+};
+
+/// Linear solver of the constant effective matrix.
+enum class LinearSolver
+{
+  direct, ///< sparse LU factorized once, one forward and back substitution per step
+  cg      ///< conjugate gradients with a Jacobi preconditioner, warm-started from the predictor
+};
+
+/// Implementation of LinearSolver::direct (not a scene key: KLU was faster everywhere measured,
+/// bench/fem_bench.py compares them).
+enum class DirectSolver
+{
+  klu,    ///< Trilinos Amesos KLU
+  umfpack ///< deal.II SparseDirectUMFPACK
+};
+
+/// A rectangular far field [x0, x1] x [y0, y1] meshed with square-ish FE_Q elements (optionally
+/// with a graded hole), or a Gmsh mesh.
 struct FarFieldDescription
 {
   std::array<double, 2> lower{{0.0, 0.0}}; ///< (x0, y0) [m]
@@ -96,6 +148,11 @@ struct FarFieldDescription
   double dt = 0.0;       ///< [s]
   double end_time = 0.0; ///< [s]
   Integrator integrator = Integrator::newmark_trapezoidal;
+  HoleDescription hole;
+  MeshFile mesh_file;
+  LinearSolver solver = LinearSolver::direct;
+  DirectSolver direct_solver = DirectSolver::klu;
+  double solver_tolerance = 1e-12; ///< cg: residual relative to the right-hand side
 };
 
 } // namespace ddafem::fem
