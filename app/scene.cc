@@ -967,6 +967,34 @@ fem::BoundaryPart part_of(const std::string& name)
                            : fem::BoundaryPart::hole;
 }
 
+/// `far_field.rayleigh`: {alpha, beta} or {ratio, frequencies}.
+fem::RayleighDamping read_rayleigh(const MapReader& r)
+{
+  fem::RayleighDamping rayleigh;
+  const bool factors = r.has("alpha") || r.has("beta");
+  const bool ratio = r.has("ratio") || r.has("frequencies");
+  if (factors == ratio)
+    throw r.error(factors ? "ratio" : "alpha",
+                  "expected either `alpha` and/or `beta`, or `ratio` with `frequencies`");
+  if (factors)
+  {
+    rayleigh.alpha = r.has("alpha") ? r.number("alpha") : 0.0;
+    rayleigh.beta = r.has("beta") ? r.number("beta") : 0.0;
+    return rayleigh;
+  }
+  for (const char* k : {"ratio", "frequencies"})
+    if (!r.has(k))
+      throw r.error(k, "missing required key: `ratio` needs `frequencies` [f1, f2] and back");
+  const double zeta = r.number("ratio");
+  const Vector2 f = r.vector2("frequencies");
+  if (!(f.y() > f.x()))
+    throw r.error("frequencies", "expected f1 < f2");
+  const double w1 = 2.0 * M_PI * f.x(), w2 = 2.0 * M_PI * f.y();
+  rayleigh.alpha = 2.0 * zeta * w1 * w2 / (w1 + w2);
+  rayleigh.beta = 2.0 * zeta / (w1 + w2);
+  return rayleigh;
+}
+
 /// `far_field.mesh`: the Gmsh file (relative to the scene) and its tags.
 fem::MeshFile read_mesh_file(const MapReader& f)
 {
@@ -1094,6 +1122,25 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
   if (f.has("hole"))
     d.hole = read_hole(f.section_reader("hole"), d);
   d.solver = f.choice("solver") == "cg" ? fem::LinearSolver::cg : fem::LinearSolver::direct;
+  if (f.has("static_stage"))
+  {
+    const MapReader r = f.section_reader("static_stage");
+    fem::StaticStage& s = d.static_stage;
+    s.enabled = true;
+    if (r.has("gravity"))
+    {
+      const Vector2 g = r.vector2("gravity");
+      s.gravity = {g.x(), g.y()};
+    }
+    const Voigt stress = r.voigt("stress"), gradient = r.voigt("stress_gradient");
+    s.stress = {stress[0], stress[1], stress[2]};
+    s.stress_gradient = {gradient[0], gradient[1], gradient[2]};
+    s.reference_y = r.has("reference_y") ? r.number("reference_y") : d.upper[1];
+    s.support =
+        r.choice("support") == "roller" ? fem::StaticSupport::roller : fem::StaticSupport::fixed;
+  }
+  if (f.has("rayleigh"))
+    d.rayleigh = read_rayleigh(f.section_reader("rayleigh"));
   d.solver_tolerance = f.number("solver_tolerance");
   const long long degree = f.integer("degree");
   if (degree != 1 && degree != 2)
@@ -1411,6 +1458,9 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   }
 
   model.gravity = top.vector2("gravity");
+  if (scene.far_field && scene.far_field->static_stage.enabled &&
+      !top.section_reader("far_field").section_reader("static_stage").has("gravity"))
+    scene.far_field->static_stage.gravity = {model.gravity.x(), model.gravity.y()};
 
   std::map<std::string, std::string> monitor_paths;
   for (const MapReader& r : top.section_list("monitors"))

@@ -471,6 +471,14 @@ SceneSchema::SceneSchema()
             .less_than(1)
             .meaning("cg: residual relative to the right-hand side (1e-12: monitors agree with "
                      "`direct` to about 1e-8)"),
+        key("static_stage", T::section)
+            .section("far_field.static_stage")
+            .default_note("none: the dynamic stage starts unstressed")
+            .meaning("gravity and in-situ stress solved statically before the dynamic stage"),
+        key("rayleigh", T::section)
+            .section("far_field.rayleigh")
+            .default_note("none")
+            .meaning("Rayleigh damping C += alpha M + beta K"),
         key("boundaries", T::section_list)
             .section("far_field.boundaries[i]")
             .default_note("all parts free")
@@ -542,6 +550,55 @@ SceneSchema::SceneSchema()
             .default_yaml("1.3")
             .greater_than(1)
             .meaning("size ratio of neighbouring elements away from the hole")}});
+
+  all_sections.push_back(
+      {"far_field.static_stage",
+       "A static stage ahead of the dynamic one: K u_s = f_gravity - integral(B^T sigma0) with "
+       "the `lysmer` and `input` parts held (`support`), sigma0(y) = stress + stress_gradient (y "
+       "- reference_y) the in-situ stress. The reactions are then kept as constant forces and "
+       "the dashpots act: the dynamic stage starts from u_s at rest. Monitors and snapshots "
+       "report displacements relative to u_s and the total stress sigma0 + D B u.",
+       {key("gravity", T::vector2)
+            .unit("m/s^2")
+            .default_note("the scene's `gravity`")
+            .meaning("body acceleration of the far field, e.g. [0, -9.81]"),
+        key("stress", T::voigt)
+            .unit("Pa")
+            .default_yaml("[0, 0, 0]")
+            .meaning("in-situ stress [sxx, syy, sxy] at reference_y, tension positive"),
+        key("stress_gradient", T::voigt)
+            .unit("Pa/m")
+            .default_yaml("[0, 0, 0]")
+            .meaning("d/dy of the in-situ stress, e.g. [K0 rho g, rho g, 0] for lithostatic "
+                     "stress with reference_y at the surface"),
+        key("reference_y", T::number)
+            .unit("m")
+            .default_note("the top of the far field")
+            .meaning("height where the in-situ stress is `stress`"),
+        key("support", T::choice)
+            .default_yaml("fixed")
+            .choices({"fixed", "roller"})
+            .meaning("how `lysmer` and `input` parts are held in the static stage: fixed, or "
+                     "roller (normal displacement only; the hole is held fixed)")}});
+
+  all_sections.push_back(
+      {"far_field.rayleigh",
+       "Rayleigh damping C += alpha M + beta K; its damping ratio at circular frequency omega is "
+       "alpha / (2 omega) + beta omega / 2. Give `alpha` and `beta`, or `ratio` and "
+       "`frequencies` (then alpha = 2 ratio w1 w2 / (w1 + w2), beta = 2 ratio / (w1 + w2): the "
+       "ratio is exact at both frequencies and lower between them).",
+       {key("alpha", T::number).unit("1/s").at_least(0).default_note("0").meaning("mass factor"),
+        key("beta", T::number).unit("s").at_least(0).default_note("0").meaning("stiffness factor"),
+        key("ratio", T::number)
+            .at_least(0)
+            .less_than(1)
+            .default_note("none")
+            .meaning("damping ratio at both `frequencies`, e.g. 0.05"),
+        key("frequencies", T::vector2)
+            .unit("Hz")
+            .greater_than(0)
+            .default_note("none")
+            .meaning("[f1, f2], f1 < f2: where the ratio is exact")}});
 
   all_sections.push_back(
       {"far_field.mesh",

@@ -40,7 +40,7 @@ int main(int argc, char** argv)
   unsigned int cells = 32, steps = 20;
   std::string solver = "klu";
   bool hole = false;
-  double tolerance = 1e-10;
+  double tolerance = 0.0; // 0: the model's default
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -80,7 +80,8 @@ int main(int argc, char** argv)
   d.incident.velocity = TimeFunction::sine_pulse(0.1, 12.5, 1.0, 0.0);
   d.dt = 2e-3;
   d.solver = solver == "cg" ? LinearSolver::cg : LinearSolver::direct;
-  d.solver_tolerance = tolerance;
+  if (tolerance > 0.0)
+    d.solver_tolerance = tolerance;
   d.direct_solver = solver == "umfpack" ? DirectSolver::umfpack : DirectSolver::klu;
   if (hole)
   {

@@ -85,19 +85,26 @@ struct PlaneElasticity
   }
 };
 
-/// Stress components and von Mises from the displacement field, for DataOut.
+/// Stress components and von Mises from the displacement field plus the in-situ stress, for
+/// DataOut.
 class StressPostprocessor : public DataPostprocessor<2>
 {
 public:
-  explicit StressPostprocessor(const PlaneElasticity& elasticity_) : elasticity(elasticity_) {}
+  StressPostprocessor(const PlaneElasticity& elasticity_,
+                      std::function<std::array<double, 3>(double)> initial_)
+      : elasticity(elasticity_), initial(std::move(initial_))
+  {
+  }
 
   void evaluate_vector_field(const DataPostprocessorInputs::Vector<2>& inputs,
                              std::vector<Vector<double>>& computed) const override
   {
     for (unsigned int q = 0; q < inputs.solution_gradients.size(); ++q)
     {
-      const auto s =
-          elasticity.stress(inputs.solution_gradients[q][0], inputs.solution_gradients[q][1]);
+      auto s = elasticity.stress(inputs.solution_gradients[q][0], inputs.solution_gradients[q][1]);
+      const auto s0 = initial(inputs.evaluation_points[q][1]);
+      for (unsigned int k = 0; k < 3; ++k)
+        s[k] += s0[k];
       computed[q](0) = s[0];
       computed[q](1) = s[1];
       computed[q](2) = s[2];
@@ -114,10 +121,14 @@ public:
         4, DataComponentInterpretation::component_is_scalar);
   }
 
-  UpdateFlags get_needed_update_flags() const override { return update_gradients; }
+  UpdateFlags get_needed_update_flags() const override
+  {
+    return update_gradients | update_quadrature_points;
+  }
 
 private:
   PlaneElasticity elasticity;
+  std::function<std::array<double, 3>(double)> initial;
 };
 
 /// Sets entries below 1e-30 of the largest one to zero. Ahead of a wave front the discrete
@@ -184,7 +195,9 @@ public:
   Vector<double> input_shape;
   double input_scale = 0.0;
 
-  Vector<double> u, v, a;
+  Vector<double> u, v, a;             ///< u: total displacement (static stage included)
+  Vector<double> static_displacement; ///< u_s of the static stage (empty without one)
+  Vector<double> static_force;        ///< K u_s: gravity, in-situ stress and reactions
   Vector<double> a_previous; ///< acceleration one step back (extrapolated for the CG guess)
   Vector<double> force;      ///< f at the current time
   double t = 0.0;
@@ -196,6 +209,7 @@ public:
   struct MonitorPoint
   {
     std::unique_ptr<FEValues<2>> values; ///< reinit'd once on the cell holding the point
+    double y = 0.0;                      ///< height of the point [m]
   };
   std::vector<MonitorPoint> monitors;
 
@@ -211,6 +225,16 @@ private:
   void compute_initial_acceleration();
   void input_force(double time, Vector<double>& f) const;
   void condense_rhs(Vector<double>& rhs) const;
+  void solve_static_stage();
+  /// out = C x with C = dashpots + Rayleigh (alpha M + beta K).
+  void damping_vmult(Vector<double>& out, const Vector<double>& x) const;
+  /// u - u_s: the displacement the dynamic stage reports.
+  Vector<double> relative_displacement() const;
+
+public:
+  /// In-situ stress sigma0 at height y: (sxx, syy, sxy) [Pa].
+  std::array<double, 3> initial_stress(double y) const;
+  double strain_energy() const;
 };
 
 ElasticWaveModel::Impl::Impl(const FarFieldDescription& description_)
@@ -250,6 +274,8 @@ ElasticWaveModel::Impl::Impl(const FarFieldDescription& description_)
   a.reinit(dof_handler.n_dofs());
   force.reinit(dof_handler.n_dofs());
   input_force(0.0, force);
+  if (description.static_stage.enabled)
+    solve_static_stage();
 
   if (description.dt > 0.0)
     factorize(description.dt);
@@ -274,6 +300,9 @@ void ElasticWaveModel::Impl::validate() const
   require(d.solver_tolerance > 0.0 && d.solver_tolerance < 1.0,
           "solver_tolerance = " + str(d.solver_tolerance) + ", expected in (0, 1)");
   const bool from_file = !d.mesh_file.file.empty();
+  require(d.rayleigh.alpha >= 0.0 && d.rayleigh.beta >= 0.0,
+          "rayleigh: alpha = " + str(d.rayleigh.alpha) + ", beta = " + str(d.rayleigh.beta) +
+              ", expected both >= 0");
   if (d.element_size == 0.0 && !from_file)
   {
     const double f =
@@ -504,6 +533,7 @@ void ElasticWaveModel::Impl::locate_monitors()
         std::make_unique<FEValues<2>>(mapping, fe, Quadrature<2>(std::vector<Point<2>>{reference}),
                                       update_values | update_gradients);
     monitor.values->reinit(found.first);
+    monitor.y = p[1];
     monitors.push_back(std::move(monitor));
   }
 }
@@ -519,13 +549,144 @@ void ElasticWaveModel::Impl::condense_rhs(Vector<double>& rhs) const
   constraints.condense(rhs);
 }
 
+std::array<double, 3> ElasticWaveModel::Impl::initial_stress(const double y) const
+{
+  const StaticStage& s = description.static_stage;
+  if (!s.enabled)
+    return {{0.0, 0.0, 0.0}};
+  std::array<double, 3> sigma;
+  for (unsigned int k = 0; k < 3; ++k)
+    sigma[k] = s.stress[k] + s.stress_gradient[k] * (y - s.reference_y);
+  return sigma;
+}
+
+Vector<double> ElasticWaveModel::Impl::relative_displacement() const
+{
+  Vector<double> w(u);
+  if (static_displacement.size() == w.size())
+    w -= static_displacement;
+  return w;
+}
+
+double ElasticWaveModel::Impl::strain_energy() const
+{
+  return 0.5 * stiffness.matrix_norm_square(relative_displacement());
+}
+
+void ElasticWaveModel::Impl::damping_vmult(Vector<double>& out, const Vector<double>& x) const
+{
+  damping.vmult(out, x);
+  const RayleighDamping& r = description.rayleigh;
+  if (r.alpha == 0.0 && r.beta == 0.0)
+    return;
+  Vector<double> product(x.size());
+  if (r.alpha > 0.0)
+  {
+    mass.vmult(product, x);
+    out.add(r.alpha, product);
+  }
+  if (r.beta > 0.0)
+  {
+    stiffness.vmult(product, x);
+    out.add(r.beta, product);
+  }
+}
+
+void ElasticWaveModel::Impl::solve_static_stage()
+{
+  const StaticStage& s = description.static_stage;
+  // Loads: gravity rho g and the in-situ stress's internal force integral(B^T sigma0).
+  const QGauss<2> quadrature(fe.degree + 1);
+  FEValues<2> fe_values(fe, quadrature,
+                        update_values | update_gradients | update_quadrature_points |
+                            update_JxW_values);
+  const unsigned int n = fe.n_dofs_per_cell();
+  Vector<double> cell_load(n), load(dof_handler.n_dofs());
+  std::vector<types::global_dof_index> dofs(n);
+  for (const auto& cell : dof_handler.active_cell_iterators())
+  {
+    fe_values.reinit(cell);
+    cell_load = 0.0;
+    for (const unsigned int q : fe_values.quadrature_point_indices())
+    {
+      const auto sigma = initial_stress(fe_values.quadrature_point(q)[1]);
+      const double tensor[2][2] = {{sigma[0], sigma[2]}, {sigma[2], sigma[1]}};
+      for (unsigned int i = 0; i < n; ++i)
+      {
+        const unsigned int c = fe.system_to_component_index(i).first;
+        const Tensor<1, 2> grad = fe_values.shape_grad(i, q);
+        cell_load(i) += (description.density * s.gravity[c] * fe_values.shape_value(i, q) -
+                         (tensor[c][0] * grad[0] + tensor[c][1] * grad[1])) *
+                        fe_values.JxW(q);
+      }
+    }
+    cell->get_dof_indices(dofs);
+    for (unsigned int i = 0; i < n; ++i)
+      load(dofs[i]) += cell_load(i);
+  }
+
+  // Supports: the dynamic stage's constraints plus the absorbing parts held.
+  AffineConstraints<double> supports;
+  DoFTools::make_hanging_node_constraints(dof_handler, supports);
+  const unsigned int roller_component = description.incident.type == IncidentWave::Type::sv ? 1 : 0;
+  bool supported = false;
+  for (const auto& bc : description.boundaries)
+  {
+    std::vector<bool> mask(2, true);
+    if (bc.kind == BoundaryKind::free)
+      continue;
+    if (bc.kind == BoundaryKind::roller)
+      mask[1 - roller_component] = false;
+    if ((bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input) &&
+        s.support == StaticSupport::roller && bc.part != BoundaryPart::hole)
+      mask[bc.part == BoundaryPart::left || bc.part == BoundaryPart::right ? 1 : 0] = false;
+    VectorTools::interpolate_boundary_values(dof_handler, boundary_id_of(bc.part),
+                                             Functions::ZeroFunction<2>(2), supports,
+                                             ComponentMask(mask));
+    supported = true;
+  }
+  supports.close();
+  require(supported, "static_stage: no part holds the model (all parts free), expected a "
+                     "fixed, roller, lysmer or input part");
+
+  SparseMatrix<double> k(sparsity);
+  k.copy_from(stiffness);
+  supports.condense(k);
+  Vector<double> rhs(load);
+  supports.condense(rhs);
+  static_displacement.reinit(dof_handler.n_dofs());
+  const auto direct = make_effective_solver(LinearSolver::direct, DirectSolver::klu, 0.0);
+  try
+  {
+    direct->initialize(k);
+    direct->solve(rhs, static_displacement);
+  }
+  catch (const std::exception& e)
+  {
+    throw InputError(std::string("far field: static_stage: the static problem is singular (") +
+                     e.what() +
+                     "): expected supports that stop rigid-body motion in both directions");
+  }
+  for (const double x : static_displacement)
+    require(std::isfinite(x), "static_stage: the static problem is singular, expected supports "
+                              "that stop rigid-body motion in both directions");
+  supports.distribute(static_displacement);
+  // The reactions stay as forces: K u_s is the load at free DOFs and load + reaction at the
+  // supported ones, so the dynamic stage starts in equilibrium.
+  static_force.reinit(dof_handler.n_dofs());
+  stiffness.vmult(static_force, static_displacement);
+  u = static_displacement;
+}
+
 void ElasticWaveModel::Impl::factorize(const double dt)
 {
   const double c_mass = 1.0 / (beta * dt * dt);
   const double c_damping = gamma / (beta * dt);
   effective.reinit(sparsity);
   effective.copy_from(stiffness);
-  effective.add(c_mass, mass);
+  effective.add(c_mass + c_damping * description.rayleigh.alpha, mass);
+  if (description.rayleigh.beta > 0.0)
+    effective.add(c_damping * description.rayleigh.beta, stiffness);
   for (std::size_t row = 0; row < damping.m(); ++row)
     for (auto entry = damping.begin(row); entry != damping.end(row); ++entry)
       effective.add(row, entry->column(), c_damping * entry->value());
@@ -543,12 +704,15 @@ void ElasticWaveModel::Impl::compute_initial_acceleration()
   // M a0 = f(t) - C v0 - K u0; nothing to solve for a state at rest without input.
   initial_acceleration_done = true;
   Vector<double> rhs(force), product(u.size());
+  if (static_force.size() == rhs.size())
+    rhs += static_force;
   stiffness.vmult(product, u);
   rhs -= product;
-  damping.vmult(product, v);
+  damping_vmult(product, v);
   rhs -= product;
   condense_rhs(rhs);
-  if (rhs.l2_norm() == 0.0)
+  // At rest in equilibrium (K u_s = static force) the residual is round-off of u_s's size.
+  if (rhs.l2_norm() <= 1e-14 * (static_force.size() == rhs.size() ? static_force.l2_norm() : 0.0))
   {
     a = 0.0;
     return;
@@ -598,11 +762,13 @@ void ElasticWaveModel::Impl::set_initial_state(const ElasticWaveModel::VectorFie
   VectorTools::interpolate(dof_handler, FieldFunction(velocity), v);
   constraints.distribute(u);
   constraints.distribute(v);
+  if (static_displacement.size() == u.size())
+    u += static_displacement;
   compute_initial_acceleration();
   a_previous.reinit(0);
   energies = EnergyBalance{};
   energies.kinetic = 0.5 * mass.matrix_norm_square(v);
-  energies.strain = 0.5 * stiffness.matrix_norm_square(u);
+  energies.strain = strain_energy();
   energies.initial = energies.stored();
   timings.setup += seconds_since(start);
 }
@@ -638,13 +804,15 @@ StepStatus ElasticWaveModel::Impl::advance(const double dt)
     const double c_v = gamma / beta - 1.0;
     const double c_a = dt * (gamma / (2.0 * beta) - 1.0);
     Vector<double> combination(u.size()), rhs(force_new), product(u.size());
+    if (static_force.size() == rhs.size())
+      rhs += static_force; // the static stage's loads and reactions, held constant
     combination.equ(m_u, u);
     combination.add(m_v, v, m_a, a);
     mass.vmult(product, combination);
     rhs += product;
     combination.equ(c_u, u);
     combination.add(c_v, v, c_a, a);
-    damping.vmult(product, combination);
+    damping_vmult(product, combination);
     rhs += product;
     condense_rhs(rhs);
     timings.assemble += seconds_since(start);
@@ -686,6 +854,19 @@ StepStatus ElasticWaveModel::Impl::advance(const double dt)
     v_mid *= 0.5;
     damping.vmult(product, v_mid);
     energies.work_of_dashpots -= du * product;
+    if (description.rayleigh.alpha > 0.0 || description.rayleigh.beta > 0.0)
+    {
+      Vector<double> rayleigh(u.size());
+      if (description.rayleigh.alpha > 0.0)
+        mass.vmult(rayleigh, v_mid);
+      rayleigh *= description.rayleigh.alpha;
+      if (description.rayleigh.beta > 0.0)
+      {
+        stiffness.vmult(product, v_mid);
+        rayleigh.add(description.rayleigh.beta, product);
+      }
+      energies.work_of_rayleigh -= du * rayleigh;
+    }
     energies.work_of_input += 0.5 * (du * force + du * force_new);
 
     u = u_new;
@@ -717,12 +898,21 @@ MonitorSample ElasticWaveModel::Impl::sample_monitor(const std::size_t monitor) 
   std::vector<Vector<double>> point_u(1, Vector<double>(2)), point_v(1, Vector<double>(2));
   std::vector<std::vector<Tensor<1, 2>>> grad_u(1, std::vector<Tensor<1, 2>>(2));
   values.get_function_values(u, point_u);
+  if (static_displacement.size() == u.size())
+  {
+    std::vector<Vector<double>> point_static(1, Vector<double>(2));
+    values.get_function_values(static_displacement, point_static);
+    point_u[0] -= point_static[0];
+  }
   values.get_function_values(v, point_v);
   values.get_function_gradients(u, grad_u);
   MonitorSample sample;
   sample.displacement = {{point_u[0](0), point_u[0](1)}};
   sample.velocity = {{point_v[0](0), point_v[0](1)}};
   sample.stress = elasticity.stress(grad_u[0][0], grad_u[0][1]);
+  const auto s0 = initial_stress(monitors[monitor].y);
+  for (unsigned int k = 0; k < 3; ++k)
+    sample.stress[k] += s0[k];
   return sample;
 }
 
@@ -733,12 +923,14 @@ void ElasticWaveModel::Impl::write_snapshot(const std::string& directory,
   std::ostringstream name;
   name << basename << "_" << std::setw(5) << std::setfill('0') << snapshots.size() << ".vtu";
 
-  const StressPostprocessor stress(elasticity);
+  const StressPostprocessor stress(elasticity,
+                                   [this](const double y) { return initial_stress(y); });
+  const Vector<double> w = relative_displacement();
   const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
       2, DataComponentInterpretation::component_is_part_of_vector);
   DataOut<2> data_out;
   data_out.attach_dof_handler(dof_handler);
-  data_out.add_data_vector(u, std::vector<std::string>(2, "displacement"),
+  data_out.add_data_vector(w, std::vector<std::string>(2, "displacement"),
                            DataOut<2>::type_dof_data, vector_field);
   data_out.add_data_vector(v, std::vector<std::string>(2, "velocity"), DataOut<2>::type_dof_data,
                            vector_field);
@@ -845,8 +1037,8 @@ EnergyBalance ElasticWaveModel::energy() const
   // a step's right-hand side.
   EnergyBalance e = impl->energies;
   e.kinetic = 0.5 * impl->mass.matrix_norm_square(impl->v);
-  e.strain = 0.5 * impl->stiffness.matrix_norm_square(impl->u);
-  e.dissipated = e.initial + e.work_of_input + e.work_of_dashpots - e.stored();
+  e.strain = impl->strain_energy();
+  e.dissipated = e.initial + e.work_of_input + e.work_of_dashpots + e.work_of_rayleigh - e.stored();
   return e;
 }
 

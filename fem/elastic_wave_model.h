@@ -12,8 +12,9 @@
 namespace ddafem::fem
 {
 /// Energies [J] per unit thickness. Balance: kinetic + strain = initial + work_of_input +
-/// work_of_dashpots - dissipated (dissipated: the integrator's algorithmic loss, ~0 for the
-/// trapezoidal rule).
+/// work_of_dashpots + work_of_rayleigh - dissipated (dissipated: the integrator's algorithmic
+/// loss, ~0 for the trapezoidal rule). After a static stage, strain is that of the displacement
+/// relative to the static one (the static loads' work and the static strain energy cancel).
 struct EnergyBalance
 {
   double kinetic = 0.0;
@@ -22,6 +23,7 @@ struct EnergyBalance
   double work_of_dashpots = 0.0; ///< work of the dashpot tractions since t = 0 (negative)
   double initial = 0.0;
   double dissipated = 0.0;
+  double work_of_rayleigh = 0.0; ///< work of the Rayleigh damping forces since t = 0 (negative)
   double stored() const { return kinetic + strain; }
 };
 

@@ -127,6 +127,36 @@ enum class DirectSolver
   umfpack ///< deal.II SparseDirectUMFPACK
 };
 
+/// How the absorbing (lysmer, input) parts are held while the static stage is solved.
+enum class StaticSupport
+{
+  fixed, ///< both displacement components zero
+  roller ///< the normal component zero (x on left/right, y on bottom/top; the hole: both)
+};
+
+/// A static stage ahead of the dynamic one: gravity and an in-situ stress
+/// sigma0(y) = stress + stress_gradient (y - reference_y) solved as K u_s = f_gravity -
+/// integral(B^T sigma0) with the absorbing parts supported. The reactions are then kept as
+/// constant forces (the dynamic stage applies K u_s) and the dashpots act; the dynamic stage
+/// starts from u_s at rest. Monitors and snapshots report displacements relative to u_s and the
+/// total stress sigma0 + D B u.
+struct StaticStage
+{
+  bool enabled = false;
+  std::array<double, 2> gravity{{0.0, 0.0}};              ///< [m/s^2]
+  std::array<double, 3> stress{{0.0, 0.0, 0.0}};          ///< (sxx, syy, sxy) at reference_y [Pa]
+  std::array<double, 3> stress_gradient{{0.0, 0.0, 0.0}}; ///< d/dy [Pa/m]
+  double reference_y = 0.0;                               ///< [m]
+  StaticSupport support = StaticSupport::fixed;
+};
+
+/// Rayleigh damping C += alpha M + beta K (damping ratio alpha / (2 omega) + beta omega / 2).
+struct RayleighDamping
+{
+  double alpha = 0.0; ///< [1/s]
+  double beta = 0.0;  ///< [s]
+};
+
 /// A rectangular far field [x0, x1] x [y0, y1] meshed with square-ish FE_Q elements (optionally
 /// with a graded hole), or a Gmsh mesh.
 struct FarFieldDescription
@@ -153,6 +183,8 @@ struct FarFieldDescription
   LinearSolver solver = LinearSolver::direct;
   DirectSolver direct_solver = DirectSolver::klu;
   double solver_tolerance = 1e-12; ///< cg: residual relative to the right-hand side
+  StaticStage static_stage;
+  RayleighDamping rayleigh;
 };
 
 } // namespace ddafem::fem

@@ -168,3 +168,33 @@ TEST(FarFieldScene, HoleAndMeshErrorsNameTheKey)
   EXPECT_NE(error_of(twice, "ff_mesh_twice.yaml").find("one physical tag per part"),
             std::string::npos);
 }
+
+TEST(FarFieldScene, StaticStageAndRayleighKeys)
+{
+  const Scene s = read_text(
+      "gravity: [0, -9.81]\n" +
+          with_far_field_keys("  static_stage: {stress_gradient: [1e4, 2e4, 0], support: roller}\n"
+                              "  rayleigh: {ratio: 0.05, frequencies: [1, 3]}\n"),
+      "ff_static.yaml");
+  const fem::FarFieldDescription& d = *s.far_field;
+  EXPECT_TRUE(d.static_stage.enabled);
+  EXPECT_DOUBLE_EQ(d.static_stage.gravity[1], -9.81); // the scene's gravity
+  EXPECT_DOUBLE_EQ(d.static_stage.stress_gradient[1], 2e4);
+  EXPECT_DOUBLE_EQ(d.static_stage.reference_y, 400.0); // the top
+  EXPECT_EQ(d.static_stage.support, fem::StaticSupport::roller);
+  // alpha = 2 zeta w1 w2 / (w1 + w2), beta = 2 zeta / (w1 + w2).
+  const double w1 = 2.0 * M_PI, w2 = 6.0 * M_PI;
+  EXPECT_NEAR(d.rayleigh.alpha, 0.1 * w1 * w2 / (w1 + w2), 1e-12);
+  EXPECT_NEAR(d.rayleigh.beta, 0.1 / (w1 + w2), 1e-15);
+
+  EXPECT_NE(error_of(with_far_field_keys("  rayleigh: {alpha: 1, ratio: 0.05}\n"), "ff_ray.yaml")
+                .find("expected either `alpha` and/or `beta`, or `ratio` with `frequencies`"),
+            std::string::npos);
+  EXPECT_NE(error_of(with_far_field_keys("  rayleigh: {ratio: 0.05, frequencies: [3, 1]}\n"),
+                     "ff_ray_order.yaml")
+                .find("expected f1 < f2"),
+            std::string::npos);
+  EXPECT_NE(error_of(with_far_field_keys("  static_stage: {support: pinned}\n"), "ff_support.yaml")
+                .find("expected one of 'fixed', 'roller'"),
+            std::string::npos);
+}
