@@ -32,6 +32,8 @@ const char* part_name(fem::BoundaryPart p)
     return "top";
   case fem::BoundaryPart::left:
     return "left";
+  case fem::BoundaryPart::hole:
+    return "hole";
   }
   return "";
 }
@@ -64,6 +66,8 @@ std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& d
   channels.push_back({"energy/work_of_input", 1, "J", "incident-wave tractions since t = 0"});
   channels.push_back(
       {"energy/work_of_dashpots", 1, "J", "Lysmer dashpots since t = 0 (negative: absorbed)"});
+  channels.push_back(
+      {"energy/work_of_rayleigh", 1, "J", "Rayleigh damping since t = 0 (negative: absorbed)"});
   channels.push_back({"energy/dissipated", 1, "J", "initial + work - stored: the integrator's"});
   return channels;
 }
@@ -78,7 +82,8 @@ std::vector<double> far_field_row(const fem::ElasticWaveModel& model, std::size_
                            s.stress[0], s.stress[1], s.stress[2]});
   }
   const fem::EnergyBalance e = model.energy();
-  row.insert(row.end(), {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots, e.dissipated});
+  row.insert(row.end(), {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots,
+                         e.work_of_rayleigh, e.dissipated});
   return row;
 }
 } // namespace
@@ -95,8 +100,26 @@ std::string check_far_field(const Scene& scene)
   out << "  material: rho " << format(d.density) << " kg/m^3, E " << format(d.youngs_modulus)
       << " Pa, nu " << d.poisson_ratio << "; VP " << format(model.p_wave_speed(), 5) << " m/s, VS "
       << format(model.s_wave_speed(), 5) << " m/s\n";
-  out << "  mesh: " << model.n_cells() << " cells of " << format(model.element_size())
-      << " m, FE_Q(" << d.degree << "), " << model.n_dofs() << " DOFs\n";
+  out << "  mesh: " << model.n_cells() << " cells of " << format(model.smallest_element_size())
+      << " to " << format(model.element_size()) << " m, FE_Q(" << d.degree << "), "
+      << model.n_dofs() << " DOFs, " << model.n_constraints() << " constrained\n";
+  if (!d.mesh_file.file.empty())
+    out << "  mesh file: " << d.mesh_file.file << "\n";
+  if (model.boundary_length(fem::BoundaryPart::hole) > 0.0)
+    out << "  hole: perimeter " << format(model.boundary_length(fem::BoundaryPart::hole))
+        << " m, meshed area " << format(model.area()) << " m^2\n";
+  out << "  solver: " << model.solver_name() << "\n";
+  if (d.static_stage.enabled)
+    out << "  static stage: gravity [" << d.static_stage.gravity[0] << ", "
+        << d.static_stage.gravity[1] << "] m/s^2, in-situ stress [" << d.static_stage.stress[0]
+        << ", " << d.static_stage.stress[1] << ", " << d.static_stage.stress[2] << "] Pa + ["
+        << d.static_stage.stress_gradient[0] << ", " << d.static_stage.stress_gradient[1] << ", "
+        << d.static_stage.stress_gradient[2] << "] Pa/m (y - " << d.static_stage.reference_y
+        << " m), absorbing parts held "
+        << (d.static_stage.support == fem::StaticSupport::roller ? "by rollers" : "fixed") << "\n";
+  if (d.rayleigh.alpha > 0.0 || d.rayleigh.beta > 0.0)
+    out << "  Rayleigh damping: alpha " << format(d.rayleigh.alpha) << " 1/s, beta "
+        << format(d.rayleigh.beta) << " s\n";
   const double f = std::max(d.max_frequency, d.incident.velocity.characteristic_frequency());
   if (f > 0.0)
     out << "  resolution at " << format(f)
@@ -190,10 +213,13 @@ int run_far_field(const Scene& scene, const RunOptions& options, std::ostream& l
   summary["steps"] = t.n_steps;
   summary["dt_s"] = d.dt;
   summary["integrator"] = d.integrator == fem::Integrator::dda ? "dda" : "newmark_trapezoidal";
-  summary["solver"] = {{"name", "umfpack"}, {"factorizations", 1}};
+  summary["solver"] = {{"name", model.solver_name()},
+                       {"factorizations", 1},
+                       {"linear_iterations", t.linear_iterations}};
   summary["model"] = {{"far_field_cells", model.n_cells()},
                       {"far_field_dofs", model.n_dofs()},
                       {"element_size_m", model.element_size()},
+                      {"smallest_element_size_m", model.smallest_element_size()},
                       {"degree", d.degree},
                       {"blocks", 0}};
   summary["wall_time_s"] = wall;
@@ -207,6 +233,7 @@ int run_far_field(const Scene& scene, const RunOptions& options, std::ostream& l
                          {"strain", e.strain},
                          {"work_of_input", e.work_of_input},
                          {"work_of_dashpots", e.work_of_dashpots},
+                         {"work_of_rayleigh", e.work_of_rayleigh},
                          {"initial", e.initial},
                          {"dissipated", e.dissipated}};
   summary["warnings"] = nlohmann::json::array();

@@ -958,6 +958,138 @@ void check_point_in_far_field(const MapReader& r, const std::string& key, const 
                  format_number(far_field.upper[1]) + "]");
 }
 
+fem::BoundaryPart part_of(const std::string& name)
+{
+  return name == "bottom"  ? fem::BoundaryPart::bottom
+         : name == "right" ? fem::BoundaryPart::right
+         : name == "top"   ? fem::BoundaryPart::top
+         : name == "left"  ? fem::BoundaryPart::left
+                           : fem::BoundaryPart::hole;
+}
+
+/// `far_field.rayleigh`: {alpha, beta} or {ratio, frequencies}.
+fem::RayleighDamping read_rayleigh(const MapReader& r)
+{
+  fem::RayleighDamping rayleigh;
+  const bool factors = r.has("alpha") || r.has("beta");
+  const bool ratio = r.has("ratio") || r.has("frequencies");
+  if (factors == ratio)
+    throw r.error(factors ? "ratio" : "alpha",
+                  "expected either `alpha` and/or `beta`, or `ratio` with `frequencies`");
+  if (factors)
+  {
+    rayleigh.alpha = r.has("alpha") ? r.number("alpha") : 0.0;
+    rayleigh.beta = r.has("beta") ? r.number("beta") : 0.0;
+    return rayleigh;
+  }
+  for (const char* k : {"ratio", "frequencies"})
+    if (!r.has(k))
+      throw r.error(k, "missing required key: `ratio` needs `frequencies` [f1, f2] and back");
+  const double zeta = r.number("ratio");
+  const Vector2 f = r.vector2("frequencies");
+  if (!(f.y() > f.x()))
+    throw r.error("frequencies", "expected f1 < f2");
+  const double w1 = 2.0 * M_PI * f.x(), w2 = 2.0 * M_PI * f.y();
+  rayleigh.alpha = 2.0 * zeta * w1 * w2 / (w1 + w2);
+  rayleigh.beta = 2.0 * zeta / (w1 + w2);
+  return rayleigh;
+}
+
+/// `far_field.mesh`: the Gmsh file (relative to the scene) and its tags.
+fem::MeshFile read_mesh_file(const MapReader& f)
+{
+  for (const char* corner : {"lower", "upper"})
+    if (f.has(corner))
+      throw f.error(corner, "expected no rectangle corners with a `mesh` file (the mesh is the "
+                            "file's)");
+  if (f.has("hole"))
+    throw f.error("hole", "expected no `hole` with a `mesh` file (the file brings its own)");
+  const MapReader r = f.section_reader("mesh");
+  fem::MeshFile mesh;
+  std::filesystem::path path(r.string("file"));
+  if (path.is_relative())
+    path = r.ctx().scene_directory / path;
+  mesh.file = path.lexically_normal().string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw r.error("file", "cannot open mesh file '" + mesh.file + "': expected a Gmsh .msh file");
+  const MapReader parts = r.section_reader("parts");
+  std::map<long long, std::string> seen;
+  for (const char* part : {"bottom", "right", "top", "left", "hole"})
+    if (parts.has(part))
+    {
+      const long long tag = parts.integer(part);
+      const auto [it, inserted] = seen.emplace(tag, part);
+      if (!inserted)
+        throw parts.error(part, "the tag is also given to `" + it->second +
+                                    "`: expected one physical tag per part");
+      mesh.parts[part_of(part)] = static_cast<unsigned int>(tag);
+    }
+  return mesh;
+}
+
+/// `far_field.hole`: the keys of its shape, no others.
+fem::HoleDescription read_hole(const MapReader& r, const fem::FarFieldDescription& d)
+{
+  fem::HoleDescription hole;
+  const std::string shape = r.choice("shape");
+  const std::map<std::string, std::vector<std::string>> keys = {{"rectangle", {"lower", "upper"}},
+                                                                {"polygon", {"vertices"}},
+                                                                {"circle", {"center", "radius"}}};
+  for (const auto& [other, names] : keys)
+    for (const std::string& name : names)
+    {
+      const bool mine = other == shape;
+      if (mine && !r.has(name))
+        throw r.error(name, "missing required key for shape " + shape);
+      if (!mine && r.has(name) &&
+          std::find(keys.at(shape).begin(), keys.at(shape).end(), name) == keys.at(shape).end())
+        throw r.error(name, "expected only the keys of shape " + shape + " (" +
+                                join(keys.at(shape), ", ") + ")");
+    }
+  hole.shape = shape == "rectangle" ? fem::HoleShape::rectangle
+               : shape == "polygon" ? fem::HoleShape::polygon
+                                    : fem::HoleShape::circle;
+  std::array<double, 4> box{}; // x0, x1, y0, y1 of the hole
+  if (hole.shape == fem::HoleShape::rectangle)
+  {
+    const Vector2 lower = r.vector2("lower"), upper = r.vector2("upper");
+    if (!(upper.x() > lower.x() && upper.y() > lower.y()))
+      throw r.error("upper",
+                    "expected upper > lower in both x and y, lower = " + format_point(lower));
+    hole.lower = {lower.x(), lower.y()};
+    hole.upper = {upper.x(), upper.y()};
+    box = {lower.x(), upper.x(), lower.y(), upper.y()};
+  }
+  else if (hole.shape == fem::HoleShape::polygon)
+  {
+    hole.vertices = r.pair_list("vertices");
+    if (hole.vertices.size() < 3)
+      throw r.error("vertices", "expected at least 3 vertices");
+    box = {hole.vertices[0][0], hole.vertices[0][0], hole.vertices[0][1], hole.vertices[0][1]};
+    for (const auto& v : hole.vertices)
+      box = {std::min(box[0], v[0]), std::max(box[1], v[0]), std::min(box[2], v[1]),
+             std::max(box[3], v[1])};
+  }
+  else
+  {
+    const Vector2 c = r.vector2("center");
+    hole.center = {c.x(), c.y()};
+    hole.radius = r.number("radius");
+    box = {c.x() - hole.radius, c.x() + hole.radius, c.y() - hole.radius, c.y() + hole.radius};
+  }
+  if (!(box[0] > d.lower[0] && box[1] < d.upper[0] && box[2] > d.lower[1] && box[3] < d.upper[1]))
+    throw r.error("shape",
+                  "the hole spans [" + format_number(box[0]) + ", " + format_number(box[1]) +
+                      "] x [" + format_number(box[2]) + ", " + format_number(box[3]) +
+                      "]: expected it strictly inside the far field [" + format_number(d.lower[0]) +
+                      ", " + format_number(d.upper[0]) + "] x [" + format_number(d.lower[1]) +
+                      ", " + format_number(d.upper[1]) + "]");
+  hole.element_size = r.number("element_size");
+  hole.growth_ratio = r.number("growth_ratio");
+  return hole;
+}
+
 /// The `far_field` section (the plane mode, time step and integrator come from the scene).
 fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDescription& model,
                                         const std::vector<std::string>& material_names)
@@ -968,17 +1100,48 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
   d.density = m.density;
   d.youngs_modulus = m.youngs_modulus;
   d.poisson_ratio = m.poisson_ratio;
-  const Vector2 lower = f.vector2("lower"), upper = f.vector2("upper");
-  if (!(upper.x() > lower.x() && upper.y() > lower.y()))
-    throw f.error("upper",
-                  "expected upper > lower in both x and y, lower = " + format_point(lower));
-  d.lower = {lower.x(), lower.y()};
-  d.upper = {upper.x(), upper.y()};
+  if (f.has("mesh"))
+    d.mesh_file = read_mesh_file(f);
+  else
+  {
+    for (const char* corner : {"lower", "upper"})
+      if (!f.has(corner))
+        throw f.error(corner, "missing required key: expected [x, y] in m (or a `mesh` file)");
+    const Vector2 lower = f.vector2("lower"), upper = f.vector2("upper");
+    if (!(upper.x() > lower.x() && upper.y() > lower.y()))
+      throw f.error("upper",
+                    "expected upper > lower in both x and y, lower = " + format_point(lower));
+    d.lower = {lower.x(), lower.y()};
+    d.upper = {upper.x(), upper.y()};
+  }
   d.element_size = f.number("element_size");
   d.max_frequency = f.number("max_frequency");
   d.points_per_wavelength = f.number("points_per_wavelength");
-  if (d.element_size == 0.0 && d.max_frequency == 0.0)
+  if (d.element_size == 0.0 && d.max_frequency == 0.0 && !f.has("mesh"))
     throw f.error("element_size", "expected element_size > 0, or max_frequency > 0 to choose it");
+  if (f.has("hole"))
+    d.hole = read_hole(f.section_reader("hole"), d);
+  d.solver = f.choice("solver") == "cg" ? fem::LinearSolver::cg : fem::LinearSolver::direct;
+  if (f.has("static_stage"))
+  {
+    const MapReader r = f.section_reader("static_stage");
+    fem::StaticStage& s = d.static_stage;
+    s.enabled = true;
+    if (r.has("gravity"))
+    {
+      const Vector2 g = r.vector2("gravity");
+      s.gravity = {g.x(), g.y()};
+    }
+    const Voigt stress = r.voigt("stress"), gradient = r.voigt("stress_gradient");
+    s.stress = {stress[0], stress[1], stress[2]};
+    s.stress_gradient = {gradient[0], gradient[1], gradient[2]};
+    s.reference_y = r.has("reference_y") ? r.number("reference_y") : d.upper[1];
+    s.support =
+        r.choice("support") == "roller" ? fem::StaticSupport::roller : fem::StaticSupport::fixed;
+  }
+  if (f.has("rayleigh"))
+    d.rayleigh = read_rayleigh(f.section_reader("rayleigh"));
+  d.solver_tolerance = f.number("solver_tolerance");
   const long long degree = f.integer("degree");
   if (degree != 1 && degree != 2)
     throw f.error("degree", "expected 1 or 2");
@@ -992,10 +1155,11 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
     const std::string part = r.choice("part");
     if (!parts.insert(part).second)
       throw r.error("part", "side '" + part + "' is listed twice: expected each side once");
-    bc.part = part == "bottom"  ? fem::BoundaryPart::bottom
-              : part == "right" ? fem::BoundaryPart::right
-              : part == "top"   ? fem::BoundaryPart::top
-                                : fem::BoundaryPart::left;
+    bc.part = part_of(part);
+    if (bc.part == fem::BoundaryPart::hole && d.hole.shape == fem::HoleShape::none &&
+        d.mesh_file.parts.count(fem::BoundaryPart::hole) == 0)
+      throw r.error("part", "the far field has no hole: expected a `far_field.hole` section or "
+                            "a `hole` tag in `far_field.mesh.parts`");
     const std::string type = r.choice("type");
     bc.kind = type == "fixed"    ? fem::BoundaryKind::fixed
               : type == "lysmer" ? fem::BoundaryKind::lysmer
@@ -1294,6 +1458,9 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   }
 
   model.gravity = top.vector2("gravity");
+  if (scene.far_field && scene.far_field->static_stage.enabled &&
+      !top.section_reader("far_field").section_reader("static_stage").has("gravity"))
+    scene.far_field->static_stage.gravity = {model.gravity.x(), model.gravity.y()};
 
   std::map<std::string, std::string> monitor_paths;
   for (const MapReader& r : top.section_list("monitors"))
@@ -1309,7 +1476,8 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
     m.point = r.vector2("point");
     if (scene.far_field)
     {
-      check_point_in_far_field(r, "point", m.point, *scene.far_field);
+      if (scene.far_field->mesh_file.file.empty())
+        check_point_in_far_field(r, "point", m.point, *scene.far_field);
       scene.far_field->monitors.push_back({m.name, {m.point.x(), m.point.y()}});
     }
     else

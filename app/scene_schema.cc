@@ -443,8 +443,14 @@ SceneSchema::SceneSchema()
        "is exact for energy; `dda` damps like the blocks). Monitors may lie in it. Blocks and a "
        "far field in one scene need the coupling of issue 6 and are refused for now.",
        {key("material", T::string).required().meaning("name of a material in `materials`"),
-        key("lower", T::vector2).unit("m").required().meaning("lower-left corner [x0, y0]"),
-        key("upper", T::vector2).unit("m").required().meaning("upper-right corner [x1, y1]"),
+        key("lower", T::vector2)
+            .unit("m")
+            .default_note("required unless `mesh` is given")
+            .meaning("lower-left corner [x0, y0]"),
+        key("upper", T::vector2)
+            .unit("m")
+            .default_note("required unless `mesh` is given")
+            .meaning("upper-right corner [x1, y1]"),
         key("element_size", T::number)
             .unit("m")
             .default_yaml("0")
@@ -460,6 +466,33 @@ SceneSchema::SceneSchema()
             .greater_than(0)
             .meaning("nodes per shortest S wavelength"),
         key("degree", T::integer).default_yaml("2").at_least(1).meaning("FE_Q degree: 1 or 2"),
+        key("hole", T::section)
+            .section("far_field.hole")
+            .default_note("none")
+            .meaning("a hole in the rectangle (for the near field), elements graded towards it"),
+        key("mesh", T::section)
+            .section("far_field.mesh")
+            .default_note("none: the generated rectangle")
+            .meaning("a Gmsh mesh instead of the rectangle"),
+        key("solver", T::choice)
+            .default_yaml("direct")
+            .choices({"direct", "cg"})
+            .meaning("direct: sparse LU factorized once; cg: conjugate gradients (Jacobi), "
+                     "warm-started from the predicted displacement: faster on large models"),
+        key("solver_tolerance", T::number)
+            .default_yaml("1e-12")
+            .greater_than(0)
+            .less_than(1)
+            .meaning("cg: residual relative to the right-hand side (1e-12: monitors agree with "
+                     "`direct` to about 1e-8)"),
+        key("static_stage", T::section)
+            .section("far_field.static_stage")
+            .default_note("none: the dynamic stage starts unstressed")
+            .meaning("gravity and in-situ stress solved statically before the dynamic stage"),
+        key("rayleigh", T::section)
+            .section("far_field.rayleigh")
+            .default_note("none")
+            .meaning("Rayleigh damping C += alpha M + beta K"),
         key("boundaries", T::section_list)
             .section("far_field.boundaries[i]")
             .default_note("all parts free")
@@ -474,8 +507,8 @@ SceneSchema::SceneSchema()
        "One side of the far-field rectangle. Sides not listed are traction free.",
        {key("part", T::choice)
             .required()
-            .choices({"bottom", "right", "top", "left"})
-            .meaning("the side"),
+            .choices({"bottom", "right", "top", "left", "hole"})
+            .meaning("the side, or the hole's boundary"),
         key("type", T::choice)
             .required()
             .choices({"free", "fixed", "lysmer", "input", "roller"})
@@ -489,6 +522,118 @@ SceneSchema::SceneSchema()
             .default_yaml("1")
             .greater_than(0)
             .meaning("tangential dashpot factor")}});
+
+  all_sections.push_back(
+      {"far_field.hole",
+       "A hole in the far-field rectangle, its boundary the part `hole`. The mesh is an O-grid of "
+       "quadrilaterals between the hole and a box twice its size, a Cartesian grid outside, "
+       "refined near the hole (hanging nodes) until each element's longest edge is at most "
+       "min(far size, element_size + (growth_ratio - 1) d), d the distance from the hole. Give "
+       "the keys of the shape: rectangle `lower`, `upper`; polygon `vertices`; circle `center`, "
+       "`radius`.",
+       {key("shape", T::choice)
+            .required()
+            .choices({"rectangle", "polygon", "circle"})
+            .meaning("the hole's shape"),
+        key("lower", T::vector2)
+            .unit("m")
+            .default_note("rectangle only")
+            .meaning("lower-left "
+                     "corner"),
+        key("upper", T::vector2)
+            .unit("m")
+            .default_note("rectangle only")
+            .meaning("upper-right "
+                     "corner"),
+        key("vertices", T::point_list)
+            .unit("m")
+            .default_note("polygon only")
+            .meaning("at least 3 vertices, star-shaped about their centroid (e.g. convex)"),
+        key("center", T::vector2).unit("m").default_note("circle only").meaning("centre"),
+        key("radius", T::number)
+            .unit("m")
+            .default_note("circle only")
+            .greater_than(0)
+            .meaning("radius; the boundary follows the circle under refinement"),
+        key("element_size", T::number)
+            .unit("m")
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("element size at the hole; 0: the far size (no grading)"),
+        key("growth_ratio", T::number)
+            .default_yaml("1.3")
+            .greater_than(1)
+            .meaning("size ratio of neighbouring elements away from the hole")}});
+
+  all_sections.push_back(
+      {"far_field.static_stage",
+       "A static stage ahead of the dynamic one: K u_s = f_gravity - integral(B^T sigma0) with "
+       "the `lysmer` and `input` parts held (`support`), sigma0(y) = stress + stress_gradient (y "
+       "- reference_y) the in-situ stress. The reactions are then kept as constant forces and "
+       "the dashpots act: the dynamic stage starts from u_s at rest. Monitors and snapshots "
+       "report displacements relative to u_s and the total stress sigma0 + D B u.",
+       {key("gravity", T::vector2)
+            .unit("m/s^2")
+            .default_note("the scene's `gravity`")
+            .meaning("body acceleration of the far field, e.g. [0, -9.81]"),
+        key("stress", T::voigt)
+            .unit("Pa")
+            .default_yaml("[0, 0, 0]")
+            .meaning("in-situ stress [sxx, syy, sxy] at reference_y, tension positive"),
+        key("stress_gradient", T::voigt)
+            .unit("Pa/m")
+            .default_yaml("[0, 0, 0]")
+            .meaning("d/dy of the in-situ stress, e.g. [K0 rho g, rho g, 0] for lithostatic "
+                     "stress with reference_y at the surface"),
+        key("reference_y", T::number)
+            .unit("m")
+            .default_note("the top of the far field")
+            .meaning("height where the in-situ stress is `stress`"),
+        key("support", T::choice)
+            .default_yaml("fixed")
+            .choices({"fixed", "roller"})
+            .meaning("how `lysmer` and `input` parts are held in the static stage: fixed, or "
+                     "roller (normal displacement only; the hole is held fixed)")}});
+
+  all_sections.push_back(
+      {"far_field.rayleigh",
+       "Rayleigh damping C += alpha M + beta K; its damping ratio at circular frequency omega is "
+       "alpha / (2 omega) + beta omega / 2. Give `alpha` and `beta`, or `ratio` and "
+       "`frequencies` (then alpha = 2 ratio w1 w2 / (w1 + w2), beta = 2 ratio / (w1 + w2): the "
+       "ratio is exact at both frequencies and lower between them).",
+       {key("alpha", T::number).unit("1/s").at_least(0).default_note("0").meaning("mass factor"),
+        key("beta", T::number).unit("s").at_least(0).default_note("0").meaning("stiffness factor"),
+        key("ratio", T::number)
+            .at_least(0)
+            .less_than(1)
+            .default_note("none")
+            .meaning("damping ratio at both `frequencies`, e.g. 0.05"),
+        key("frequencies", T::vector2)
+            .unit("Hz")
+            .greater_than(0)
+            .default_note("none")
+            .meaning("[f1, f2], f1 < f2: where the ratio is exact")}});
+
+  all_sections.push_back(
+      {"far_field.mesh",
+       "A quadrilateral mesh from a Gmsh file (ASCII msh 2 or 4, read by deal.II GridIn) instead "
+       "of the rectangle: the far field is the file's mesh, not refined. Its physical line tags "
+       "name the boundary parts; boundary lines with other tags or none are free.",
+       {key("file", T::string).required().meaning("path of the .msh file, relative to the scene"),
+        key("parts", T::section)
+            .section("far_field.mesh.parts")
+            .default_note("none: all boundary lines free")
+            .meaning("physical line tag of each named part")}});
+
+  all_sections.push_back(
+      {"far_field.mesh.parts",
+       "Physical line tags of the parts used in `far_field.boundaries` (each tag must occur in "
+       "the file).",
+       {key("bottom", T::integer).at_least(1).default_note("none").meaning("tag of `bottom`"),
+        key("right", T::integer).at_least(1).default_note("none").meaning("tag of `right`"),
+        key("top", T::integer).at_least(1).default_note("none").meaning("tag of `top`"),
+        key("left", T::integer).at_least(1).default_note("none").meaning("tag of `left`"),
+        key("hole", T::integer).at_least(1).default_note("none").meaning("tag of `hole`")}});
 
   all_sections.push_back(
       {"far_field.incident",

@@ -3,6 +3,8 @@
 #include "fem/elastic_wave_model.h"
 
 #include "common/input_error.h"
+#include "fem/far_field_mesh.h"
+#include "fem/linear_solvers.h"
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/quadrature.h>
@@ -19,7 +21,9 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/precondition.h>
+#include <deal.II/lac/solver_cg.h>
+#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
@@ -33,6 +37,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -50,39 +55,6 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point start)
 {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-/// Boundary ids of GridGenerator::subdivided_hyper_rectangle with colorize = true.
-types::boundary_id boundary_id_of(const BoundaryPart part)
-{
-  switch (part)
-  {
-  case BoundaryPart::left:
-    return 0;
-  case BoundaryPart::right:
-    return 1;
-  case BoundaryPart::bottom:
-    return 2;
-  case BoundaryPart::top:
-    return 3;
-  }
-  return 0;
-}
-
-const char* name_of(const BoundaryPart part)
-{
-  switch (part)
-  {
-  case BoundaryPart::left:
-    return "left";
-  case BoundaryPart::right:
-    return "right";
-  case BoundaryPart::bottom:
-    return "bottom";
-  case BoundaryPart::top:
-    return "top";
-  }
-  return "?";
 }
 
 /// Isotropic elastic constants of the plane mode.
@@ -113,19 +85,26 @@ struct PlaneElasticity
   }
 };
 
-/// Stress components and von Mises from the displacement field, for DataOut.
+/// Stress components and von Mises from the displacement field plus the in-situ stress, for
+/// DataOut.
 class StressPostprocessor : public DataPostprocessor<2>
 {
 public:
-  explicit StressPostprocessor(const PlaneElasticity& elasticity_) : elasticity(elasticity_) {}
+  StressPostprocessor(const PlaneElasticity& elasticity_,
+                      std::function<std::array<double, 3>(double)> initial_)
+      : elasticity(elasticity_), initial(std::move(initial_))
+  {
+  }
 
   void evaluate_vector_field(const DataPostprocessorInputs::Vector<2>& inputs,
                              std::vector<Vector<double>>& computed) const override
   {
     for (unsigned int q = 0; q < inputs.solution_gradients.size(); ++q)
     {
-      const auto s =
-          elasticity.stress(inputs.solution_gradients[q][0], inputs.solution_gradients[q][1]);
+      auto s = elasticity.stress(inputs.solution_gradients[q][0], inputs.solution_gradients[q][1]);
+      const auto s0 = initial(inputs.evaluation_points[q][1]);
+      for (unsigned int k = 0; k < 3; ++k)
+        s[k] += s0[k];
       computed[q](0) = s[0];
       computed[q](1) = s[1];
       computed[q](2) = s[2];
@@ -142,10 +121,14 @@ public:
         4, DataComponentInterpretation::component_is_scalar);
   }
 
-  UpdateFlags get_needed_update_flags() const override { return update_gradients; }
+  UpdateFlags get_needed_update_flags() const override
+  {
+    return update_gradients | update_quadrature_points;
+  }
 
 private:
   PlaneElasticity elasticity;
+  std::function<std::array<double, 3>(double)> initial;
 };
 
 /// Sets entries below 1e-30 of the largest one to zero. Ahead of a wave front the discrete
@@ -191,18 +174,20 @@ public:
   double vs = 0.0;
   double beta = 0.25;
   double gamma = 0.5;
-  double h = 0.0;
+  double h = 0.0;     ///< longest element edge [m]
+  double h_min = 0.0; ///< shortest longest-edge of an element [m]
 
   Triangulation<2> mesh;
   FESystem<2> fe;
   DoFHandler<2> dof_handler;
   AffineConstraints<double> constraints;
   SparsityPattern sparsity;
-  SparseMatrix<double> mass;      ///< M, unconstrained
-  SparseMatrix<double> stiffness; ///< K, unconstrained
-  SparseMatrix<double> damping;   ///< C (Lysmer and input parts), unconstrained
-  SparseMatrix<double> effective; ///< K + gamma/(beta dt) C + 1/(beta dt^2) M, constrained
-  SparseDirectUMFPACK solver;
+  SparseMatrix<double> mass;        ///< M, unconstrained
+  SparseMatrix<double> stiffness;   ///< K, unconstrained
+  SparsityPattern damping_sparsity; ///< the boundary couplings only
+  SparseMatrix<double> damping;     ///< C (Lysmer and input parts), unconstrained
+  SparseMatrix<double> effective;   ///< K + gamma/(beta dt) C + 1/(beta dt^2) M, constrained
+  std::unique_ptr<EffectiveSolver> solver;
   double factorized_dt = 0.0;
 
   /// f(t) = input_scale * v_in(t) * input_shape: the Joyner-Chen traction 2 rho c v_in on the
@@ -210,8 +195,11 @@ public:
   Vector<double> input_shape;
   double input_scale = 0.0;
 
-  Vector<double> u, v, a;
-  Vector<double> force; ///< f at the current time
+  Vector<double> u, v, a;             ///< u: total displacement (static stage included)
+  Vector<double> static_displacement; ///< u_s of the static stage (empty without one)
+  Vector<double> static_force;        ///< K u_s: gravity, in-situ stress and reactions
+  Vector<double> a_previous; ///< acceleration one step back (extrapolated for the CG guess)
+  Vector<double> force;      ///< f at the current time
   double t = 0.0;
   bool initial_acceleration_done = false;
 
@@ -221,6 +209,7 @@ public:
   struct MonitorPoint
   {
     std::unique_ptr<FEValues<2>> values; ///< reinit'd once on the cell holding the point
+    double y = 0.0;                      ///< height of the point [m]
   };
   std::vector<MonitorPoint> monitors;
 
@@ -236,6 +225,16 @@ private:
   void compute_initial_acceleration();
   void input_force(double time, Vector<double>& f) const;
   void condense_rhs(Vector<double>& rhs) const;
+  void solve_static_stage();
+  /// out = C x with C = dashpots + Rayleigh (alpha M + beta K).
+  void damping_vmult(Vector<double>& out, const Vector<double>& x) const;
+  /// u - u_s: the displacement the dynamic stage reports.
+  Vector<double> relative_displacement() const;
+
+public:
+  /// In-situ stress sigma0 at height y: (sxx, syy, sxy) [Pa].
+  std::array<double, 3> initial_stress(double y) const;
+  double strain_energy() const;
 };
 
 ElasticWaveModel::Impl::Impl(const FarFieldDescription& description_)
@@ -275,6 +274,8 @@ ElasticWaveModel::Impl::Impl(const FarFieldDescription& description_)
   a.reinit(dof_handler.n_dofs());
   force.reinit(dof_handler.n_dofs());
   input_force(0.0, force);
+  if (description.static_stage.enabled)
+    solve_static_stage();
 
   if (description.dt > 0.0)
     factorize(description.dt);
@@ -296,7 +297,13 @@ void ElasticWaveModel::Impl::validate() const
           "poisson_ratio = " + str(d.poisson_ratio) + ", expected in [0, 0.5)");
   require(d.element_size >= 0.0, "element_size = " + str(d.element_size) + ", expected >= 0");
   require(d.dt >= 0.0, "dt = " + str(d.dt) + ", expected >= 0 (0: given to advance())");
-  if (d.element_size == 0.0)
+  require(d.solver_tolerance > 0.0 && d.solver_tolerance < 1.0,
+          "solver_tolerance = " + str(d.solver_tolerance) + ", expected in (0, 1)");
+  const bool from_file = !d.mesh_file.file.empty();
+  require(d.rayleigh.alpha >= 0.0 && d.rayleigh.beta >= 0.0,
+          "rayleigh: alpha = " + str(d.rayleigh.alpha) + ", beta = " + str(d.rayleigh.beta) +
+              ", expected both >= 0");
+  if (d.element_size == 0.0 && !from_file)
   {
     const double f =
         d.max_frequency > 0.0 ? d.max_frequency : d.incident.velocity.characteristic_frequency();
@@ -312,6 +319,10 @@ void ElasticWaveModel::Impl::validate() const
             std::string("boundary part '") + name_of(bc.part) + "' is listed twice");
     require(bc.a >= 0.0 && bc.b >= 0.0, std::string("boundary part '") + name_of(bc.part) +
                                             "': Lysmer coefficients a, b must be >= 0");
+    if (bc.part == BoundaryPart::hole)
+      require(d.hole.shape != HoleShape::none || d.mesh_file.parts.count(BoundaryPart::hole) > 0,
+              "boundary part 'hole' is listed, but the far field has no hole (expected a `hole` "
+              "section, or a Gmsh mesh with a `hole` tag in mesh.parts)");
     if (bc.kind == BoundaryKind::input)
       require(bc.part == BoundaryPart::bottom || bc.part == BoundaryPart::top,
               std::string("boundary part '") + name_of(bc.part) +
@@ -319,6 +330,8 @@ void ElasticWaveModel::Impl::validate() const
   }
   for (const auto& m : d.monitors)
   {
+    if (from_file)
+      continue; // located in the mesh (locate_monitors)
     const double tol = 1e-9 * std::max(d.upper[0] - d.lower[0], d.upper[1] - d.lower[1]);
     require(m.point[0] >= d.lower[0] - tol && m.point[0] <= d.upper[0] + tol &&
                 m.point[1] >= d.lower[1] - tol && m.point[1] <= d.upper[1] + tol,
@@ -332,25 +345,30 @@ void ElasticWaveModel::Impl::make_mesh()
 {
   const auto& d = description;
   double target = d.element_size;
-  if (target == 0.0)
+  if (target == 0.0 && d.mesh_file.file.empty())
   {
     const double f =
         d.max_frequency > 0.0 ? d.max_frequency : d.incident.velocity.characteristic_frequency();
     // points_per_wavelength counts nodes; an FE_Q(p) element spans p node intervals.
     target = vs / (f * d.points_per_wavelength) * d.degree;
   }
-  const double lx = d.upper[0] - d.lower[0];
-  const double ly = d.upper[1] - d.lower[1];
-  const auto nx = static_cast<unsigned int>(std::max(1.0, std::ceil(lx / target - 1e-9)));
-  const auto ny = static_cast<unsigned int>(std::max(1.0, std::ceil(ly / target - 1e-9)));
-  GridGenerator::subdivided_hyper_rectangle(mesh, {nx, ny}, Point<2>(d.lower[0], d.lower[1]),
-                                            Point<2>(d.upper[0], d.upper[1]), true);
-  h = std::max(lx / nx, ly / ny);
+  make_far_field_mesh(d, target, mesh);
+  h = 0.0;
+  h_min = std::numeric_limits<double>::infinity();
+  for (const auto& cell : mesh.active_cell_iterators())
+  {
+    double longest = 0.0;
+    for (const unsigned int f : cell->face_indices())
+      longest = std::max(longest, cell->face(f)->diameter());
+    h = std::max(h, longest);
+    h_min = std::min(h_min, longest);
+  }
 }
 
 void ElasticWaveModel::Impl::make_constraints()
 {
   constraints.clear();
+  DoFTools::make_hanging_node_constraints(dof_handler, constraints);
   // Roller: fix the component the incident wave does not move (see BoundaryKind::roller).
   const unsigned int roller_component = description.incident.type == IncidentWave::Type::sv ? 1 : 0;
   std::vector<bool> only(2, false);
@@ -373,10 +391,11 @@ void ElasticWaveModel::Impl::assemble_matrices()
 {
   DynamicSparsityPattern dsp(dof_handler.n_dofs());
   DoFTools::make_sparsity_pattern(dof_handler, dsp);
+  constraints.condense(dsp); // room for the condensed effective matrix (hanging nodes)
   sparsity.copy_from(dsp);
   mass.reinit(sparsity);
   stiffness.reinit(sparsity);
-  damping.reinit(sparsity);
+  SparseMatrix<double> full_damping(sparsity);
   input_shape.reinit(dof_handler.n_dofs());
 
   const double rho = description.density;
@@ -471,10 +490,23 @@ void ElasticWaveModel::Impl::assemble_matrices()
         }
       }
       cell->get_dof_indices(dofs);
-      damping.add(dofs, cell_damping);
+      full_damping.add(dofs, cell_damping);
       for (unsigned int i = 0; i < n; ++i)
         input_shape(dofs[i]) += cell_input(i);
     }
+
+  // C lives on the boundary: a pattern of its own keeps its products cheap.
+  DynamicSparsityPattern boundary_dsp(dof_handler.n_dofs());
+  for (std::size_t row = 0; row < full_damping.m(); ++row)
+    for (auto entry = full_damping.begin(row); entry != full_damping.end(row); ++entry)
+      if (entry->value() != 0.0)
+        boundary_dsp.add(row, entry->column());
+  damping_sparsity.copy_from(boundary_dsp);
+  damping.reinit(damping_sparsity);
+  for (std::size_t row = 0; row < full_damping.m(); ++row)
+    for (auto entry = full_damping.begin(row); entry != full_damping.end(row); ++entry)
+      if (entry->value() != 0.0)
+        damping.set(row, entry->column(), entry->value());
 }
 
 void ElasticWaveModel::Impl::locate_monitors()
@@ -483,16 +515,25 @@ void ElasticWaveModel::Impl::locate_monitors()
   for (const auto& m : description.monitors)
   {
     const Point<2> p(m.point[0], m.point[1]);
-    const auto found = GridTools::find_active_cell_around_point(mapping, dof_handler, p);
-    require(found.first.state() == IteratorState::valid, "monitor '" + m.name +
-                                                             "': no cell found around (" +
-                                                             str(p[0]) + ", " + str(p[1]) + ")");
+    std::pair<DoFHandler<2>::active_cell_iterator, Point<2>> found;
+    try
+    {
+      found = GridTools::find_active_cell_around_point(mapping, dof_handler, p);
+    }
+    catch (const std::exception&)
+    {
+      found.first = dof_handler.end();
+    }
+    require(found.first.state() == IteratorState::valid,
+            "monitor '" + m.name + "' at (" + str(p[0]) + ", " + str(p[1]) +
+                ") lies in no element, expected a point of the meshed far field (not in a hole)");
     const Point<2> reference = GeometryInfo<2>::project_to_unit_cell(found.second);
     MonitorPoint monitor;
     monitor.values =
         std::make_unique<FEValues<2>>(mapping, fe, Quadrature<2>(std::vector<Point<2>>{reference}),
                                       update_values | update_gradients);
     monitor.values->reinit(found.first);
+    monitor.y = p[1];
     monitors.push_back(std::move(monitor));
   }
 }
@@ -505,8 +546,136 @@ void ElasticWaveModel::Impl::input_force(const double time, Vector<double>& f) c
 
 void ElasticWaveModel::Impl::condense_rhs(Vector<double>& rhs) const
 {
-  for (const auto& line : constraints.get_lines())
-    rhs(line.index) = 0.0;
+  constraints.condense(rhs);
+}
+
+std::array<double, 3> ElasticWaveModel::Impl::initial_stress(const double y) const
+{
+  const StaticStage& s = description.static_stage;
+  if (!s.enabled)
+    return {{0.0, 0.0, 0.0}};
+  std::array<double, 3> sigma;
+  for (unsigned int k = 0; k < 3; ++k)
+    sigma[k] = s.stress[k] + s.stress_gradient[k] * (y - s.reference_y);
+  return sigma;
+}
+
+Vector<double> ElasticWaveModel::Impl::relative_displacement() const
+{
+  Vector<double> w(u);
+  if (static_displacement.size() == w.size())
+    w -= static_displacement;
+  return w;
+}
+
+double ElasticWaveModel::Impl::strain_energy() const
+{
+  return 0.5 * stiffness.matrix_norm_square(relative_displacement());
+}
+
+void ElasticWaveModel::Impl::damping_vmult(Vector<double>& out, const Vector<double>& x) const
+{
+  damping.vmult(out, x);
+  const RayleighDamping& r = description.rayleigh;
+  if (r.alpha == 0.0 && r.beta == 0.0)
+    return;
+  Vector<double> product(x.size());
+  if (r.alpha > 0.0)
+  {
+    mass.vmult(product, x);
+    out.add(r.alpha, product);
+  }
+  if (r.beta > 0.0)
+  {
+    stiffness.vmult(product, x);
+    out.add(r.beta, product);
+  }
+}
+
+void ElasticWaveModel::Impl::solve_static_stage()
+{
+  const StaticStage& s = description.static_stage;
+  // Loads: gravity rho g and the in-situ stress's internal force integral(B^T sigma0).
+  const QGauss<2> quadrature(fe.degree + 1);
+  FEValues<2> fe_values(fe, quadrature,
+                        update_values | update_gradients | update_quadrature_points |
+                            update_JxW_values);
+  const unsigned int n = fe.n_dofs_per_cell();
+  Vector<double> cell_load(n), load(dof_handler.n_dofs());
+  std::vector<types::global_dof_index> dofs(n);
+  for (const auto& cell : dof_handler.active_cell_iterators())
+  {
+    fe_values.reinit(cell);
+    cell_load = 0.0;
+    for (const unsigned int q : fe_values.quadrature_point_indices())
+    {
+      const auto sigma = initial_stress(fe_values.quadrature_point(q)[1]);
+      const double tensor[2][2] = {{sigma[0], sigma[2]}, {sigma[2], sigma[1]}};
+      for (unsigned int i = 0; i < n; ++i)
+      {
+        const unsigned int c = fe.system_to_component_index(i).first;
+        const Tensor<1, 2> grad = fe_values.shape_grad(i, q);
+        cell_load(i) += (description.density * s.gravity[c] * fe_values.shape_value(i, q) -
+                         (tensor[c][0] * grad[0] + tensor[c][1] * grad[1])) *
+                        fe_values.JxW(q);
+      }
+    }
+    cell->get_dof_indices(dofs);
+    for (unsigned int i = 0; i < n; ++i)
+      load(dofs[i]) += cell_load(i);
+  }
+
+  // Supports: the dynamic stage's constraints plus the absorbing parts held.
+  AffineConstraints<double> supports;
+  DoFTools::make_hanging_node_constraints(dof_handler, supports);
+  const unsigned int roller_component = description.incident.type == IncidentWave::Type::sv ? 1 : 0;
+  bool supported = false;
+  for (const auto& bc : description.boundaries)
+  {
+    std::vector<bool> mask(2, true);
+    if (bc.kind == BoundaryKind::free)
+      continue;
+    if (bc.kind == BoundaryKind::roller)
+      mask[1 - roller_component] = false;
+    if ((bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input) &&
+        s.support == StaticSupport::roller && bc.part != BoundaryPart::hole)
+      mask[bc.part == BoundaryPart::left || bc.part == BoundaryPart::right ? 1 : 0] = false;
+    VectorTools::interpolate_boundary_values(dof_handler, boundary_id_of(bc.part),
+                                             Functions::ZeroFunction<2>(2), supports,
+                                             ComponentMask(mask));
+    supported = true;
+  }
+  supports.close();
+  require(supported, "static_stage: no part holds the model (all parts free), expected a "
+                     "fixed, roller, lysmer or input part");
+
+  SparseMatrix<double> k(sparsity);
+  k.copy_from(stiffness);
+  supports.condense(k);
+  Vector<double> rhs(load);
+  supports.condense(rhs);
+  static_displacement.reinit(dof_handler.n_dofs());
+  const auto direct = make_effective_solver(LinearSolver::direct, DirectSolver::klu, 0.0);
+  try
+  {
+    direct->initialize(k);
+    direct->solve(rhs, static_displacement);
+  }
+  catch (const std::exception& e)
+  {
+    throw InputError(std::string("far field: static_stage: the static problem is singular (") +
+                     e.what() +
+                     "): expected supports that stop rigid-body motion in both directions");
+  }
+  for (const double x : static_displacement)
+    require(std::isfinite(x), "static_stage: the static problem is singular, expected supports "
+                              "that stop rigid-body motion in both directions");
+  supports.distribute(static_displacement);
+  // The reactions stay as forces: K u_s is the load at free DOFs and load + reaction at the
+  // supported ones, so the dynamic stage starts in equilibrium.
+  static_force.reinit(dof_handler.n_dofs());
+  stiffness.vmult(static_force, static_displacement);
+  u = static_displacement;
 }
 
 void ElasticWaveModel::Impl::factorize(const double dt)
@@ -515,20 +684,18 @@ void ElasticWaveModel::Impl::factorize(const double dt)
   const double c_damping = gamma / (beta * dt);
   effective.reinit(sparsity);
   effective.copy_from(stiffness);
-  effective.add(c_mass, mass);
-  effective.add(c_damping, damping);
-  // Homogeneous constraints: zero the row and column, keep the diagonal (rhs is zeroed there).
-  for (const auto& line : constraints.get_lines())
-  {
-    const auto i = line.index;
-    for (auto entry = effective.begin(i); entry != effective.end(i); ++entry)
-      if (entry->column() != i)
-      {
-        effective.set(entry->column(), i, 0.0);
-        entry->value() = 0.0;
-      }
-  }
-  solver.initialize(effective);
+  effective.add(c_mass + c_damping * description.rayleigh.alpha, mass);
+  if (description.rayleigh.beta > 0.0)
+    effective.add(c_damping * description.rayleigh.beta, stiffness);
+  for (std::size_t row = 0; row < damping.m(); ++row)
+    for (auto entry = damping.begin(row); entry != damping.end(row); ++entry)
+      effective.add(row, entry->column(), c_damping * entry->value());
+  // Constrained rows and columns (fixed, roller, hanging nodes) condensed out; their rows keep
+  // a diagonal entry and a zero right-hand side, and distribute() restores them.
+  constraints.condense(effective);
+  solver = make_effective_solver(description.solver, description.direct_solver,
+                                 description.solver_tolerance);
+  solver->initialize(effective);
   factorized_dt = dt;
 }
 
@@ -537,32 +704,31 @@ void ElasticWaveModel::Impl::compute_initial_acceleration()
   // M a0 = f(t) - C v0 - K u0; nothing to solve for a state at rest without input.
   initial_acceleration_done = true;
   Vector<double> rhs(force), product(u.size());
+  if (static_force.size() == rhs.size())
+    rhs += static_force;
   stiffness.vmult(product, u);
   rhs -= product;
-  damping.vmult(product, v);
+  damping_vmult(product, v);
   rhs -= product;
   condense_rhs(rhs);
-  if (rhs.l2_norm() == 0.0)
+  // At rest in equilibrium (K u_s = static force) the residual is round-off of u_s's size.
+  if (rhs.l2_norm() <= 1e-14 * (static_force.size() == rhs.size() ? static_force.l2_norm() : 0.0))
   {
     a = 0.0;
     return;
   }
   SparseMatrix<double> constrained_mass(sparsity);
   constrained_mass.copy_from(mass);
-  for (const auto& line : constraints.get_lines())
-  {
-    const auto i = line.index;
-    for (auto entry = constrained_mass.begin(i); entry != constrained_mass.end(i); ++entry)
-      if (entry->column() != i)
-      {
-        constrained_mass.set(entry->column(), i, 0.0);
-        entry->value() = 0.0;
-      }
-  }
-  SparseDirectUMFPACK mass_solver;
-  mass_solver.initialize(constrained_mass);
-  a = rhs;
-  mass_solver.solve(a);
+  constraints.condense(constrained_mass);
+  // The consistent mass matrix is well conditioned (Jacobi-scaled): CG to round-off.
+  SolverControl control(std::max<std::size_t>(1000, rhs.size()), 1e-14 * rhs.l2_norm(), false,
+                        false);
+  SolverCG<Vector<double>> cg(control);
+  PreconditionJacobi<SparseMatrix<double>> jacobi;
+  jacobi.initialize(constrained_mass);
+  a = 0.0;
+  cg.solve(constrained_mass, a, rhs, jacobi);
+  constraints.distribute(a);
 }
 
 namespace
@@ -594,12 +760,15 @@ void ElasticWaveModel::Impl::set_initial_state(const ElasticWaveModel::VectorFie
   const auto start = Clock::now();
   VectorTools::interpolate(dof_handler, FieldFunction(displacement), u);
   VectorTools::interpolate(dof_handler, FieldFunction(velocity), v);
-  condense_rhs(u);
-  condense_rhs(v);
+  constraints.distribute(u);
+  constraints.distribute(v);
+  if (static_displacement.size() == u.size())
+    u += static_displacement;
   compute_initial_acceleration();
+  a_previous.reinit(0);
   energies = EnergyBalance{};
   energies.kinetic = 0.5 * mass.matrix_norm_square(v);
-  energies.strain = 0.5 * stiffness.matrix_norm_square(u);
+  energies.strain = strain_energy();
   energies.initial = energies.stored();
   timings.setup += seconds_since(start);
 }
@@ -635,23 +804,34 @@ StepStatus ElasticWaveModel::Impl::advance(const double dt)
     const double c_v = gamma / beta - 1.0;
     const double c_a = dt * (gamma / (2.0 * beta) - 1.0);
     Vector<double> combination(u.size()), rhs(force_new), product(u.size());
+    if (static_force.size() == rhs.size())
+      rhs += static_force; // the static stage's loads and reactions, held constant
     combination.equ(m_u, u);
     combination.add(m_v, v, m_a, a);
     mass.vmult(product, combination);
     rhs += product;
     combination.equ(c_u, u);
     combination.add(c_v, v, c_a, a);
-    damping.vmult(product, combination);
+    damping_vmult(product, combination);
     rhs += product;
     condense_rhs(rhs);
     timings.assemble += seconds_since(start);
 
+    // Initial guess (for cg): Newmark's u1 with a1 extrapolated linearly, 2 a0 - a_previous.
     start = Clock::now();
-    solver.solve(rhs); // rhs now holds u1
+    if (a_previous.size() != a.size())
+      a_previous = a;
+    Vector<double> u_new(u);
+    u_new.add(dt, v, dt * dt * (0.5 + beta), a);
+    u_new.add(-dt * dt * beta, a_previous);
+    constraints.set_zero(u_new);
+    solver->solve(rhs, u_new);
+    constraints.distribute(u_new);
+    timings.linear_iterations += solver->last_iterations();
     timings.solve += seconds_since(start);
 
     start = Clock::now();
-    for (double x : rhs)
+    for (double x : u_new)
       if (!std::isfinite(x))
       {
         status.outcome = StepOutcome::solver_failure;
@@ -660,24 +840,38 @@ StepStatus ElasticWaveModel::Impl::advance(const double dt)
         return status;
       }
     Vector<double> a_new(u.size()), v_new(v);
-    a_new.equ(m_u, rhs);
+    a_new.equ(m_u, u_new);
     a_new.add(-m_u, u, -m_v, v);
     a_new.add(-m_a, a);
     v_new.add(dt * (1.0 - gamma), a, dt * gamma, a_new);
 
     // Energies: work over the step with mid-step forces (exact balance for the trapezoidal
     // rule, whose du = dt (v0 + v1) / 2).
-    Vector<double> du(rhs);
+    Vector<double> du(u_new);
     du -= u;
     Vector<double> v_mid(v);
     v_mid += v_new;
     v_mid *= 0.5;
     damping.vmult(product, v_mid);
     energies.work_of_dashpots -= du * product;
+    if (description.rayleigh.alpha > 0.0 || description.rayleigh.beta > 0.0)
+    {
+      Vector<double> rayleigh(u.size());
+      if (description.rayleigh.alpha > 0.0)
+        mass.vmult(rayleigh, v_mid);
+      rayleigh *= description.rayleigh.alpha;
+      if (description.rayleigh.beta > 0.0)
+      {
+        stiffness.vmult(product, v_mid);
+        rayleigh.add(description.rayleigh.beta, product);
+      }
+      energies.work_of_rayleigh -= du * rayleigh;
+    }
     energies.work_of_input += 0.5 * (du * force + du * force_new);
 
-    u = rhs;
+    u = u_new;
     v = v_new;
+    a_previous = a;
     a = a_new;
     flush_negligible(u);
     flush_negligible(v);
@@ -685,10 +879,6 @@ StepStatus ElasticWaveModel::Impl::advance(const double dt)
     force = force_new;
     t = t1;
     ++timings.n_steps;
-    energies.kinetic = 0.5 * mass.matrix_norm_square(v);
-    energies.strain = 0.5 * stiffness.matrix_norm_square(u);
-    energies.dissipated =
-        energies.initial + energies.work_of_input + energies.work_of_dashpots - energies.stored();
     timings.update += seconds_since(start);
   }
   catch (const std::exception& e)
@@ -708,12 +898,21 @@ MonitorSample ElasticWaveModel::Impl::sample_monitor(const std::size_t monitor) 
   std::vector<Vector<double>> point_u(1, Vector<double>(2)), point_v(1, Vector<double>(2));
   std::vector<std::vector<Tensor<1, 2>>> grad_u(1, std::vector<Tensor<1, 2>>(2));
   values.get_function_values(u, point_u);
+  if (static_displacement.size() == u.size())
+  {
+    std::vector<Vector<double>> point_static(1, Vector<double>(2));
+    values.get_function_values(static_displacement, point_static);
+    point_u[0] -= point_static[0];
+  }
   values.get_function_values(v, point_v);
   values.get_function_gradients(u, grad_u);
   MonitorSample sample;
   sample.displacement = {{point_u[0](0), point_u[0](1)}};
   sample.velocity = {{point_v[0](0), point_v[0](1)}};
   sample.stress = elasticity.stress(grad_u[0][0], grad_u[0][1]);
+  const auto s0 = initial_stress(monitors[monitor].y);
+  for (unsigned int k = 0; k < 3; ++k)
+    sample.stress[k] += s0[k];
   return sample;
 }
 
@@ -724,12 +923,14 @@ void ElasticWaveModel::Impl::write_snapshot(const std::string& directory,
   std::ostringstream name;
   name << basename << "_" << std::setw(5) << std::setfill('0') << snapshots.size() << ".vtu";
 
-  const StressPostprocessor stress(elasticity);
+  const StressPostprocessor stress(elasticity,
+                                   [this](const double y) { return initial_stress(y); });
+  const Vector<double> w = relative_displacement();
   const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector_field(
       2, DataComponentInterpretation::component_is_part_of_vector);
   DataOut<2> data_out;
   data_out.attach_dof_handler(dof_handler);
-  data_out.add_data_vector(u, std::vector<std::string>(2, "displacement"),
+  data_out.add_data_vector(w, std::vector<std::string>(2, "displacement"),
                            DataOut<2>::type_dof_data, vector_field);
   data_out.add_data_vector(v, std::vector<std::string>(2, "velocity"), DataOut<2>::type_dof_data,
                            vector_field);
@@ -784,6 +985,34 @@ double ElasticWaveModel::element_size() const
 {
   return impl->h;
 }
+double ElasticWaveModel::smallest_element_size() const
+{
+  return impl->h_min;
+}
+double ElasticWaveModel::area() const
+{
+  return GridTools::volume(impl->mesh);
+}
+double ElasticWaveModel::boundary_length(const BoundaryPart part) const
+{
+  double length = 0.0;
+  for (const auto& cell : impl->mesh.active_cell_iterators())
+    for (const unsigned int f : cell->face_indices())
+      if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == boundary_id_of(part))
+        length += cell->face(f)->measure();
+  return length;
+}
+std::size_t ElasticWaveModel::n_constraints() const
+{
+  return impl->constraints.n_constraints();
+}
+std::string ElasticWaveModel::solver_name() const
+{
+  return impl->solver ? impl->solver->name()
+                      : make_effective_solver(impl->description.solver,
+                                              impl->description.direct_solver, 1e-10)
+                            ->name();
+}
 double ElasticWaveModel::p_wave_speed() const
 {
   return impl->vp;
@@ -804,7 +1033,13 @@ MonitorSample ElasticWaveModel::sample_monitor(const std::size_t monitor) const
 
 EnergyBalance ElasticWaveModel::energy() const
 {
-  return impl->energies;
+  // Kinetic and strain energy on demand: two products with the global matrices, as costly as
+  // a step's right-hand side.
+  EnergyBalance e = impl->energies;
+  e.kinetic = 0.5 * impl->mass.matrix_norm_square(impl->v);
+  e.strain = impl->strain_energy();
+  e.dissipated = e.initial + e.work_of_input + e.work_of_dashpots + e.work_of_rayleigh - e.stored();
+  return e;
 }
 
 void ElasticWaveModel::write_snapshot(const std::string& directory, const std::string& basename)

@@ -12,8 +12,9 @@
 namespace ddafem::fem
 {
 /// Energies [J] per unit thickness. Balance: kinetic + strain = initial + work_of_input +
-/// work_of_dashpots - dissipated (dissipated: the integrator's algorithmic loss, ~0 for the
-/// trapezoidal rule).
+/// work_of_dashpots + work_of_rayleigh - dissipated (dissipated: the integrator's algorithmic
+/// loss, ~0 for the trapezoidal rule). After a static stage, strain is that of the displacement
+/// relative to the static one (the static loads' work and the static strain energy cancel).
 struct EnergyBalance
 {
   double kinetic = 0.0;
@@ -22,6 +23,7 @@ struct EnergyBalance
   double work_of_dashpots = 0.0; ///< work of the dashpot tractions since t = 0 (negative)
   double initial = 0.0;
   double dissipated = 0.0;
+  double work_of_rayleigh = 0.0; ///< work of the Rayleigh damping forces since t = 0 (negative)
   double stored() const { return kinetic + strain; }
 };
 
@@ -52,10 +54,12 @@ struct Timings
   double solve = 0.0;
   double update = 0.0;
   std::size_t n_steps = 0;
+  std::size_t linear_iterations = 0; ///< summed over steps (iterative solver; 0 for direct)
 };
 
-/// A rectangular far field in time. The effective matrix K + gamma/(beta dt) C + 1/(beta dt^2) M
-/// is factorized once (deal.II SparseDirectUMFPACK) and each step is one solve.
+/// A far field in time (a rectangle, optionally with a graded hole, or a Gmsh mesh). The
+/// effective matrix K + gamma/(beta dt) C + 1/(beta dt^2) M is set up once (factorized, or a
+/// preconditioner for CG) and each step is one solve (fem/linear_solvers.h).
 class ElasticWaveModel
 {
 public:
@@ -80,9 +84,15 @@ public:
   double time() const;
   std::size_t n_dofs() const;
   std::size_t n_cells() const;
-  double element_size() const; ///< [m]
-  double p_wave_speed() const; ///< [m/s] of the plane mode
-  double s_wave_speed() const; ///< [m/s]
+  double element_size() const;          ///< longest element edge [m]
+  double smallest_element_size() const; ///< shortest longest-edge of an element [m] (graded)
+  double area() const;                  ///< meshed area [m^2] (the rectangle less any hole)
+  /// Length [m] of the boundary faces of a part (0 if the mesh has none).
+  double boundary_length(BoundaryPart part) const;
+  std::size_t n_constraints() const; ///< constrained DOFs: fixed, roller, hanging nodes
+  std::string solver_name() const;   ///< "umfpack", "klu" or "cg_jacobi"
+  double p_wave_speed() const;       ///< [m/s] of the plane mode
+  double s_wave_speed() const;       ///< [m/s]
   const Timings& timings() const;
 
   MonitorSample sample_monitor(std::size_t monitor) const;

@@ -4,6 +4,7 @@
 #include "common/time_function.h"
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -40,13 +41,15 @@ enum class BoundaryKind
   roller
 };
 
-/// Boundary parts of the rectangle, named as in scenes.
+/// Boundary parts of the far field, named as in scenes: the sides of the rectangle and the
+/// boundary of the hole (a generated hole, or the part a Gmsh file tags as `hole`).
 enum class BoundaryPart
 {
   bottom,
   right,
   top,
-  left
+  left,
+  hole
 };
 
 struct BoundaryCondition
@@ -76,7 +79,86 @@ struct Monitor
   std::array<double, 2> point{{0.0, 0.0}}; ///< [m], inside the domain
 };
 
-/// A rectangular far field [x0, x1] x [y0, y1] meshed with square-ish FE_Q elements.
+/// Shape of the hole in a generated far-field mesh (for the DDA near field).
+enum class HoleShape
+{
+  none,
+  rectangle, ///< [lower, upper]
+  polygon,   ///< vertices, star-shaped about their area centroid
+  circle     ///< center, radius (the boundary follows the circle under refinement)
+};
+
+/// A hole in the rectangle. The mesh is an O-grid of quadrilaterals between the hole and a box
+/// about twice its size, a Cartesian grid outside the box, and local refinement (hanging nodes)
+/// until every element is at most min(far size, element_size + (growth_ratio - 1) d), d the
+/// distance of its centre from the hole.
+struct HoleDescription
+{
+  HoleShape shape = HoleShape::none;
+  std::array<double, 2> lower{{0.0, 0.0}};     ///< rectangle [m]
+  std::array<double, 2> upper{{0.0, 0.0}};     ///< rectangle [m]
+  std::vector<std::array<double, 2>> vertices; ///< polygon [m], either orientation
+  std::array<double, 2> center{{0.0, 0.0}};    ///< circle [m]
+  double radius = 0.0;                         ///< circle [m]
+  double element_size = 0.0;                   ///< element size at the hole [m]; 0: the far size
+  double growth_ratio = 1.3; ///< size ratio of neighbouring elements away from the hole, > 1
+};
+
+/// A mesh read from a Gmsh file (ASCII msh 2 or 4) instead of the generated rectangle: its
+/// physical line tags name the boundary parts; untagged boundary lines are free.
+struct MeshFile
+{
+  std::string file;                           ///< empty: generated mesh
+  std::map<BoundaryPart, unsigned int> parts; ///< physical line tag of each named part
+};
+
+/// Linear solver of the constant effective matrix.
+enum class LinearSolver
+{
+  direct, ///< sparse LU factorized once, one forward and back substitution per step
+  cg      ///< conjugate gradients with a Jacobi preconditioner, warm-started from the predictor
+};
+
+/// Implementation of LinearSolver::direct (not a scene key: KLU was faster everywhere measured,
+/// bench/fem_bench.py compares them).
+enum class DirectSolver
+{
+  klu,    ///< Trilinos Amesos KLU
+  umfpack ///< deal.II SparseDirectUMFPACK
+};
+
+/// How the absorbing (lysmer, input) parts are held while the static stage is solved.
+enum class StaticSupport
+{
+  fixed, ///< both displacement components zero
+  roller ///< the normal component zero (x on left/right, y on bottom/top; the hole: both)
+};
+
+/// A static stage ahead of the dynamic one: gravity and an in-situ stress
+/// sigma0(y) = stress + stress_gradient (y - reference_y) solved as K u_s = f_gravity -
+/// integral(B^T sigma0) with the absorbing parts supported. The reactions are then kept as
+/// constant forces (the dynamic stage applies K u_s) and the dashpots act; the dynamic stage
+/// starts from u_s at rest. Monitors and snapshots report displacements relative to u_s and the
+/// total stress sigma0 + D B u.
+struct StaticStage
+{
+  bool enabled = false;
+  std::array<double, 2> gravity{{0.0, 0.0}};              ///< [m/s^2]
+  std::array<double, 3> stress{{0.0, 0.0, 0.0}};          ///< (sxx, syy, sxy) at reference_y [Pa]
+  std::array<double, 3> stress_gradient{{0.0, 0.0, 0.0}}; ///< d/dy [Pa/m]
+  double reference_y = 0.0;                               ///< [m]
+  StaticSupport support = StaticSupport::fixed;
+};
+
+/// Rayleigh damping C += alpha M + beta K (damping ratio alpha / (2 omega) + beta omega / 2).
+struct RayleighDamping
+{
+  double alpha = 0.0; ///< [1/s]
+  double beta = 0.0;  ///< [s]
+};
+
+/// A rectangular far field [x0, x1] x [y0, y1] meshed with square-ish FE_Q elements (optionally
+/// with a graded hole), or a Gmsh mesh.
 struct FarFieldDescription
 {
   std::array<double, 2> lower{{0.0, 0.0}}; ///< (x0, y0) [m]
@@ -96,6 +178,13 @@ struct FarFieldDescription
   double dt = 0.0;       ///< [s]
   double end_time = 0.0; ///< [s]
   Integrator integrator = Integrator::newmark_trapezoidal;
+  HoleDescription hole;
+  MeshFile mesh_file;
+  LinearSolver solver = LinearSolver::direct;
+  DirectSolver direct_solver = DirectSolver::klu;
+  double solver_tolerance = 1e-12; ///< cg: residual relative to the right-hand side
+  StaticStage static_stage;
+  RayleighDamping rayleigh;
 };
 
 } // namespace ddafem::fem

@@ -119,15 +119,57 @@ namespace
 {
 using namespace ddafem::fem;
 
-void expect_measured(const IncidentKind kind, const double angle)
+// Reference values: scipy.special.dawsn.
+TEST(LysmerMeasurementTools, DawsonFunction)
+{
+  const std::array<std::pair<double, double>, 8> reference{{{0.1, 0.0993359923978529},
+                                                            {0.5, 0.4244363835020223},
+                                                            {1.0, 0.5380795069127684},
+                                                            {2.0, 0.301340388923792},
+                                                            {5.0, 0.10213407442427686},
+                                                            {10.0, 0.05025384718759854},
+                                                            {-3.0, -0.17827103061055827},
+                                                            {25.0, 0.02001603855446639}}};
+  EXPECT_EQ(dawson(0.0), 0.0);
+  for (const auto& [x, d] : reference)
+    EXPECT_NEAR(dawson(x), d, 1e-14 * std::abs(d)) << x;
+}
+
+// The closed forms against the principal-value integral (1/pi) int_0^inf (f(t-u) - f(t+u))/u du.
+TEST(LysmerMeasurementTools, HilbertTransformOfTheRickerPulse)
+{
+  const double f0 = 10.0;
+  const double a = M_PI * M_PI * f0 * f0;
+  auto ricker = [&](const double t) { return 1e-3 * (1.0 - 2.0 * a * t * t) * std::exp(-a * t * t); };
+  auto rate = [&](const double t)
+  { return 1e-3 * std::exp(-a * t * t) * (-6.0 * a * t + 4.0 * a * a * t * t * t); };
+  auto hilbert = [&](const auto& f, const double t)
+  {
+    const double du = 1.0 / (f0 * 4000.0);
+    double sum = 0.0;
+    for (double u = 0.5 * du; u < std::abs(t) + 4.0 / f0; u += du)
+      sum += (f(t - u) - f(t + u)) / u;
+    return sum * du / M_PI;
+  };
+  for (const double t : {-0.2, -0.05, 0.0, 0.01, 0.03, 0.1, 0.3})
+  {
+    EXPECT_NEAR(ricker_hilbert(t, f0), hilbert(ricker, t), 1e-9) << t;
+    EXPECT_NEAR(ricker_rate_hilbert(t, f0), hilbert(rate, t), 1e-7) << t;
+  }
+}
+
+LysmerMeasurement measure(const IncidentKind kind, const double angle)
 {
   LysmerMeasurementSettings s;
   s.incident = kind;
   s.angle_deg = angle;
   s.elements_per_wavelength = 4.0;
   s.steps_per_period = 20.0;
-  s.domain_factor = 0.5;
-  const auto m = measure_lysmer_reflection(s);
+  return measure_lysmer_reflection(s);
+}
+
+void expect_analytic(const LysmerMeasurement& m)
+{
   const auto ap = m.analytic.amplitude_p();
   const auto as = m.analytic.amplitude_s();
   ASSERT_EQ(m.r_p.has_value(), ap.has_value());
@@ -137,16 +179,34 @@ void expect_measured(const IncidentKind kind, const double angle)
     EXPECT_NEAR(*m.r_p, *ap, 0.02);
   }
   EXPECT_NEAR(*m.r_s, *as, 0.02);
-  EXPECT_NEAR(m.energy_reflected, m.analytic.energy_reflected(), 0.02);
+  EXPECT_NEAR(m.energy_reflected, m.analytic.energy_reflected(), 0.005);
 }
 
 TEST(LysmerMeasured, PWaveAt30Degrees)
 {
-  expect_measured(IncidentKind::p, 30.0);
+  const auto m = measure(IncidentKind::p, 30.0);
+  expect_analytic(m);
+  // The pulse model (mesh and time-step dispersion) reproduces the incident pulse.
+  EXPECT_NEAR(m.runs.front().incident, 1.0, 0.005);
+  EXPECT_LT(m.runs.back().rms_residual, 0.02);
+}
+
+// The reflected P leaves at 60 degrees (SV at 30 degrees is near the critical 35.3): the case
+// whose first measurement is disturbed by the boundary's missing history before t = 0 and that
+// the fixed-point runs settle.
+TEST(LysmerMeasured, SvWaveAt30DegreesReflectedPAt60)
+{
+  const auto m = measure(IncidentKind::sv, 30.0);
+  expect_analytic(m);
+  ASSERT_GE(m.runs.size(), 2u);
+  const auto& last = m.runs.back();
+  const auto& before = m.runs[m.runs.size() - 2];
+  EXPECT_NEAR(*last.r_p, *before.r_p, 0.003); // settled
+  EXPECT_NEAR(*last.r_s, *before.r_s, 0.003);
 }
 
 TEST(LysmerMeasured, SvWaveAt45DegreesBeyondCritical)
 {
-  expect_measured(IncidentKind::sv, 45.0);
+  expect_analytic(measure(IncidentKind::sv, 45.0));
 }
 } // namespace
