@@ -228,10 +228,10 @@ private:
   void solve_static_stage();
   /// out = C x with C = dashpots + Rayleigh (alpha M + beta K).
   void damping_vmult(Vector<double>& out, const Vector<double>& x) const;
-  /// u - u_s: the displacement the dynamic stage reports.
-  Vector<double> relative_displacement() const;
 
 public:
+  /// u - u_s: the displacement the dynamic stage reports.
+  Vector<double> relative_displacement() const;
   /// In-situ stress sigma0 at height y: (sxx, syy, sxy) [Pa].
   std::array<double, 3> initial_stress(double y) const;
   double strain_energy() const;
@@ -1029,6 +1029,15 @@ const Timings& ElasticWaveModel::timings() const
 MonitorSample ElasticWaveModel::sample_monitor(const std::size_t monitor) const
 {
   return impl->sample_monitor(monitor);
+}
+
+double ElasticWaveModel::l2_error(const VectorField& exact_displacement) const
+{
+  Vector<float> per_cell(impl->mesh.n_active_cells());
+  VectorTools::integrate_difference(impl->dof_handler, impl->relative_displacement(),
+                                    FieldFunction(exact_displacement), per_cell,
+                                    QGauss<2>(impl->fe.degree + 2), VectorTools::L2_norm);
+  return VectorTools::compute_global_error(impl->mesh, per_cell, VectorTools::L2_norm);
 }
 
 EnergyBalance ElasticWaveModel::energy() const

@@ -96,6 +96,10 @@ public:
   const Timings& timings() const;
 
   MonitorSample sample_monitor(std::size_t monitor) const;
+  /// L2 norm over the far field of (displacement - exact) [m^2 per unit thickness, square
+  /// rooted: m^2], the displacement relative to any static stage; Gauss quadrature of degree + 2
+  /// points per direction.
+  double l2_error(const VectorField& exact_displacement) const;
   EnergyBalance energy() const;
 
   /// Writes DIRECTORY/BASENAME_NNNNN.vtu (deal.II DataOut: displacement, velocity, stress

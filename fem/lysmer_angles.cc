@@ -97,8 +97,8 @@ int main(int argc, char** argv)
         for (std::size_t r = 0; r < m.runs.size(); ++r)
           for (const auto& row : m.runs[r].trace)
             std::fprintf(f, "%s %g %zu %.6e %.6e %.6e %.6e %.6e\n",
-                         s.incident == IncidentKind::p ? "P" : "SV", s.angle_deg, r, row[0],
-                         row[1], row[2], row[3], row[4]);
+                         s.incident == IncidentKind::p ? "P" : "SV", s.angle_deg, r, row[0], row[1],
+                         row[2], row[3], row[4]);
         std::fclose(f);
       }
     }
@@ -106,10 +106,10 @@ int main(int argc, char** argv)
     for (std::size_t r = 0; r < m.runs.size(); ++r)
     {
       char buffer[200];
-      std::snprintf(buffer, sizeof buffer, "%s{\"R_P\": %s, \"R_S\": %s, \"rms_residual\": %.6f, \"incident\": %.6f}",
-                    r > 0 ? ", " : "", number(m.runs[r].r_p).c_str(),
-                    number(m.runs[r].r_s).c_str(), m.runs[r].rms_residual,
-                    m.runs[r].incident);
+      std::snprintf(buffer, sizeof buffer,
+                    "%s{\"R_P\": %s, \"R_S\": %s, \"rms_residual\": %.6f, \"incident\": %.6f}",
+                    r > 0 ? ", " : "", number(m.runs[r].r_p).c_str(), number(m.runs[r].r_s).c_str(),
+                    m.runs[r].rms_residual, m.runs[r].incident);
       runs += buffer;
       runs.pop_back();
       runs += ", \"coefficients\": [";
@@ -131,9 +131,9 @@ int main(int argc, char** argv)
         s.incident == IncidentKind::p ? "P" : "SV", s.angle_deg, number(m.r_p).c_str(),
         number(m.r_s).c_str(), number(m.energy_reflected).c_str(),
         number(m.analytic.amplitude_p()).c_str(), number(m.analytic.amplitude_s()).c_str(),
-        number(m.analytic.energy_reflected()).c_str(), m.n_dofs, m.n_steps, m.seconds,
-        m.domain[0], m.domain[1], m.domain[2], m.monitor_height, m.window[0], m.window[1],
-        runs.c_str(), i + 1 < cases.size() ? "," : "");
+        number(m.analytic.energy_reflected()).c_str(), m.n_dofs, m.n_steps, m.seconds, m.domain[0],
+        m.domain[1], m.domain[2], m.monitor_height, m.window[0], m.window[1], runs.c_str(),
+        i + 1 < cases.size() ? "," : "");
     std::fflush(stdout);
   }
   std::printf("]\n");

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <complex>
 #include <cmath>
+#include <complex>
 #include <stdexcept>
 #include <vector>
 
@@ -74,16 +74,20 @@ bool solve_complex(std::array<std::array<cd, N>, N>& A, std::array<cd, N>& b)
 class Q2Dispersion
 {
 public:
-  Q2Dispersion(const double size, const double rho, const double lambda, const double mu)
-    : h(size)
+  Q2Dispersion(const double size, const double rho, const double lambda, const double mu) : h(size)
   {
     // 1D quadratic Lagrange functions on [0, 1] (nodes 0, 1/2, 1) at 3 Gauss points.
     const std::array<double, 3> xg{{0.5 - 0.5 * std::sqrt(0.6), 0.5, 0.5 + 0.5 * std::sqrt(0.6)}};
     const std::array<double, 3> wg{{5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0}};
     auto n1 = [](const int i, const double x)
-    { return i == 0 ? 2.0 * (x - 0.5) * (x - 1.0) : i == 1 ? -4.0 * x * (x - 1.0) : 2.0 * x * (x - 0.5); };
-    auto d1 = [](const int i, const double x)
-    { return i == 0 ? 4.0 * x - 3.0 : i == 1 ? 4.0 - 8.0 * x : 4.0 * x - 1.0; };
+    {
+      return i == 0   ? 2.0 * (x - 0.5) * (x - 1.0)
+             : i == 1 ? -4.0 * x * (x - 1.0)
+                      : 2.0 * x * (x - 0.5);
+    };
+    auto d1 = [](const int i, const double x) {
+      return i == 0 ? 4.0 * x - 3.0 : i == 1 ? 4.0 - 8.0 * x : 4.0 * x - 1.0;
+    };
     // Element matrices, node a = i + 3 j at (i h / 2, j h / 2), DOF 2 a + component.
     for (int qx = 0; qx < 3; ++qx)
       for (int qy = 0; qy < 3; ++qy)
@@ -121,8 +125,8 @@ public:
     for (int a = 0; a < 9; ++a)
       for (int b = 0; b < 9; ++b)
       {
-        const cd phase = std::polar(1.0, h * (kx * (offset(a % 3) - offset(b % 3)) +
-                                              ky * (offset(a / 3) - offset(b / 3))));
+        const cd phase = std::polar(
+            1.0, h * (kx * (offset(a % 3) - offset(b % 3)) + ky * (offset(a / 3) - offset(b / 3))));
         for (int al = 0; al < 2; ++al)
           for (int be = 0; be < 2; ++be)
           {
@@ -306,9 +310,9 @@ struct Wave
   double eta;                         ///< vertical slowness [s/m]
   double tan_angle;                   ///< tan of the angle from the boundary normal
   double delay = 0.0;                 ///< arrival at the monitor after the incident pulse [s]
-  double factor = 0.0; ///< energy flux per |A|^2 relative to the incident one
-  double a = 0.0;      ///< in-phase coefficient
-  double b = 0.0;      ///< quadrature coefficient
+  double factor = 0.0;                ///< energy flux per |A|^2 relative to the incident one
+  double a = 0.0;                     ///< in-phase coefficient
+  double b = 0.0;                     ///< quadrature coefficient
 };
 
 } // namespace
@@ -377,11 +381,13 @@ LysmerMeasurement measure_lysmer_reflection(const LysmerMeasurementSettings& s)
   if (!p_evanescent)
   {
     const double eta = std::sqrt(q_p);
-    waves.push_back({{{vp * p, vp * eta}}, eta, p / eta, 0.0, vp * vp * eta / (c_in * c_in * eta_in)});
+    waves.push_back(
+        {{{vp * p, vp * eta}}, eta, p / eta, 0.0, vp * vp * eta / (c_in * c_in * eta_in)});
   }
   {
     const double eta = std::sqrt(1.0 / (vs * vs) - p * p);
-    waves.push_back({{{-vs * eta, vs * p}}, eta, p / eta, 0.0, vs * vs * eta / (c_in * c_in * eta_in)});
+    waves.push_back(
+        {{{-vs * eta, vs * p}}, eta, p / eta, 0.0, vs * vs * eta / (c_in * c_in * eta_in)});
   }
 
   // Monitor height: the incident pulse (duration 2 half) has passed before the first
@@ -597,15 +603,15 @@ LysmerMeasurement measure_lysmer_reflection(const LysmerMeasurementSettings& s)
     }
     LysmerRun r;
     in_n[1][0] = in_n[0][1];
-    const auto in_x = solve_dense({{in_n[0][0], in_n[0][1]}, {in_n[1][0], in_n[1][1]}},
-                                  {in_r[0], in_r[1]});
+    const auto in_x =
+        solve_dense({{in_n[0][0], in_n[0][1]}, {in_n[1][0], in_n[1][1]}}, {in_r[0], in_r[1]});
     r.incident = std::hypot(in_x[0], in_x[1]);
     r.rms_residual = std::sqrt(std::max(res, 0.0) / incident_vv);
     double change = 0.0;
     for (std::size_t w = 0; w < waves.size(); ++w)
     {
-      change = std::max({change, std::abs(x[2 * w] - waves[w].a),
-                         std::abs(x[2 * w + 1] - waves[w].b)});
+      change =
+          std::max({change, std::abs(x[2 * w] - waves[w].a), std::abs(x[2 * w + 1] - waves[w].b)});
       waves[w].a = x[2 * w];
       waves[w].b = x[2 * w + 1];
       r.coefficients.push_back({{x[2 * w], x[2 * w + 1]}});

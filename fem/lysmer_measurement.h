@@ -59,10 +59,10 @@ struct LysmerMeasurement
   std::optional<double> r_s;     ///< measured |R_S|
   double energy_reflected = 0.0; ///< from the measured amplitudes and the flux factors
   LysmerReflection analytic;
-  std::vector<LysmerRun> runs; ///< the iteration history; the last one is the result
-  std::array<double, 3> domain{};  ///< x0, x1 and top y1 of the rectangle [0 <= y <= y1] [m]
-  double monitor_height = 0.0;     ///< y of the monitor (x = 0) [m]
-  std::array<double, 2> window{};  ///< fitted time window of each run [s]
+  std::vector<LysmerRun> runs;    ///< the iteration history; the last one is the result
+  std::array<double, 3> domain{}; ///< x0, x1 and top y1 of the rectangle [0 <= y <= y1] [m]
+  double monitor_height = 0.0;    ///< y of the monitor (x = 0) [m]
+  std::array<double, 2> window{}; ///< fitted time window of each run [s]
   std::size_t n_dofs = 0;
   std::size_t n_steps = 0; ///< per run
   double seconds = 0.0;    ///< wall time

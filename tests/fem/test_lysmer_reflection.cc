@@ -140,7 +140,8 @@ TEST(LysmerMeasurementTools, HilbertTransformOfTheRickerPulse)
 {
   const double f0 = 10.0;
   const double a = M_PI * M_PI * f0 * f0;
-  auto ricker = [&](const double t) { return 1e-3 * (1.0 - 2.0 * a * t * t) * std::exp(-a * t * t); };
+  auto ricker = [&](const double t)
+  { return 1e-3 * (1.0 - 2.0 * a * t * t) * std::exp(-a * t * t); };
   auto rate = [&](const double t)
   { return 1e-3 * std::exp(-a * t * t) * (-6.0 * a * t + 4.0 * a * a * t * t * t); };
   auto hilbert = [&](const auto& f, const double t)
