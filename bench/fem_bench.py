@@ -132,12 +132,13 @@ def write_outputs(out, meta, rows, hole_rows):
     lines += ["", "## Reading it", "",
               "- KLU's solve is 4-5x faster than deal.II's UMFPACK wrapper at 10k and 100k DOFs, "
               "so `direct` is KLU; its factorization grows fast (minutes at 500k DOFs, 2.4 GB).",
-              "- CG (Jacobi, warm start, 1e-12 |b|) needs about 17-22 iterations per step here "
+              "- CG (Jacobi, warm start, 1e-12 |b|) needs about 21-24 iterations per step here "
               "and no factorization: the set-up and memory stay small, and its time per step "
-              "grows linearly with the DOFs.",
+              "grows linearly with the DOFs; it overtakes KLU between 100k and 500k DOFs.",
               "- The 20 ms target for a 100k-DOF step is not met on this machine: each CG "
-              "iteration is one memory-bound product with the Q2 matrix (about 1.5 ms at 100k "
-              "DOFs when the machine is quiet).",
+              "iteration is one memory-bound product with the Q2 matrix on both cores (about "
+              "1.7 ms at 100k DOFs when the machine is quiet; 1 thread: 3 ms). At 1e-10 |b| "
+              "CG took 17 iterations (30 ms) but left velocities 2e-7 off the direct solve.",
               "- With a uniform mesh the implicit step is only 2.45 explicit steps: central "
               "differences with a lumped mass would be cheaper. The implicit scheme pays where "
               "the mesh is graded: 0.5 m elements at a hole make it 28 explicit steps.",
