@@ -52,6 +52,8 @@ const char* kind_name(fem::BoundaryKind k)
     return "input";
   case fem::BoundaryKind::roller:
     return "roller";
+  case fem::BoundaryKind::free_field:
+    return "free_field";
   }
   return "";
 }

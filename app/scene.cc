@@ -1161,11 +1161,12 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
       throw r.error("part", "the far field has no hole: expected a `far_field.hole` section or "
                             "a `hole` tag in `far_field.mesh.parts`");
     const std::string type = r.choice("type");
-    bc.kind = type == "fixed"    ? fem::BoundaryKind::fixed
-              : type == "lysmer" ? fem::BoundaryKind::lysmer
-              : type == "input"  ? fem::BoundaryKind::input
-              : type == "roller" ? fem::BoundaryKind::roller
-                                 : fem::BoundaryKind::free;
+    bc.kind = type == "fixed"        ? fem::BoundaryKind::fixed
+              : type == "lysmer"     ? fem::BoundaryKind::lysmer
+              : type == "input"      ? fem::BoundaryKind::input
+              : type == "roller"     ? fem::BoundaryKind::roller
+              : type == "free_field" ? fem::BoundaryKind::free_field
+                                     : fem::BoundaryKind::free;
     bc.a = r.number("a");
     bc.b = r.number("b");
     d.boundaries.push_back(bc);

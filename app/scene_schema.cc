@@ -511,12 +511,15 @@ SceneSchema::SceneSchema()
             .meaning("the side, or the hole's boundary"),
         key("type", T::choice)
             .required()
-            .choices({"free", "fixed", "lysmer", "input", "roller"})
+            .choices({"free", "fixed", "lysmer", "input", "roller", "free_field"})
             .meaning("fixed: zero displacement; lysmer: dashpots t = -rho (a VP (v.n) n + b VS (v "
                      "- (v.n) n)) (Lysmer & Kuhlemeyer 1969); input: those dashpots plus the "
                      "traction rho c 2 v_in of the incident wave (Joyner & Chen 1975); roller: the "
                      "displacement component the incident wave does not move is fixed (uy for a "
-                     "vertical SV wave, ux for P), keeping a column one-dimensional"),
+                     "vertical SV wave, ux for P), keeping a column one-dimensional; free_field "
+                     "(left, right): dashpots on the motion relative to a 1D column solved "
+                     "alongside plus its stress, t = sigma_ff n - D (v - v_ff) (free-field "
+                     "boundary of Zienkiewicz et al. 1989, Nielsen 2006)"),
         key("a", T::number).default_yaml("1").greater_than(0).meaning("normal dashpot factor"),
         key("b", T::number)
             .default_yaml("1")

@@ -4,7 +4,7 @@ linear solver (Amesos KLU and UMFPACK direct, Jacobi-preconditioned CG) and comp
 explicit central-difference scheme whose step is bounded by the CFL limit
 dt_explicit = (h / p) / (VP sqrt 2). Writes docs/performance/fem_bench.{json,md,png}.
 
-usage: /usr/bin/python3 bench/fem_bench.py [--build build] [--quick]
+usage: /usr/bin/python3 bench/fem_bench.py [--build build] [--quick] [--render]
 Not a test: timings depend on the machine and on its load (2 shared cores here).
 """
 import argparse
@@ -50,8 +50,15 @@ def main():
     parser.add_argument("--build", default=os.path.join(TOP, "build"))
     parser.add_argument("--quick", action="store_true", help="10k and 100k, few steps")
     parser.add_argument("--out", default=os.path.join(TOP, "docs", "performance"))
+    parser.add_argument("--render", action="store_true",
+                        help="rewrite the .md and .png from the existing fem_bench.json")
     args = parser.parse_args()
     driver = os.path.join(args.build, "bench", "fem_bench")
+    if args.render:
+        with open(os.path.join(args.out, "fem_bench.json")) as f:
+            saved = json.load(f)
+        write_outputs(args.out, saved["meta"], saved["runs"], saved["graded_hole_runs"])
+        return
 
     rows = []
     for label, cells, steps, solvers in (QUICK if args.quick else SIZES):
@@ -84,12 +91,16 @@ def main():
             r["explicit"] = {"steps_per_implicit_step": n, "step_s_estimate": per_product,
                              "cost_per_implicit_step_s": cost}
 
-    os.makedirs(args.out, exist_ok=True)
     meta = {"machine": platform.processor() or platform.machine(), "cores": os.cpu_count(),
             "load_average": os.getloadavg()[0], "model": "square of rock, VS 1000 m/s, VP 1732 "
             "m/s, Q2 elements of 4 m, dt 2 ms (20 steps per period at 25 Hz), SV pulse through "
             "the Joyner-Chen base, Lysmer sides, free top"}
-    with open(os.path.join(args.out, "fem_bench.json"), "w") as f:
+    write_outputs(args.out, meta, rows, hole_rows)
+
+
+def write_outputs(out, meta, rows, hole_rows):
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "fem_bench.json"), "w") as f:
         json.dump({"meta": meta, "runs": rows, "graded_hole_runs": hole_rows}, f, indent=2)
 
     lines = ["# Far-field (deal.II) solver benchmark", "",
@@ -118,8 +129,21 @@ def main():
             lines.append(f"| {r['size']} | {r['dofs']} | {r['dt_s'] / r['dt_explicit_s']:.2f} | "
                          f"{e['steps_per_implicit_step']} | {1e3 * e['step_s_estimate']:.2f} | "
                          f"{1e3 * e['cost_per_implicit_step_s']:.1f} | {1e3 * r['step_s']:.1f} |")
-    lines += ["", "![time per step](fem_bench.png)", ""]
-    with open(os.path.join(args.out, "fem_bench.md"), "w") as f:
+    lines += ["", "## Reading it", "",
+              "- KLU's solve is 4-5x faster than deal.II's UMFPACK wrapper at 10k and 100k DOFs, "
+              "so `direct` is KLU; its factorization grows fast (minutes at 500k DOFs, 2.4 GB).",
+              "- CG (Jacobi, warm start, 1e-12 |b|) needs about 21-24 iterations per step here "
+              "and no factorization: the set-up and memory stay small, and its time per step "
+              "grows linearly with the DOFs; it overtakes KLU between 100k and 500k DOFs.",
+              "- The 20 ms target for a 100k-DOF step is not met on this machine: each CG "
+              "iteration is one memory-bound product with the Q2 matrix on both cores (about "
+              "1.7 ms at 100k DOFs when the machine is quiet; 1 thread: 3 ms). At 1e-10 |b| "
+              "CG took 17 iterations (30 ms) but left velocities 2e-7 off the direct solve.",
+              "- With a uniform mesh the implicit step is only 2.45 explicit steps: central "
+              "differences with a lumped mass would be cheaper. The implicit scheme pays where "
+              "the mesh is graded: 0.5 m elements at a hole make it 28 explicit steps.",
+              "", "![time per step](fem_bench.png)", ""]
+    with open(os.path.join(out, "fem_bench.md"), "w") as f:
         f.write("\n".join(lines))
 
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
@@ -144,7 +168,7 @@ def main():
     ax[1].set_title("set-up (mesh, matrices, factorization)")
     ax[1].legend()
     fig.tight_layout()
-    fig.savefig(os.path.join(args.out, "fem_bench.png"), dpi=110)
+    fig.savefig(os.path.join(out, "fem_bench.png"), dpi=110)
 
 
 if __name__ == "__main__":

@@ -215,6 +215,18 @@ public:
 
   std::vector<std::pair<double, std::string>> snapshots;
 
+  /// Free-field boundaries: the 1D column and, per quadrature point of the free_field faces
+  /// (in active-cell order), where it is evaluated in the column.
+  std::unique_ptr<ElasticWaveModel> column;
+  std::vector<std::unique_ptr<FEValues<2>>> column_probes;
+  void make_free_field_column();
+  /// Adds integral(N^T (sigma_ff n + D v_ff)) over the free_field faces to f.
+  void add_free_field_load(Vector<double>& f) const;
+  /// Column velocity and stress at height y (a probe made on the fly).
+  MonitorSample column_sample(const FEValues<2>& probe) const;
+  std::unique_ptr<FEValues<2>> make_probe(double x, double y) const;
+  bool is_free_field_face(const DoFHandler<2>::active_cell_iterator& cell, unsigned int f) const;
+
 private:
   void validate() const;
   void make_mesh();
@@ -274,6 +286,7 @@ ElasticWaveModel::Impl::Impl(const FarFieldDescription& description_)
   a.reinit(dof_handler.n_dofs());
   force.reinit(dof_handler.n_dofs());
   input_force(0.0, force);
+  make_free_field_column();
   if (description.static_stage.enabled)
     solve_static_stage();
 
@@ -323,6 +336,15 @@ void ElasticWaveModel::Impl::validate() const
       require(d.hole.shape != HoleShape::none || d.mesh_file.parts.count(BoundaryPart::hole) > 0,
               "boundary part 'hole' is listed, but the far field has no hole (expected a `hole` "
               "section, or a Gmsh mesh with a `hole` tag in mesh.parts)");
+    if (bc.kind == BoundaryKind::free_field)
+    {
+      require(bc.part == BoundaryPart::left || bc.part == BoundaryPart::right,
+              std::string("boundary part '") + name_of(bc.part) +
+                  "' is 'free_field', expected a lateral side (left or right)");
+      require(!from_file, std::string("boundary part '") + name_of(bc.part) +
+                              "' is 'free_field', which needs the generated rectangle (its "
+                              "column spans [lower, upper] in y), not a mesh file");
+    }
     if (bc.kind == BoundaryKind::input)
       require(bc.part == BoundaryPart::bottom || bc.part == BoundaryPart::top,
               std::string("boundary part '") + name_of(bc.part) +
@@ -444,7 +466,8 @@ void ElasticWaveModel::Impl::assemble_matrices()
   // parts; the input traction shape on input parts.
   std::map<types::boundary_id, const BoundaryCondition*> absorbing;
   for (const auto& bc : description.boundaries)
-    if (bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input)
+    if (bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input ||
+        bc.kind == BoundaryKind::free_field)
       absorbing[boundary_id_of(bc.part)] = &bc;
   const bool sv = description.incident.type == IncidentWave::Type::sv;
   const unsigned int input_component = sv ? 0 : 1;
@@ -637,7 +660,8 @@ void ElasticWaveModel::Impl::solve_static_stage()
       continue;
     if (bc.kind == BoundaryKind::roller)
       mask[1 - roller_component] = false;
-    if ((bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input) &&
+    if ((bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input ||
+         bc.kind == BoundaryKind::free_field) &&
         s.support == StaticSupport::roller && bc.part != BoundaryPart::hole)
       mask[bc.part == BoundaryPart::left || bc.part == BoundaryPart::right ? 1 : 0] = false;
     VectorTools::interpolate_boundary_values(dof_handler, boundary_id_of(bc.part),
@@ -676,6 +700,132 @@ void ElasticWaveModel::Impl::solve_static_stage()
   static_force.reinit(dof_handler.n_dofs());
   stiffness.vmult(static_force, static_displacement);
   u = static_displacement;
+}
+
+void ElasticWaveModel::Impl::make_free_field_column()
+{
+  const auto& d = description;
+  bool needed = false;
+  for (const auto& bc : d.boundaries)
+    needed = needed || bc.kind == BoundaryKind::free_field;
+  if (!needed)
+    return;
+  // The column: one far-size element wide, the model's material, base and top, rollers.
+  FarFieldDescription c;
+  c.lower = d.lower;
+  c.upper = {{d.lower[0] + h, d.upper[1]}};
+  c.element_size = h;
+  c.degree = d.degree;
+  c.density = d.density;
+  c.youngs_modulus = d.youngs_modulus;
+  c.poisson_ratio = d.poisson_ratio;
+  c.plane_mode = d.plane_mode;
+  c.incident = d.incident;
+  c.dt = d.dt;
+  c.integrator = d.integrator;
+  c.rayleigh = d.rayleigh;
+  for (const auto& bc : d.boundaries)
+    if (bc.part == BoundaryPart::bottom || bc.part == BoundaryPart::top)
+      c.boundaries.push_back(bc);
+  c.boundaries.push_back({BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0});
+  c.boundaries.push_back({BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0});
+  column = std::make_unique<ElasticWaveModel>(c);
+
+  const Impl& col = *column->impl;
+  const MappingQ1<2> mapping;
+  const QGauss<1> face_quadrature(fe.degree + 1);
+  FEFaceValues<2> face_values(fe, face_quadrature, update_quadrature_points);
+  const double x = d.lower[0] + 0.5 * h;
+  for (const auto& cell : dof_handler.active_cell_iterators())
+    for (const unsigned int f : cell->face_indices())
+    {
+      if (!is_free_field_face(cell, f))
+        continue;
+      face_values.reinit(cell, f);
+      for (const unsigned int q : face_values.quadrature_point_indices())
+      {
+        const double y = std::clamp(face_values.quadrature_point(q)[1], d.lower[1], d.upper[1]);
+        column_probes.push_back(col.make_probe(x, y));
+      }
+    }
+}
+
+std::unique_ptr<FEValues<2>> ElasticWaveModel::Impl::make_probe(const double x,
+                                                                const double y) const
+{
+  const MappingQ1<2> mapping;
+  const auto found = GridTools::find_active_cell_around_point(mapping, dof_handler, Point<2>(x, y));
+  const Point<2> reference = GeometryInfo<2>::project_to_unit_cell(found.second);
+  auto probe =
+      std::make_unique<FEValues<2>>(mapping, fe, Quadrature<2>(std::vector<Point<2>>{reference}),
+                                    update_values | update_gradients);
+  probe->reinit(found.first);
+  return probe;
+}
+
+bool ElasticWaveModel::Impl::is_free_field_face(const DoFHandler<2>::active_cell_iterator& cell,
+                                                const unsigned int f) const
+{
+  if (!cell->face(f)->at_boundary())
+    return false;
+  for (const auto& bc : description.boundaries)
+    if (bc.kind == BoundaryKind::free_field &&
+        cell->face(f)->boundary_id() == boundary_id_of(bc.part))
+      return true;
+  return false;
+}
+
+MonitorSample ElasticWaveModel::Impl::column_sample(const FEValues<2>& probe) const
+{
+  const Impl& col = *column->impl;
+  std::vector<Vector<double>> point_v(1, Vector<double>(2));
+  std::vector<std::vector<Tensor<1, 2>>> grad_u(1, std::vector<Tensor<1, 2>>(2));
+  probe.get_function_values(col.v, point_v);
+  probe.get_function_gradients(col.u, grad_u);
+  MonitorSample sample;
+  sample.velocity = {{point_v[0](0), point_v[0](1)}};
+  sample.stress = col.elasticity.stress(grad_u[0][0], grad_u[0][1]);
+  return sample;
+}
+
+void ElasticWaveModel::Impl::add_free_field_load(Vector<double>& f) const
+{
+  const double rho = description.density;
+  const QGauss<1> face_quadrature(fe.degree + 1);
+  FEFaceValues<2> face_values(fe, face_quadrature,
+                              update_values | update_normal_vectors | update_JxW_values);
+  const unsigned int n = fe.n_dofs_per_cell();
+  Vector<double> cell_load(n);
+  std::vector<types::global_dof_index> dofs(n);
+  std::size_t probe = 0;
+  for (const auto& cell : dof_handler.active_cell_iterators())
+    for (const unsigned int face : cell->face_indices())
+    {
+      if (!is_free_field_face(cell, face))
+        continue;
+      face_values.reinit(cell, face);
+      cell_load = 0.0;
+      for (const unsigned int q : face_values.quadrature_point_indices())
+      {
+        const MonitorSample ff = column_sample(*column_probes[probe++]);
+        const Tensor<1, 2> n_q = face_values.normal_vector(q);
+        const double sigma[2][2] = {{ff.stress[0], ff.stress[2]}, {ff.stress[2], ff.stress[1]}};
+        // t = sigma_ff n + D v_ff, D = rho (VP n n^T + VS (I - n n^T)) (a = b = 1).
+        double traction[2];
+        const double vn = ff.velocity[0] * n_q[0] + ff.velocity[1] * n_q[1];
+        for (unsigned int c = 0; c < 2; ++c)
+          traction[c] = sigma[c][0] * n_q[0] + sigma[c][1] * n_q[1] +
+                        rho * (vp * vn * n_q[c] + vs * (ff.velocity[c] - vn * n_q[c]));
+        for (unsigned int i = 0; i < n; ++i)
+        {
+          const unsigned int c = fe.system_to_component_index(i).first;
+          cell_load(i) += face_values.shape_value(i, q) * traction[c] * face_values.JxW(q);
+        }
+      }
+      cell->get_dof_indices(dofs);
+      for (unsigned int i = 0; i < n; ++i)
+        f(dofs[i]) += cell_load(i);
+    }
 }
 
 void ElasticWaveModel::Impl::factorize(const double dt)
@@ -797,6 +947,13 @@ StepStatus ElasticWaveModel::Impl::advance(const double dt)
     const double t1 = t + dt;
     Vector<double> force_new(force.size());
     input_force(t1, force_new);
+    if (column)
+    {
+      const StepStatus column_status = column->advance(dt);
+      if (column_status.outcome != StepOutcome::success)
+        return column_status;
+      add_free_field_load(force_new);
+    }
     const double m_u = 1.0 / (beta * dt * dt);
     const double m_v = 1.0 / (beta * dt);
     const double m_a = 1.0 / (2.0 * beta) - 1.0;
@@ -1029,6 +1186,15 @@ const Timings& ElasticWaveModel::timings() const
 MonitorSample ElasticWaveModel::sample_monitor(const std::size_t monitor) const
 {
   return impl->sample_monitor(monitor);
+}
+
+std::array<double, 2> ElasticWaveModel::free_field_velocity(const double y) const
+{
+  AssertThrow(impl->column, ExcMessage("free_field_velocity: the model has no free_field part"));
+  const auto probe = impl->column->impl->make_probe(
+      impl->description.lower[0] + 0.5 * impl->h,
+      std::clamp(y, impl->description.lower[1], impl->description.upper[1]));
+  return impl->column_sample(*probe).velocity;
 }
 
 double ElasticWaveModel::l2_error(const VectorField& exact_displacement) const

@@ -96,6 +96,8 @@ public:
   const Timings& timings() const;
 
   MonitorSample sample_monitor(std::size_t monitor) const;
+  /// Velocity [m/s] of the free-field column at height y (a model with a free_field part).
+  std::array<double, 2> free_field_velocity(double y) const;
   /// L2 norm over the far field of (displacement - exact) [m^2 per unit thickness, square
   /// rooted: m^2], the displacement relative to any static stage; Gauss quadrature of degree + 2
   /// points per direction.

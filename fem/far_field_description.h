@@ -38,7 +38,13 @@ enum class BoundaryKind
   /// motion); the other component is free. On the lateral sides of a column under a vertically
   /// incident wave this is exactly the 1D (free-field) solution: for P it is the usual roller
   /// (zero normal displacement), for SV it holds u_y = 0 and leaves u_x free.
-  roller
+  roller,
+  /// Free-field lateral boundary (left or right side; Zienkiewicz et al. 1989, Nielsen 2006):
+  /// the Lysmer dashpots act on the motion relative to a 1D column solved alongside (same
+  /// material, base and top, rollers), t = sigma_ff n - D (v - v_ff). Exact for a vertically
+  /// incident plane wave far from whatever the model holds (a hole), which the plain dashpots
+  /// are not: they resist the free-field motion itself.
+  free_field
 };
 
 /// Boundary parts of the far field, named as in scenes: the sides of the rectangle and the

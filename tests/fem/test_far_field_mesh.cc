@@ -189,25 +189,29 @@ TEST(FarFieldMesh, PColumnWithAGradedHoleStillCarriesThePlaneWave)
 
 TEST(FarFieldMesh, GmshFileWithNamedParts)
 {
+  // The same plate as msh 2.2 and 4.1 (tests/fem/data/make_plate_msh.py).
   FarFieldDescription d = rock(1.0, 1.0, 0.0);
-  d.mesh_file.file = std::string(DDAFEM_SOURCE_DIR) + "/tests/fem/data/plate_with_hole.msh";
-  d.mesh_file.parts = {{BoundaryPart::bottom, 1},
-                       {BoundaryPart::right, 2},
-                       {BoundaryPart::top, 3},
-                       {BoundaryPart::hole, 5}}; // tag 4 (left) stays free
-  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::fixed, 1.0, 1.0},
-                  {BoundaryPart::hole, BoundaryKind::lysmer, 1.0, 1.0}};
-  d.monitors = {{"corner", {{5.5, 3.5}}}};
-  const ElasticWaveModel model(d);
-  EXPECT_EQ(model.n_cells(), 20u);
-  EXPECT_NEAR(model.area(), 20.0, 1e-12);
-  EXPECT_NEAR(model.boundary_length(BoundaryPart::hole), 8.0, 1e-12);
-  EXPECT_NEAR(model.boundary_length(BoundaryPart::bottom), 6.0, 1e-12);
-  EXPECT_NEAR(model.boundary_length(BoundaryPart::right), 4.0, 1e-12);
-  EXPECT_NEAR(model.boundary_length(BoundaryPart::left), 0.0, 1e-12);
-  EXPECT_NEAR(model.element_size(), 1.0, 1e-12);
-  // Fixed bottom: 7 nodes of Q2 on each of 6 edges -> 13 nodes x 2 components.
-  EXPECT_EQ(model.n_constraints(), 26u);
+  for (const char* name : {"plate_with_hole_v4.msh", "plate_with_hole.msh"})
+  {
+    d.mesh_file.file = std::string(DDAFEM_SOURCE_DIR) + "/tests/fem/data/" + name;
+    d.mesh_file.parts = {{BoundaryPart::bottom, 1},
+                         {BoundaryPart::right, 2},
+                         {BoundaryPart::top, 3},
+                         {BoundaryPart::hole, 5}}; // tag 4 (left) stays free
+    d.boundaries = {{BoundaryPart::bottom, BoundaryKind::fixed, 1.0, 1.0},
+                    {BoundaryPart::hole, BoundaryKind::lysmer, 1.0, 1.0}};
+    d.monitors = {{"corner", {{5.5, 3.5}}}};
+    const ElasticWaveModel model(d);
+    EXPECT_EQ(model.n_cells(), 20u);
+    EXPECT_NEAR(model.area(), 20.0, 1e-12);
+    EXPECT_NEAR(model.boundary_length(BoundaryPart::hole), 8.0, 1e-12);
+    EXPECT_NEAR(model.boundary_length(BoundaryPart::bottom), 6.0, 1e-12);
+    EXPECT_NEAR(model.boundary_length(BoundaryPart::right), 4.0, 1e-12);
+    EXPECT_NEAR(model.boundary_length(BoundaryPart::left), 0.0, 1e-12);
+    EXPECT_NEAR(model.element_size(), 1.0, 1e-12);
+    // Fixed bottom: 7 nodes of Q2 on each of 6 edges -> 13 nodes x 2 components.
+    EXPECT_EQ(model.n_constraints(), 26u);
+  }
 
   FarFieldDescription unknown = d;
   unknown.mesh_file.parts[BoundaryPart::hole] = 7;
