@@ -307,42 +307,52 @@ SolveStatus FactorizationReusingSolver::solve(const BlockSparseMatrix& a, const 
                                               Eigen::VectorXd& x, MatrixChange change)
 {
   SolveStatus status;
-  if (!factored || !factored->same_structure(a))
+  const bool same_structure = factored && factored->same_structure(a);
+  if (!factored || factored->n_rows() != a.n_rows())
   {
-    factored.reset(); // a new structure needs a new symbolic analysis
+    factored.reset();
     status = factorize_and_solve(a, b, x);
   }
-  else if (change == MatrixChange::unchanged || factored->same_values(a))
+  else if (same_structure && (change == MatrixChange::unchanged || factored->same_values(a)))
   {
     solver->solve(b, x);
     ++solve_count;
   }
   else
   {
+    // Conjugate gradients on A (symmetric positive definite) preconditioned by the factors of
+    // the old matrix: converges in a few iterations when A differs from it by a small or a
+    // low-rank change (geometry drift, contacts changing state).
     const double b_norm = b.norm();
+    const double target = tolerance * (b_norm > 0.0 ? b_norm : 1.0);
     solver->solve(b, x);
     ++solve_count;
-    bool converged = false;
-    for (unsigned k = 0; k <= max_refinements; ++k)
+    Eigen::VectorXd r = b - a.multiply(x);
+    double r_norm = r.norm();
+    Eigen::VectorXd z, p, q;
+    double rz = 0.0;
+    for (unsigned k = 0; r_norm > target && k < max_refinements; ++k)
     {
-      const Eigen::VectorXd r = b - a.multiply(x);
-      status.relative_residual = b_norm > 0.0 ? r.norm() / b_norm : r.norm();
-      if (status.relative_residual <= tolerance)
-      {
-        converged = true;
-        break;
-      }
-      if (k == max_refinements)
-        break;
-      Eigen::VectorXd dx;
-      solver->solve(r, dx);
-      x += dx;
+      solver->solve(r, z);
       ++solve_count;
+      const double rz_new = r.dot(z);
+      p = k == 0 ? z : Eigen::VectorXd(z + (rz_new / rz) * p);
+      rz = rz_new;
+      q = a.multiply(p);
+      const double alpha = rz / p.dot(q);
+      x += alpha * p;
+      r -= alpha * q;
+      r_norm = r.norm();
       ++refinement_count;
       ++status.n_refinements;
     }
-    if (!converged)
+    status.relative_residual = b_norm > 0.0 ? r_norm / b_norm : r_norm;
+    if (!(r_norm <= target))
+    {
+      if (!same_structure)
+        factored.reset(); // a new structure needs a new symbolic analysis
       status = factorize_and_solve(a, b, x);
+    }
   }
   if (status.success && !x.allFinite())
   {
