@@ -207,7 +207,12 @@ private:
   double stored_spring_energy() const;
   /// Outward unit normal of a boundary edge in the configuration the step is linearised about.
   Vector2 boundary_normal(const BoundaryEdge& e) const;
+  /// rho A0: the mass stays that of t = 0 while the block's area changes with its strain.
   double block_mass(const Block& b) const;
+  /// Density of the block in the configuration the step is linearised about [kg/m^3]: the
+  /// material's, times initial over current area (mass conservation), so that M = rho
+  /// integral of T^T T dA keeps the translational mass rho A0.
+  double block_density(const Block& b) const;
 
   ModelDescription model;
   std::vector<Eigen::Matrix3d> elasticity; ///< C per material [Pa]

@@ -1,0 +1,163 @@
+// ContactLaw: the open-close decision and Mohr-Coulomb forces of one contact point against hand
+// calculations.
+//
+// Every expected force is one or two products of exactly representable numbers (p = 1e9 N/m,
+// gaps and slips of 1e-6 to 1e-3 m), so rounding stays below 1e-15 relative; the tolerance 1e-9 N
+// is far below the smallest force that distinguishes two outcomes (1 N).
+#include "dda/contact/contact_law.h"
+
+#include <gtest/gtest.h>
+
+using namespace ddafem::dda;
+
+namespace
+{
+constexpr double tol = 1e-9; // [N]
+
+/// p = 1e9 N/m, p_s = 4e8 N/m, tan(phi) = 0.5, cohesive force 300 N, tensile capacity 200 N.
+ContactLaw law()
+{
+  ContactLaw l;
+  l.normal_stiffness = 1e9;
+  l.shear_stiffness = 4e8;
+  l.tan_friction = 0.5;
+  l.cohesive_force = 300.0;
+  l.tensile_capacity = 200.0;
+  return l;
+}
+
+ContactForces closed(double normal, double shear, bool intact = true)
+{
+  ContactForces f;
+  f.state = ContactState::lock;
+  f.normal_force = normal;
+  f.shear_force = shear;
+  f.intact = intact;
+  return f;
+}
+} // namespace
+
+TEST(ContactLaw, OpenContactStaysOpenWithAPositiveGap)
+{
+  const ContactForces out = evaluate_contact(law(), ContactForces{}, 1e-6, 1e-3);
+  EXPECT_EQ(out.state, ContactState::open);
+  EXPECT_EQ(out.normal_force, 0.0);
+  EXPECT_EQ(out.shear_force, 0.0);
+  // An open contact that never closed keeps its cohesion: it has not failed.
+  EXPECT_TRUE(out.intact);
+}
+
+TEST(ContactLaw, OpenContactClosesWhenItPenetrates)
+{
+  // N = -p gap = 1e9 x 1e-6 = 1000 N; a new contact has no previous shear: S = p_s slip =
+  // 4e8 x 1e-6 = 400 N, within N tan(phi) + c = 500 + 300 = 800 N: lock.
+  const ContactForces out = evaluate_contact(law(), ContactForces{}, -1e-6, 1e-6);
+  EXPECT_EQ(out.state, ContactState::lock);
+  EXPECT_NEAR(out.normal_force, 1000.0, tol);
+  EXPECT_NEAR(out.shear_force, 400.0, tol);
+  EXPECT_TRUE(out.intact);
+}
+
+TEST(ContactLaw, LockedContactAddsTheShearSpringToItsPreviousShear)
+{
+  // S = S0 + p_s slip = 100 - 4e8 x 1e-6 = -300 N, within 800 N.
+  const ContactForces out = evaluate_contact(law(), closed(1000.0, 100.0), -1e-6, -1e-6);
+  EXPECT_EQ(out.state, ContactState::lock);
+  EXPECT_NEAR(out.shear_force, -300.0, tol);
+}
+
+TEST(ContactLaw, SlidesAtTheFrictionLimitWithTheSignOfTheSlip)
+{
+  // Trial S = 4e8 x 3e-6 = 1200 N > 800 N: slide; cohesion is lost, S = N tan(phi) = 500 N in
+  // the direction of the slip, and -500 N for the opposite slip.
+  for (const double sign : {1.0, -1.0})
+  {
+    SCOPED_TRACE(sign);
+    const ContactForces out = evaluate_contact(law(), closed(1000.0, 0.0), -1e-6, sign * 3e-6);
+    EXPECT_EQ(out.state, ContactState::slide);
+    EXPECT_NEAR(out.normal_force, 1000.0, tol);
+    EXPECT_NEAR(out.shear_force, sign * 500.0, tol);
+    EXPECT_FALSE(out.intact);
+  }
+}
+
+TEST(ContactLaw, CohesionHoldsUntilTheLimitAndIsLostAfterSliding)
+{
+  // Trial 4e8 x 1.9e-6 = 760 N: within 800 N with cohesion (lock, intact), beyond 500 N once the
+  // contact has slid (not intact): it slides at 500 N.
+  const ContactForces held = evaluate_contact(law(), closed(1000.0, 0.0), -1e-6, 1.9e-6);
+  EXPECT_EQ(held.state, ContactState::lock);
+  EXPECT_NEAR(held.shear_force, 760.0, tol);
+  EXPECT_TRUE(held.intact);
+  const ContactForces after_slip =
+      evaluate_contact(law(), closed(1000.0, 0.0, false), -1e-6, 1.9e-6);
+  EXPECT_EQ(after_slip.state, ContactState::slide);
+  EXPECT_NEAR(after_slip.shear_force, 500.0, tol);
+  EXPECT_FALSE(after_slip.intact);
+  // Just beyond 800 N: the same contact slides even though it was intact.
+  const ContactForces beyond = evaluate_contact(law(), closed(1000.0, 0.0), -1e-6, 2.1e-6);
+  EXPECT_EQ(beyond.state, ContactState::slide);
+  EXPECT_NEAR(beyond.shear_force, 500.0, tol);
+}
+
+TEST(ContactLaw, FrictionlessSlidingContactCarriesNoShear)
+{
+  ContactLaw smooth = law();
+  smooth.tan_friction = 0.0;
+  smooth.cohesive_force = 0.0;
+  const ContactForces out = evaluate_contact(smooth, closed(1000.0, 0.0, false), -1e-6, -1e-3);
+  EXPECT_EQ(out.state, ContactState::slide);
+  EXPECT_EQ(out.shear_force, 0.0);
+}
+
+TEST(ContactLaw, TensileCapacityHoldsThenFails)
+{
+  // A closed intact contact pulled by p gap = 1e9 x 1.5e-7 = 150 N <= 200 N holds (N = -150 N);
+  // the friction limit is then only the cohesion, 300 N.
+  const ContactForces held = evaluate_contact(law(), closed(1000.0, 0.0), 1.5e-7, 5e-7);
+  EXPECT_EQ(held.state, ContactState::lock);
+  EXPECT_NEAR(held.normal_force, -150.0, tol);
+  EXPECT_NEAR(held.shear_force, 200.0, tol);
+  EXPECT_TRUE(held.intact);
+  // 250 N > 200 N: it opens and loses its strength for good.
+  const ContactForces failed = evaluate_contact(law(), closed(1000.0, 0.0), 2.5e-7, 0.0);
+  EXPECT_EQ(failed.state, ContactState::open);
+  EXPECT_EQ(failed.normal_force, 0.0);
+  EXPECT_FALSE(failed.intact);
+  // Closing again, it has no tensile capacity left: the smallest pull opens it.
+  const ContactForces pulled = evaluate_contact(law(), closed(1000.0, 0.0, false), 1e-9, 0.0);
+  EXPECT_EQ(pulled.state, ContactState::open);
+  // An open contact never resists a pull, even if intact.
+  const ContactForces never = evaluate_contact(law(), ContactForces{}, 1e-9, 0.0);
+  EXPECT_EQ(never.state, ContactState::open);
+  EXPECT_TRUE(never.intact);
+}
+
+TEST(ContactLaw, ClosedContactWithoutTensileStrengthOpensAndLosesCohesion)
+{
+  ContactLaw no_tension = law();
+  no_tension.tensile_capacity = 0.0;
+  const ContactForces out = evaluate_contact(no_tension, closed(1000.0, 0.0), 1e-9, 0.0);
+  EXPECT_EQ(out.state, ContactState::open);
+  EXPECT_FALSE(out.intact);
+}
+
+TEST(ContactLaw, StateChangedComparesStateAndSlidingDirection)
+{
+  ContactForces slide_plus = closed(1000.0, 500.0);
+  slide_plus.state = ContactState::slide;
+  ContactForces slide_minus = slide_plus;
+  slide_minus.shear_force = -500.0;
+  ContactForces slide_other_magnitude = slide_plus;
+  slide_other_magnitude.shear_force = 300.0;
+  const ContactForces lock_a = closed(1000.0, 100.0), lock_b = closed(2000.0, -100.0);
+  EXPECT_FALSE(state_changed(lock_a, lock_b)); // same state, forces differ
+  EXPECT_TRUE(state_changed(lock_a, slide_plus));
+  EXPECT_TRUE(state_changed(ContactForces{}, lock_a));
+  EXPECT_TRUE(state_changed(slide_plus, slide_minus)); // the friction force flips
+  EXPECT_FALSE(state_changed(slide_plus, slide_other_magnitude));
+  // Frictionless sliding has no direction to flip.
+  ContactForces smooth = slide_plus;
+  smooth.shear_force = 0.0;
+  EXPECT_FALSE(state_changed(smooth, slide_minus));
+}

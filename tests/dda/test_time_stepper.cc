@@ -1,0 +1,136 @@
+// TimeStepper through a real System: a unit block thrown upward at 1 m/s under gravity, with a
+// step displacement bound (g2 w0 = 1e-3 x 0.5 m = 5e-4 m) that the first steps exceed: the
+// largest dt (1e-3 s) moves it 9.95e-4 m, 0.3 x dt 3e-4 m. As gravity slows it down, dt grows
+// back to 1e-3 s (allowed once v < 0.5 m/s, after about 0.05 s).
+//
+// dt is multiplied by 0.3 and 1.2 a few times; those products are exact up to a few ulps, hence
+// EXPECT_DOUBLE_EQ (4 ulps) on every dt.
+#include "dda/system.h"
+#include "dda/time_stepper.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace ddafem;
+using namespace ddafem::dda;
+
+namespace
+{
+constexpr double dt_max = 1e-3, v0 = 1.0, g = 9.81;
+
+ModelDescription thrown_block()
+{
+  ModelDescription m;
+  m.materials.push_back({"rock", 2650.0, 10e9, 0.25});
+  BlockDescription b;
+  b.vertices = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  b.initial_velocity = Vector2(0.0, v0);
+  m.blocks = {b};
+  m.gravity = Vector2(0.0, -g);
+  m.contacts.max_displacement_ratio = 1e-3;
+  m.time.dt = dt_max;
+  m.time.end_time = 1.0;
+  return m;
+}
+} // namespace
+
+TEST(TimeStepper, CutsByTheCutFactorAndGrowsBackToTheLargestStep)
+{
+  const ModelDescription m = thrown_block();
+  System s(m);
+  ASSERT_DOUBLE_EQ(s.max_step_displacement(), 5e-4);
+  TimeStepper stepper(s, m.time);
+  ASSERT_DOUBLE_EQ(stepper.next_dt(), dt_max);
+
+  // First step: 1e-3 s fails (9.95e-4 m > 5e-4 m), 3e-4 s passes; a cut step does not grow dt.
+  StepStatus status = stepper.step();
+  ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
+  EXPECT_DOUBLE_EQ(stepper.last_dt(), 0.3 * dt_max);
+  EXPECT_EQ(stepper.n_cuts(), 1u);
+  EXPECT_EQ(stepper.n_cut_steps(), 1u);
+  EXPECT_DOUBLE_EQ(stepper.next_dt(), 0.3 * dt_max);
+  EXPECT_EQ(s.get_timings().n_attempts, 2u);
+  // Second step: 3e-4 s passes without a cut and dt grows by 1.2.
+  status = stepper.step();
+  ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
+  EXPECT_DOUBLE_EQ(stepper.last_dt(), 0.3 * dt_max);
+  EXPECT_DOUBLE_EQ(stepper.next_dt(), 0.36 * dt_max);
+  EXPECT_EQ(stepper.n_cuts(), 1u);
+
+  // Every later step: the accepted dt is the tried one times 0.3 per cut; after an uncut step dt
+  // grows by 1.2 up to dt_max; no accepted step moves a vertex beyond the bound.
+  std::size_t n_steps_at_max = 0;
+  while (s.time() < 0.1)
+  {
+    const double tried = stepper.next_dt();
+    const std::size_t cuts_before = stepper.n_cuts();
+    status = stepper.step();
+    ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
+    const std::size_t n_cuts = stepper.n_cuts() - cuts_before;
+    EXPECT_DOUBLE_EQ(stepper.last_dt(), tried * std::pow(0.3, static_cast<double>(n_cuts)));
+    EXPECT_DOUBLE_EQ(stepper.next_dt(),
+                     n_cuts > 0 ? stepper.last_dt() : std::min(dt_max, 1.2 * stepper.last_dt()));
+    EXPECT_LE(status.max_displacement, s.max_step_displacement());
+    if (stepper.last_dt() == dt_max)
+      ++n_steps_at_max;
+  }
+  // The block slowed from 1 m/s to 1 - 9.81 x 0.1 = 0.019 m/s: dt is back at its largest.
+  EXPECT_GT(stepper.n_cuts(), 1u);
+  EXPECT_GT(n_steps_at_max, 10u);
+  EXPECT_DOUBLE_EQ(stepper.next_dt(), dt_max);
+  EXPECT_NEAR(s.get_blocks()[0].velocity.y(), v0 - g * s.time(), 1e-9);
+}
+
+TEST(TimeStepper, FixedControlStopsWithAMessageInsteadOfCutting)
+{
+  ModelDescription m = thrown_block();
+  m.time.control = TimeControl::fixed;
+  System s(m);
+  TimeStepper stepper(s, m.time);
+  const StepStatus status = stepper.step();
+  EXPECT_EQ(status.outcome, StepOutcome::displacement_too_large);
+  EXPECT_NE(status.message.find("time.control: fixed"), std::string::npos) << status.message;
+  EXPECT_EQ(stepper.n_cuts(), 0u);
+  // The failed step left the System as it was.
+  EXPECT_EQ(s.n_steps(), 0u);
+  EXPECT_EQ(s.time(), 0.0);
+  EXPECT_EQ(s.get_blocks()[0].velocity.y(), v0);
+}
+
+TEST(TimeStepper, StopsWithAMessageBelowTheSmallestStep)
+{
+  // 3e-4 s would pass, but dt_min = 5e-4 s forbids it.
+  ModelDescription m = thrown_block();
+  m.time.dt_min = 5e-4;
+  System s(m);
+  TimeStepper stepper(s, m.time);
+  EXPECT_DOUBLE_EQ(stepper.smallest_dt(), 5e-4);
+  const StepStatus status = stepper.step();
+  EXPECT_EQ(status.outcome, StepOutcome::displacement_too_large);
+  EXPECT_NE(status.message.find("time.dt_min"), std::string::npos) << status.message;
+  EXPECT_EQ(s.n_steps(), 0u);
+  EXPECT_EQ(s.time(), 0.0);
+
+  // dt_min = 3e-4 s exactly allows the cut step.
+  m.time.dt_min = 3e-4;
+  System t(m);
+  TimeStepper allowed(t, m.time);
+  const StepStatus ok = allowed.step();
+  EXPECT_EQ(ok.outcome, StepOutcome::success) << ok.message;
+  EXPECT_DOUBLE_EQ(allowed.last_dt(), 3e-4);
+}
+
+TEST(TimeStepper, LandsOnTheRequestedEndOfAStage)
+{
+  const ModelDescription m = thrown_block();
+  System s(m);
+  TimeStepper stepper(s, m.time);
+  // A limit below the cut step is taken as it is, without a cut.
+  const StepStatus status = stepper.step(1e-4);
+  ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
+  EXPECT_DOUBLE_EQ(stepper.last_dt(), 1e-4);
+  EXPECT_DOUBLE_EQ(s.time(), 1e-4);
+  EXPECT_EQ(stepper.n_cuts(), 0u);
+}
