@@ -290,33 +290,21 @@ std::string contact_vtu_text(double time, const std::vector<ContactSnapshot>& co
   out += close_array;
   out += "      </Points>\n"
          "      <Cells>\n";
-  std::vector<std::size_t> index(contacts.size());
-  for (std::size_t k = 0; k < index.size(); ++k)
-    index[k] = k;
-  open_array(out, "Int64", "connectivity", 1);
-  for (const std::size_t k : index)
+  // One vertex cell per point: connectivity k, offset k + 1.
+  const auto append_cell_array = [&](const char* type, const char* name, auto value_of)
   {
-    out += "          ";
-    append_integer(out, k);
-    out += '\n';
-  }
-  out += close_array;
-  open_array(out, "Int64", "offsets", 1);
-  for (const std::size_t k : index)
-  {
-    out += "          ";
-    append_integer(out, k + 1);
-    out += '\n';
-  }
-  out += close_array;
-  open_array(out, "UInt8", "types", 1);
-  for (std::size_t k = 0; k < contacts.size(); ++k)
-  {
-    out += "          ";
-    append_integer(out, vtk_vertex);
-    out += '\n';
-  }
-  out += close_array;
+    open_array(out, type, name, 1);
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+    {
+      out += "          ";
+      append_integer(out, value_of(k));
+      out += '\n';
+    }
+    out += close_array;
+  };
+  append_cell_array("Int64", "connectivity", [](std::size_t k) { return k; });
+  append_cell_array("Int64", "offsets", [](std::size_t k) { return k + 1; });
+  append_cell_array("UInt8", "types", [](std::size_t) { return vtk_vertex; });
   out += "      </Cells>\n"
          "      <CellData Scalars=\"state\" Vectors=\"normal\">\n";
   append_column<std::size_t>(out, contacts, "Int64", "id",
