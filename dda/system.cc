@@ -263,11 +263,7 @@ StepStatus System::advance(double dt)
       "at t = " + format_time(current_time) + " (dt = " + format_time(dt) + ")";
   ++timings.n_attempts;
   if (mode == StageMode::static_equilibrium)
-    for (Block& b : blocks)
-    {
-      b.velocity.setZero();
-      b.acceleration.setZero();
-    }
+    set_at_rest();
 
   // 1. Find contact candidates, 2. update contacts.
   auto start = Clock::now();
@@ -359,11 +355,7 @@ StepStatus System::advance(double dt)
   }
   contacts.swap(trial_contacts);
   if (mode == StageMode::static_equilibrium)
-    for (Block& b : blocks)
-    {
-      b.velocity.setZero();
-      b.acceleration.setZero();
-    }
+    set_at_rest();
   else
     current_time += dt;
   timings.update += seconds_since(start);
@@ -394,17 +386,22 @@ StepStatus System::advance(double dt)
   return status;
 }
 
+void System::set_at_rest()
+{
+  for (Block& b : blocks)
+  {
+    b.velocity.setZero();
+    b.acceleration.setZero();
+  }
+}
+
 void System::begin_stage(StageMode new_mode)
 {
   const bool after_static = mode == StageMode::static_equilibrium;
   mode = new_mode;
   if (mode == StageMode::dynamic && !after_static)
     return;
-  for (Block& b : blocks)
-  {
-    b.velocity.setZero();
-    b.acceleration.setZero();
-  }
+  set_at_rest();
   if (mode == StageMode::dynamic)
   {
     // Measure the dynamic stage from the equilibrium reached.

@@ -179,6 +179,8 @@ private:
   };
 
   MaterialPoint attach(const Point& p, const std::string& what) const;
+  /// Zero velocity and acceleration of every block (static stages, start of a dynamic one).
+  void set_at_rest();
   /// Phase 1: block pairs whose boxes, inflated by d0, overlap.
   std::vector<std::pair<std::size_t, std::size_t>> find_contact_candidates() const;
   /// Phase 2: the vertex-edge contacts of the pairs, matched to the previous step's to keep
