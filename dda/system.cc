@@ -255,6 +255,31 @@ MaterialPoint System::attach(const Point& p, const std::string& what) const
   throw InputError(s.str());
 }
 
+void System::tie(TiedBody& body, const std::vector<MaterialPoint>& points)
+{
+  if (timings.n_attempts > 0)
+    throw InputError("tie(): the ties must be made before the first step");
+  const double tol = 1e-6 * model_size(blocks);
+  for (const MaterialPoint& p : points)
+  {
+    if (p.block >= blocks.size() ||
+        locate_point(blocks[p.block].vertices, p.position, tol) != PointLocation::on_boundary)
+    {
+      std::ostringstream s;
+      s << "tie point (" << p.position.x() << ", " << p.position.y() << ") is not on the boundary "
+        << "of block " << p.block << ": expected points on the blocks' outer edges";
+      throw InputError(s.str());
+    }
+    tie_blocks.push_back(p.block);
+  }
+  std::sort(tie_blocks.begin(), tie_blocks.end());
+  tie_blocks.erase(std::unique(tie_blocks.begin(), tie_blocks.end()), tie_blocks.end());
+  tied_body = &body;
+  tie_points = points;
+  tie_matrices.resize(points.size());
+  set_matrix_structure(coupling_pairs);
+}
+
 // ---- the step --------------------------------------------------------------------------------
 
 StepStatus System::advance(double dt)
@@ -283,10 +308,24 @@ StepStatus System::advance(double dt)
   matrix_dt = dt;
   timings.assemble += seconds_since(start);
 
+  // The tied body (far field) starts its step: its condensed stiffness and force on the ties.
+  StepStatus status;
+  if (tied_body)
+  {
+    Eigen::VectorXd displacements(2 * tie_points.size());
+    for (std::size_t k = 0; k < tie_points.size(); ++k)
+    {
+      tie_matrices[k] = point_matrix(tie_points[k]);
+      displacements.segment<2>(2 * k) = tie_points[k].position - tie_points[k].initial;
+    }
+    const std::string failure = tied_body->begin_step(dt, displacements);
+    if (!failure.empty())
+      return {StepOutcome::solver_failure, failure + " " + when, {}};
+  }
+
   // 4. Solve with the open-close iteration.
   start = Clock::now();
-  StepStatus status;
-  if (trial_contacts.empty())
+  if (trial_contacts.empty() && !tied_body)
   {
     status.solve = solver.solve(matrix, rhs, solution,
                                 new_matrix ? MatrixChange::unknown : MatrixChange::unchanged);
@@ -297,7 +336,7 @@ StepStatus System::advance(double dt)
     }
   }
   else
-    status = solve_with_open_close(when);
+    status = solve_with_open_close(when, new_matrix);
   timings.solve += seconds_since(start);
   if (status.outcome != StepOutcome::success)
     return status;
@@ -344,8 +383,14 @@ StepStatus System::advance(double dt)
     return status;
   }
 
-  // 5. Update blocks and contacts.
+  // 5. Update the tied body, blocks and contacts.
   start = Clock::now();
+  if (tied_body)
+  {
+    const std::string failure = tied_body->end_step(tie_increments(solution));
+    if (!failure.empty())
+      return {StepOutcome::solver_failure, failure + " " + when, status.solve};
+  }
   update_blocks(dt, solution);
   for (Contact& c : trial_contacts)
   {
@@ -560,6 +605,11 @@ void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_
 
 void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings)
 {
+  // The tied body couples every pair of blocks with tie points (its condensed stiffness is
+  // dense over them).
+  for (std::size_t i = 0; i < tie_blocks.size(); ++i)
+    for (std::size_t j = i + 1; j < tie_blocks.size(); ++j)
+      couplings.emplace_back(tie_blocks[i], tie_blocks[j]);
   std::sort(couplings.begin(), couplings.end());
   couplings.erase(std::unique(couplings.begin(), couplings.end()), couplings.end());
   if (couplings != coupling_pairs || matrix.n_blocks() != blocks.size())
@@ -591,9 +641,14 @@ ContactLaw System::contact_law(const Contact& c) const
   return law;
 }
 
-StepStatus System::solve_with_open_close(const std::string& when)
+StepStatus System::solve_with_open_close(const std::string& when, bool new_matrix)
 {
-  base_matrix = matrix;
+  // The matrix without contact and tie terms: just assembled, or kept from the last assembly
+  // (small-displacement analysis, same dt).
+  if (new_matrix || !base_matrix.same_structure(matrix))
+    base_matrix = matrix;
+  else
+    matrix = base_matrix;
   base_rhs = rhs;
   StepStatus status;
   const unsigned max_iterations = std::max(1u, model.contacts.max_open_close_iterations);
@@ -605,6 +660,7 @@ StepStatus System::solve_with_open_close(const std::string& when)
       rhs = base_rhs;
     }
     add_contact_terms();
+    add_tie_terms();
     status.solve = solver.solve(matrix, rhs, solution, MatrixChange::unknown);
     ++status.n_open_close_iterations;
     ++timings.n_open_close_iterations;
@@ -614,7 +670,9 @@ StepStatus System::solve_with_open_close(const std::string& when)
       status.message = status.solve.message + " " + when;
       return status;
     }
-    const std::size_t n_changes = update_trial_states();
+    std::size_t n_changes = update_trial_states();
+    if (tied_body)
+      n_changes += tied_body->update_trial_states(tie_increments(solution));
     status.n_state_changes += n_changes;
     if (n_changes == 0)
       return status;
@@ -648,6 +706,41 @@ void System::add_contact_terms()
     add_pair_spring(matrix, rhs, c.coupling, c.vertex_block, f.t_vertex, c.edge_block, f.t_edge, k2,
                     force_on_vertex);
   }
+}
+
+void System::add_tie_terms()
+{
+  if (!tied_body)
+    return;
+  const Eigen::MatrixXd& h = tied_body->stiffness();
+  const Eigen::VectorXd& g = tied_body->force();
+  // (A + T^T H T) d = b + T^T g: block (i, j) gains the sum over tie points k on i and l on j
+  // of T_k^T H_kl T_l; the upper block of i < j is filled from the pairs with b(k) < b(l).
+  for (std::size_t k = 0; k < tie_points.size(); ++k)
+  {
+    const std::size_t bk = tie_points[k].block;
+    const Matrix26& tk = tie_matrices[k];
+    rhs.segment<6>(6 * bk).noalias() += tk.transpose() * g.segment<2>(2 * k);
+    for (std::size_t l = 0; l < tie_points.size(); ++l)
+    {
+      const std::size_t bl = tie_points[l].block;
+      if (bk > bl)
+        continue;
+      const Matrix6 c = tk.transpose() * h.block<2, 2>(2 * k, 2 * l) * tie_matrices[l];
+      if (bk == bl)
+        matrix.diagonal(bk) += c;
+      else
+        matrix.upper(coupling_of(bk, bl)) += c;
+    }
+  }
+}
+
+Eigen::VectorXd System::tie_increments(const Eigen::VectorXd& d) const
+{
+  Eigen::VectorXd delta(2 * tie_points.size());
+  for (std::size_t k = 0; k < tie_points.size(); ++k)
+    delta.segment<2>(2 * k) = tie_matrices[k] * d.segment<6>(6 * tie_points[k].block);
+  return delta;
 }
 
 std::size_t System::update_trial_states()
@@ -870,6 +963,8 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
     move(f.point);
   for (MaterialPoint& m : monitors)
     move(m);
+  for (MaterialPoint& p : tie_points)
+    move(p);
   for (BoundaryEdge& e : boundary_edges)
     move(e.midpoint);
   for (Joint& j : joints)
@@ -1043,9 +1138,10 @@ EnergyBalance System::energy() const
   e.work_of_loads = work_of_loads;
   e.work_of_supports = work_of_supports;
   e.work_of_boundaries = work_of_boundaries;
+  e.work_of_ties = tied_body ? tied_body->work_on_blocks() : 0.0;
   e.initial = initial_energy;
-  e.dissipated =
-      e.initial + e.work_of_loads + e.work_of_supports + e.work_of_boundaries - e.stored();
+  e.dissipated = e.initial + e.work_of_loads + e.work_of_supports + e.work_of_boundaries +
+                 e.work_of_ties - e.stored();
   return e;
 }
 

@@ -7,6 +7,7 @@
 #include "dda/linear_solver.h"
 #include "dda/model_description.h"
 #include "dda/snapshot.h"
+#include "dda/tied_body.h"
 #include "dda/viscous_boundary.h"
 
 #include <Eigen/Core>
@@ -32,6 +33,9 @@ struct EnergyBalance
   double work_of_supports = 0.0; ///< done by prescribed motions of fixed points, since t = 0
   /// Done by the viscous boundaries on the blocks since t = 0: negative when they absorb.
   double work_of_boundaries = 0.0;
+  /// Done by the ties to a tied body (the far field) on the blocks since t = 0: the energy that
+  /// crossed the interface into the blocks (negative when it left them).
+  double work_of_ties = 0.0;
   double initial = 0.0;    ///< kinetic + strain + spring at t = 0
   double dissipated = 0.0; ///< initial + works - (kinetic + strain + spring)
 
@@ -119,6 +123,14 @@ public:
   /// strength break). On a failure nothing changes (the caller may retry with a smaller dt).
   StepStatus advance(double dt);
 
+  /// Ties m points, each on the boundary of its block, to `body`, which the System steps with
+  /// itself from then on (see TiedBody). The body must outlive the System. Before the first
+  /// step only; throws InputError for a point off its block.
+  void tie(TiedBody& body, const std::vector<MaterialPoint>& points);
+  std::size_t n_tie_points() const { return tie_points.size(); }
+  /// The tie points' current positions [m].
+  const std::vector<MaterialPoint>& get_tie_points() const { return tie_points; }
+
   /// Starts a stage. Static (Shi's static analysis): velocities are zeroed before every step and
   /// the clock stands still. A dynamic stage after a static one starts at rest from the state
   /// reached, with the energy balance and the monitors' displacements measured from there.
@@ -188,8 +200,13 @@ private:
   void update_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
   ContactLaw contact_law(const Contact& c) const;
   /// Phase 4: solves with the contacts in their trial states until no state changes.
-  StepStatus solve_with_open_close(const std::string& when);
+  /// `new_matrix`: the matrix was assembled for this step (else base_matrix holds it).
+  StepStatus solve_with_open_close(const std::string& when, bool new_matrix);
   void add_contact_terms();
+  /// The tied body's H and g on the blocks of the tie points (T at the step start).
+  void add_tie_terms();
+  /// The tie points' displacement increments T d (2m) of a solution.
+  Eigen::VectorXd tie_increments(const Eigen::VectorXd& d) const;
   /// Sets each trial from the solution; returns the number of state changes.
   std::size_t update_trial_states();
   double largest_vertex_displacement(const Eigen::VectorXd& d) const;
@@ -230,6 +247,10 @@ private:
   /// Each boundary edge's stiffness and force in the current step (set by assemble, used for
   /// the boundary's work in update_blocks).
   std::vector<BoundaryStep> boundary_steps;
+  TiedBody* tied_body = nullptr;
+  std::vector<MaterialPoint> tie_points;
+  std::vector<Matrix26> tie_matrices;  ///< T of each tie point at the step start
+  std::vector<std::size_t> tie_blocks; ///< blocks with tie points, sorted
   std::vector<Contact> contacts;       ///< of the last accepted step
   std::vector<Contact> trial_contacts; ///< of the step being tried
   std::vector<ContactFrame> frames;    ///< of trial_contacts

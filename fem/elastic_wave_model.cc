@@ -162,9 +162,10 @@ class ElasticWaveModel::Impl
 public:
   explicit Impl(const FarFieldDescription& description);
 
-  StepStatus advance(double dt);
+  StepStatus prepare_step(double dt);
+  StepStatus finish_step(const std::vector<double>& point_loads);
   MonitorSample sample_monitor(std::size_t monitor) const;
-  void write_snapshot(const std::string& directory, const std::string& basename);
+  std::string write_snapshot(const std::string& directory, const std::string& basename);
   void set_initial_state(const ElasticWaveModel::VectorField& displacement,
                          const ElasticWaveModel::VectorField& velocity);
 
@@ -215,6 +216,32 @@ public:
 
   std::vector<std::pair<double, std::string>> snapshots;
 
+  /// A point spring: the shape functions of its cell at its point and K [N/m].
+  struct SpringPoint
+  {
+    std::vector<types::global_dof_index> dofs; ///< the cell's DOFs with a nonzero shape value
+    std::vector<double> phi;                   ///< shape value of each at the point
+    std::vector<unsigned int> component;       ///< vector component of each
+    double k[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
+  };
+  std::vector<SpringPoint> springs;
+  std::vector<double> spring_force; ///< F on the far field at the current time [N] (2m)
+  /// out = N x (2m).
+  std::vector<double> evaluate_at_springs(const Vector<double>& x) const;
+  /// rhs += N^T q.
+  void add_spring_loads(const std::vector<double>& q, Vector<double>& rhs) const;
+
+  /// The step between prepare_step() and finish_step().
+  struct PendingStep
+  {
+    bool active = false;
+    double dt = 0.0;
+    Vector<double> force_new; ///< f(t + dt): input and free-field loads
+    Vector<double> u_new;     ///< P^-1 (Newmark right-hand side)
+  };
+  PendingStep pending;
+  void ensure_factorized(double dt);
+
   /// Free-field boundaries: the 1D column and, per quadrature point of the free_field faces
   /// (in active-cell order), where it is evaluated in the column.
   std::unique_ptr<ElasticWaveModel> column;
@@ -236,12 +263,12 @@ private:
   void factorize(double dt);
   void compute_initial_acceleration();
   void input_force(double time, Vector<double>& f) const;
-  void condense_rhs(Vector<double>& rhs) const;
   void solve_static_stage();
   /// out = C x with C = dashpots + Rayleigh (alpha M + beta K).
   void damping_vmult(Vector<double>& out, const Vector<double>& x) const;
 
 public:
+  void condense_rhs(Vector<double>& rhs) const;
   /// u - u_s: the displacement the dynamic stage reports.
   Vector<double> relative_displacement() const;
   /// In-situ stress sigma0 at height y: (sxx, syy, sxy) [Pa].
@@ -840,6 +867,12 @@ void ElasticWaveModel::Impl::factorize(const double dt)
   for (std::size_t row = 0; row < damping.m(); ++row)
     for (auto entry = damping.begin(row); entry != damping.end(row); ++entry)
       effective.add(row, entry->column(), c_damping * entry->value());
+  // Point springs: N^T K N couples the DOFs of each spring's cell.
+  for (const SpringPoint& sp : springs)
+    for (std::size_t i = 0; i < sp.dofs.size(); ++i)
+      for (std::size_t j = 0; j < sp.dofs.size(); ++j)
+        effective.add(sp.dofs[i], sp.dofs[j],
+                      sp.phi[i] * sp.k[sp.component[i]][sp.component[j]] * sp.phi[j]);
   // Constrained rows and columns (fixed, roller, hanging nodes) condensed out; their rows keep
   // a diagonal entry and a zero right-hand side, and distribute() restores them.
   constraints.condense(effective);
@@ -860,6 +893,16 @@ void ElasticWaveModel::Impl::compute_initial_acceleration()
   rhs -= product;
   damping_vmult(product, v);
   rhs -= product;
+  if (!springs.empty())
+  {
+    // Springs to anchors at rest (the tied body has not moved yet): F = -K N u0.
+    const std::vector<double> w = evaluate_at_springs(u);
+    for (std::size_t k = 0; k < springs.size(); ++k)
+      for (unsigned int r = 0; r < 2; ++r)
+        spring_force[2 * k + r] =
+            -(springs[k].k[r][0] * w[2 * k] + springs[k].k[r][1] * w[2 * k + 1]);
+    add_spring_loads(spring_force, rhs);
+  }
   condense_rhs(rhs);
   // At rest in equilibrium (K u_s = static force) the residual is round-off of u_s's size.
   if (rhs.l2_norm() <= 1e-14 * (static_force.size() == rhs.size() ? static_force.l2_norm() : 0.0))
@@ -923,36 +966,75 @@ void ElasticWaveModel::Impl::set_initial_state(const ElasticWaveModel::VectorFie
   timings.setup += seconds_since(start);
 }
 
-StepStatus ElasticWaveModel::Impl::advance(const double dt)
+void ElasticWaveModel::Impl::ensure_factorized(const double dt)
+{
+  if (!initial_acceleration_done)
+  {
+    const auto start = Clock::now();
+    compute_initial_acceleration();
+    timings.setup += seconds_since(start);
+  }
+  if (dt != factorized_dt)
+  {
+    const auto start = Clock::now();
+    factorize(dt);
+    timings.setup += seconds_since(start);
+  }
+}
+
+std::vector<double> ElasticWaveModel::Impl::evaluate_at_springs(const Vector<double>& x) const
+{
+  std::vector<double> out(2 * springs.size(), 0.0);
+  for (std::size_t k = 0; k < springs.size(); ++k)
+  {
+    const SpringPoint& sp = springs[k];
+    for (std::size_t i = 0; i < sp.dofs.size(); ++i)
+      out[2 * k + sp.component[i]] += sp.phi[i] * x(sp.dofs[i]);
+  }
+  return out;
+}
+
+void ElasticWaveModel::Impl::add_spring_loads(const std::vector<double>& q,
+                                              Vector<double>& rhs) const
+{
+  for (std::size_t k = 0; k < springs.size(); ++k)
+  {
+    const SpringPoint& sp = springs[k];
+    for (std::size_t i = 0; i < sp.dofs.size(); ++i)
+      rhs(sp.dofs[i]) += sp.phi[i] * q[2 * k + sp.component[i]];
+  }
+}
+
+StepStatus ElasticWaveModel::Impl::prepare_step(const double dt)
 {
   require(dt > 0.0 && std::isfinite(dt), "advance: dt = " + str(dt) + ", expected > 0");
   StepStatus status;
+  // A step prepared but not finished (the DDA side cut dt) has already advanced the free-field
+  // column: it can only be prepared again with the same dt.
+  const bool column_advanced = pending.active && column;
+  if (column_advanced && dt != pending.dt)
+  {
+    status.outcome = StepOutcome::solver_failure;
+    status.message = "far field: a step of " + str(pending.dt) + " s was abandoned and one of " +
+                     str(dt) + " s tried: free-field boundaries need a fixed time step";
+    return status;
+  }
+  pending.active = false;
   try
   {
-    if (!initial_acceleration_done)
-    {
-      const auto start = Clock::now();
-      compute_initial_acceleration();
-      timings.setup += seconds_since(start);
-    }
-    if (dt != factorized_dt)
-    {
-      const auto start = Clock::now();
-      factorize(dt);
-      timings.setup += seconds_since(start);
-    }
+    ensure_factorized(dt);
 
     // Right-hand side of K_eff u1 = f1 + M (...) + C (...) (Newmark, displacement form).
     auto start = Clock::now();
     const double t1 = t + dt;
-    Vector<double> force_new(force.size());
-    input_force(t1, force_new);
+    pending.force_new.reinit(force.size());
+    input_force(t1, pending.force_new);
     if (column)
     {
-      const StepStatus column_status = column->advance(dt);
+      const StepStatus column_status = column_advanced ? StepStatus{} : column->advance(dt);
       if (column_status.outcome != StepOutcome::success)
         return column_status;
-      add_free_field_load(force_new);
+      add_free_field_load(pending.force_new);
     }
     const double m_u = 1.0 / (beta * dt * dt);
     const double m_v = 1.0 / (beta * dt);
@@ -960,7 +1042,7 @@ StepStatus ElasticWaveModel::Impl::advance(const double dt)
     const double c_u = gamma / (beta * dt);
     const double c_v = gamma / beta - 1.0;
     const double c_a = dt * (gamma / (2.0 * beta) - 1.0);
-    Vector<double> combination(u.size()), rhs(force_new), product(u.size());
+    Vector<double> combination(u.size()), rhs(pending.force_new), product(u.size());
     if (static_force.size() == rhs.size())
       rhs += static_force; // the static stage's loads and reactions, held constant
     combination.equ(m_u, u);
@@ -978,13 +1060,50 @@ StepStatus ElasticWaveModel::Impl::advance(const double dt)
     start = Clock::now();
     if (a_previous.size() != a.size())
       a_previous = a;
-    Vector<double> u_new(u);
-    u_new.add(dt, v, dt * dt * (0.5 + beta), a);
-    u_new.add(-dt * dt * beta, a_previous);
-    constraints.set_zero(u_new);
-    solver->solve(rhs, u_new);
-    constraints.distribute(u_new);
+    pending.u_new = u;
+    pending.u_new.add(dt, v, dt * dt * (0.5 + beta), a);
+    pending.u_new.add(-dt * dt * beta, a_previous);
+    constraints.set_zero(pending.u_new);
+    solver->solve(rhs, pending.u_new);
+    constraints.distribute(pending.u_new);
     timings.linear_iterations += solver->last_iterations();
+    timings.solve += seconds_since(start);
+    pending.dt = dt;
+    pending.active = true;
+  }
+  catch (const std::exception& e)
+  {
+    status.outcome = StepOutcome::solver_failure;
+    status.message = std::string("far field: solver failed: ") + e.what();
+  }
+  return status;
+}
+
+StepStatus ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_loads)
+{
+  AssertThrow(pending.active, ExcMessage("finish_step() without prepare_step()"));
+  AssertThrow(point_loads.size() == 2 * springs.size(),
+              ExcMessage("finish_step(): " + std::to_string(point_loads.size()) +
+                         " point loads for " + std::to_string(springs.size()) + " springs"));
+  pending.active = false;
+  StepStatus status;
+  const double dt = pending.dt;
+  const double t1 = t + dt;
+  Vector<double>& u_new = pending.u_new;
+  try
+  {
+    auto start = Clock::now();
+    if (std::any_of(point_loads.begin(), point_loads.end(), [](double q) { return q != 0.0; }))
+    {
+      // u = y + P^-1 N^T q: one more solve with the same factorization.
+      Vector<double> rhs(u.size()), x(u.size());
+      add_spring_loads(point_loads, rhs);
+      condense_rhs(rhs);
+      solver->solve(rhs, x);
+      constraints.distribute(x);
+      u_new += x;
+      timings.linear_iterations += solver->last_iterations();
+    }
     timings.solve += seconds_since(start);
 
     start = Clock::now();
@@ -996,7 +1115,10 @@ StepStatus ElasticWaveModel::Impl::advance(const double dt)
         timings.update += seconds_since(start);
         return status;
       }
-    Vector<double> a_new(u.size()), v_new(v);
+    const double m_u = 1.0 / (beta * dt * dt);
+    const double m_v = 1.0 / (beta * dt);
+    const double m_a = 1.0 / (2.0 * beta) - 1.0;
+    Vector<double> a_new(u.size()), v_new(v), product(u.size());
     a_new.equ(m_u, u_new);
     a_new.add(-m_u, u, -m_v, v);
     a_new.add(-m_a, a);
@@ -1024,7 +1146,21 @@ StepStatus ElasticWaveModel::Impl::advance(const double dt)
       }
       energies.work_of_rayleigh -= du * rayleigh;
     }
-    energies.work_of_input += 0.5 * (du * force + du * force_new);
+    energies.work_of_input += 0.5 * (du * force + du * pending.force_new);
+    if (!springs.empty())
+    {
+      // F = q - K N u on the far field; its work with mid-step forces.
+      const std::vector<double> w_old = evaluate_at_springs(u);
+      const std::vector<double> w_new = evaluate_at_springs(u_new);
+      std::vector<double> f_new(point_loads);
+      for (std::size_t k = 0; k < springs.size(); ++k)
+        for (unsigned int r = 0; r < 2; ++r)
+          for (unsigned int c = 0; c < 2; ++c)
+            f_new[2 * k + r] -= springs[k].k[r][c] * w_new[2 * k + c];
+      for (std::size_t i = 0; i < f_new.size(); ++i)
+        energies.work_of_springs += 0.5 * (spring_force[i] + f_new[i]) * (w_new[i] - w_old[i]);
+      spring_force = f_new;
+    }
 
     u = u_new;
     v = v_new;
@@ -1033,7 +1169,7 @@ StepStatus ElasticWaveModel::Impl::advance(const double dt)
     flush_negligible(u);
     flush_negligible(v);
     flush_negligible(a);
-    force = force_new;
+    force = pending.force_new;
     t = t1;
     ++timings.n_steps;
     timings.update += seconds_since(start);
@@ -1073,8 +1209,8 @@ MonitorSample ElasticWaveModel::Impl::sample_monitor(const std::size_t monitor) 
   return sample;
 }
 
-void ElasticWaveModel::Impl::write_snapshot(const std::string& directory,
-                                            const std::string& basename)
+std::string ElasticWaveModel::Impl::write_snapshot(const std::string& directory,
+                                                   const std::string& basename)
 {
   std::filesystem::create_directories(directory);
   std::ostringstream name;
@@ -1105,6 +1241,7 @@ void ElasticWaveModel::Impl::write_snapshot(const std::string& directory,
   std::ofstream pvd(std::filesystem::path(directory) / (basename + ".pvd"));
   AssertThrow(pvd, ExcMessage("cannot write " + directory + "/" + basename + ".pvd"));
   DataOutBase::write_pvd_record(pvd, snapshots);
+  return name.str();
 }
 
 // ---- public interface ---------------------------------------------------------------------
@@ -1124,7 +1261,146 @@ void ElasticWaveModel::set_initial_state(const VectorField& displacement,
 
 StepStatus ElasticWaveModel::advance(const double dt)
 {
-  return impl->advance(dt);
+  StepStatus status = impl->prepare_step(dt);
+  if (status.outcome != StepOutcome::success)
+    return status;
+  return impl->finish_step(std::vector<double>(2 * impl->springs.size(), 0.0));
+}
+
+StepStatus ElasticWaveModel::prepare_step(const double dt,
+                                          std::vector<double>& free_point_displacements)
+{
+  StepStatus status = impl->prepare_step(dt);
+  if (status.outcome == StepOutcome::success)
+    free_point_displacements = impl->evaluate_at_springs(impl->pending.u_new);
+  return status;
+}
+
+StepStatus ElasticWaveModel::finish_step(const std::vector<double>& point_loads)
+{
+  return impl->finish_step(point_loads);
+}
+
+std::vector<double> ElasticWaveModel::point_displacements() const
+{
+  return impl->evaluate_at_springs(impl->u);
+}
+
+std::vector<double> ElasticWaveModel::spring_forces() const
+{
+  return impl->spring_force;
+}
+
+std::size_t ElasticWaveModel::n_point_springs() const
+{
+  return impl->springs.size();
+}
+
+std::vector<std::array<double, 4>>
+ElasticWaveModel::boundary_segments(const BoundaryPart part) const
+{
+  std::vector<std::array<double, 4>> segments;
+  for (const auto& cell : impl->mesh.active_cell_iterators())
+    for (const unsigned int f : cell->face_indices())
+      if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == boundary_id_of(part))
+      {
+        const Point<2> a = cell->face(f)->vertex(0), b = cell->face(f)->vertex(1);
+        segments.push_back({{a[0], a[1], b[0], b[1]}});
+      }
+  return segments;
+}
+
+std::vector<double> ElasticWaveModel::add_point_springs(const BoundaryPart part,
+                                                        const std::vector<PointSpring>& new_springs)
+{
+  Impl& m = *impl;
+  require(!m.description.static_stage.enabled,
+          "point springs (ties to DDA blocks) with a far-field static stage are not supported: "
+          "expected no `far_field.static_stage` in a coupled scene");
+  // The faces of the part, with their cells.
+  std::vector<std::pair<DoFHandler<2>::active_cell_iterator, unsigned int>> faces;
+  for (const auto& cell : m.dof_handler.active_cell_iterators())
+    for (const unsigned int f : cell->face_indices())
+      if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == boundary_id_of(part))
+        faces.emplace_back(cell, f);
+  require(!faces.empty(),
+          std::string("point springs: the far field has no boundary part '") + name_of(part) + "'");
+  const MappingQ1<2> mapping;
+  std::vector<double> distances;
+  for (const PointSpring& ps : new_springs)
+  {
+    // The nearest point of the part's (straight, Q1-mapped) faces.
+    const Point<2> p(ps.point[0], ps.point[1]);
+    double best = std::numeric_limits<double>::infinity();
+    Point<2> nearest;
+    DoFHandler<2>::active_cell_iterator cell;
+    for (const auto& [c, f] : faces)
+    {
+      const Point<2> a = c->face(f)->vertex(0), b = c->face(f)->vertex(1);
+      const Tensor<1, 2> ab = b - a;
+      const double s = std::clamp(((p - a) * ab) / ab.norm_square(), 0.0, 1.0);
+      const Point<2> q = a + s * ab;
+      if (q.distance(p) < best)
+      {
+        best = q.distance(p);
+        nearest = q;
+        cell = c;
+      }
+    }
+    distances.push_back(best);
+    const Point<2> reference =
+        GeometryInfo<2>::project_to_unit_cell(mapping.transform_real_to_unit_cell(cell, nearest));
+    FEValues<2> values(mapping, m.fe, Quadrature<2>(std::vector<Point<2>>{reference}),
+                       update_values);
+    values.reinit(cell);
+    std::vector<types::global_dof_index> dofs(m.fe.n_dofs_per_cell());
+    cell->get_dof_indices(dofs);
+    Impl::SpringPoint sp;
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+    {
+      const double phi = values.shape_value(i, 0);
+      if (std::abs(phi) < 1e-14)
+        continue;
+      sp.dofs.push_back(dofs[i]);
+      sp.phi.push_back(phi);
+      sp.component.push_back(m.fe.system_to_component_index(i).first);
+    }
+    sp.k[0][0] = ps.stiffness[0];
+    sp.k[0][1] = ps.stiffness[1];
+    sp.k[1][0] = ps.stiffness[2];
+    sp.k[1][1] = ps.stiffness[3];
+    m.springs.push_back(std::move(sp));
+  }
+  m.spring_force.assign(2 * m.springs.size(), 0.0);
+  m.factorized_dt = 0.0; // the effective matrix gains N^T K N
+  return distances;
+}
+
+std::vector<double> ElasticWaveModel::point_flexibility(const double dt)
+{
+  Impl& m = *impl;
+  const auto start = Clock::now();
+  m.ensure_factorized(dt);
+  const std::size_t n = 2 * m.springs.size();
+  std::vector<double> g(n * n, 0.0);
+  Vector<double> rhs(m.u.size()), x(m.u.size());
+  std::vector<double> unit(n, 0.0);
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    unit[j] = 1.0;
+    rhs = 0.0;
+    m.add_spring_loads(unit, rhs);
+    unit[j] = 0.0;
+    m.condense_rhs(rhs);
+    x = 0.0;
+    m.solver->solve(rhs, x);
+    m.constraints.distribute(x);
+    const std::vector<double> column = m.evaluate_at_springs(x);
+    for (std::size_t i = 0; i < n; ++i)
+      g[i * n + j] = column[i];
+  }
+  m.timings.setup += seconds_since(start);
+  return g;
 }
 double ElasticWaveModel::time() const
 {
@@ -1213,13 +1489,15 @@ EnergyBalance ElasticWaveModel::energy() const
   EnergyBalance e = impl->energies;
   e.kinetic = 0.5 * impl->mass.matrix_norm_square(impl->v);
   e.strain = impl->strain_energy();
-  e.dissipated = e.initial + e.work_of_input + e.work_of_dashpots + e.work_of_rayleigh - e.stored();
+  e.dissipated = e.initial + e.work_of_input + e.work_of_dashpots + e.work_of_rayleigh +
+                 e.work_of_springs - e.stored();
   return e;
 }
 
-void ElasticWaveModel::write_snapshot(const std::string& directory, const std::string& basename)
+std::string ElasticWaveModel::write_snapshot(const std::string& directory,
+                                             const std::string& basename)
 {
-  impl->write_snapshot(directory, basename);
+  return impl->write_snapshot(directory, basename);
 }
 
 } // namespace ddafem::fem

@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace ddafem::fem
 {
@@ -24,6 +25,9 @@ struct EnergyBalance
   double initial = 0.0;
   double dissipated = 0.0;
   double work_of_rayleigh = 0.0; ///< work of the Rayleigh damping forces since t = 0 (negative)
+  /// Work of the point springs (ties to DDA blocks) on the far field since t = 0: the energy
+  /// that crossed the interface into the far field.
+  double work_of_springs = 0.0;
   double stored() const { return kinetic + strain; }
 };
 
@@ -44,6 +48,13 @@ struct StepStatus
 {
   StepOutcome outcome = StepOutcome::success;
   std::string message;
+};
+
+/// A spring between a far-field point and an outside body (the ties of coupling/, issue 6).
+struct PointSpring
+{
+  std::array<double, 2> point{{0.0, 0.0}};               ///< [m], near a boundary part
+  std::array<double, 4> stiffness{{0.0, 0.0, 0.0, 0.0}}; ///< K (2 x 2 row-major, symmetric) [N/m]
 };
 
 /// Wall time per phase since construction [s].
@@ -78,7 +89,8 @@ public:
   /// M a0 = f(t) - K u0 - C v0. Resets the energy balance (initial = kinetic + strain).
   void set_initial_state(const VectorField& displacement, const VectorField& velocity);
 
-  /// Advances by dt [s] (a dt other than the last one refactorizes).
+  /// Advances by dt [s] (a dt other than the last one refactorizes): prepare_step() and
+  /// finish_step() with zero point loads.
   StepStatus advance(double dt);
 
   double time() const;
@@ -104,9 +116,40 @@ public:
   double l2_error(const VectorField& exact_displacement) const;
   EnergyBalance energy() const;
 
+  // ---- point springs: the far field's side of the DDA coupling (coupling/) ----------------
+  // Spring k ties the far field's displacement N_k u at the point X_k to an outside body.
+  // Over a step the far field solves P u = f + N^T q, P = A + sum N_k^T K_k N_k (A the
+  // effective matrix, f the Newmark right-hand side) and q the point loads the caller sets; the
+  // springs' force on the far field is then F_k = q_k - K_k N_k u. With q_k = K_k z_k this is a
+  // spring to the target displacement z_k; advance() uses q = 0 (springs to fixed anchors).
+  // Point vectors are 2m long, (x, y) per spring; matrices 2m x 2m row-major.
+
+  /// Ties springs to the boundary faces of `part`, each at the point of the part nearest to the
+  /// given point; returns each given point's distance from the part [m] (the caller judges it).
+  /// Throws InputError if the part has no faces or the model has a static stage (the springs
+  /// would take part in it). Changes the effective matrix (refactorized at the next step).
+  std::vector<double> add_point_springs(BoundaryPart part, const std::vector<PointSpring>& springs);
+  std::size_t n_point_springs() const;
+  /// The boundary faces of `part` as straight segments {x0, y0, x1, y1} [m].
+  std::vector<std::array<double, 4>> boundary_segments(BoundaryPart part) const;
+  /// G = N P^-1 N^T for steps of dt: the displacements [m] at the spring points per unit point
+  /// load [N]; 2m solves.
+  std::vector<double> point_flexibility(double dt);
+  /// First half of a step of dt: assembles f and solves P y = f; returns N y, the spring points'
+  /// displacements at the end of the step for q = 0 [m].
+  StepStatus prepare_step(double dt, std::vector<double>& free_point_displacements);
+  /// Second half: u = y + P^-1 N^T q with the point loads q [N] (2m), then velocities,
+  /// accelerations and energies. Only after prepare_step().
+  StepStatus finish_step(const std::vector<double>& point_loads);
+  /// N u: displacements at the spring points [m] (2m).
+  std::vector<double> point_displacements() const;
+  /// The springs' forces F on the far field at the current time [N] (2m).
+  std::vector<double> spring_forces() const;
+
   /// Writes DIRECTORY/BASENAME_NNNNN.vtu (deal.II DataOut: displacement, velocity, stress
-  /// components, von Mises) and rewrites DIRECTORY/BASENAME.pvd with all snapshots so far.
-  void write_snapshot(const std::string& directory, const std::string& basename);
+  /// components, von Mises) and rewrites DIRECTORY/BASENAME.pvd with all snapshots so far;
+  /// returns the VTU's file name (without the directory).
+  std::string write_snapshot(const std::string& directory, const std::string& basename);
 
 private:
   class Impl;

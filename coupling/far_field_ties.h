@@ -1,0 +1,138 @@
+// Ties between the DDA region's outer block edges and the deal.II far field around it (issue 6):
+// one implicit system per step, the far field condensed onto the tie points.
+#pragma once
+
+#include "dda/contact/contact_law.h"
+#include "dda/system.h"
+#include "dda/tied_body.h"
+#include "fem/elastic_wave_model.h"
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace ddafem::coupling
+{
+/// How the blocks are tied to the far field.
+struct InterfaceDescription
+{
+  fem::BoundaryPart part = fem::BoundaryPart::hole; ///< the far field's part the blocks fill
+  /// Normal spring of a tied edge end [N/m], as a bonded joint's (Shi): an edge's tie points
+  /// share 2 p by their Gauss weights.
+  double normal_stiffness = 0.0;
+  double shear_ratio = 0.4; ///< p_s / p [-]
+  /// Mohr-Coulomb strength of the ties: cohesion and tensile strength [Pa] on each tie's share
+  /// of the edge, friction angle [deg]. Infinite strength (the default): the ties never open
+  /// or slide and the interface is linear.
+  double cohesion = std::numeric_limits<double>::infinity();
+  double tensile_strength = std::numeric_limits<double>::infinity();
+  double friction_angle = 0.0;
+  /// Gauss points per piece of a tied edge between far-field face ends (3: exact for the tie
+  /// energy of a block edge against degree-2 faces).
+  unsigned points_per_face = 3;
+  /// Largest distance [m] of a tied block edge from the part; 0: 1e-6 of the model size.
+  double tolerance = 0.0;
+};
+
+/// Number of ties in each state.
+struct TieCounts
+{
+  std::size_t intact = 0; ///< locked with cohesion and tensile strength
+  std::size_t lock = 0;   ///< locked, strength lost (residual friction)
+  std::size_t slide = 0;
+  std::size_t open = 0;
+};
+
+/// One tie: a Gauss point of a block edge on the far field's part (composite quadrature over the
+/// pieces of the edge between the far-field face ends).
+struct Tie
+{
+  std::size_t block = 0;
+  dda::Point point = dda::Point::Zero();       ///< at t = 0 [m]
+  dda::Vector2 normal = dda::Vector2::Zero();  ///< out of the block, into the far field
+  dda::Vector2 tangent = dda::Vector2::Zero(); ///< normal rotated by +90 deg
+  double length = 0.0;                         ///< the share of the edge the tie carries [m]
+  dda::ContactLaw law;
+  /// Accepted forces: normal_force compression positive; shear_force S acts on the block as
+  /// -S t and on the far field as +S t (the block is the contact's vertex side).
+  dda::ContactForces forces;
+  dda::ContactForces trial;
+  /// r = z - w: the block point's displacement minus the far field's at the tie [m], at the end
+  /// of the last accepted step (the tie's elastic stretch plus any slip or opening).
+  dda::Vector2 stretch = dda::Vector2::Zero();
+};
+
+/// The far field as a dda::TiedBody. With K the ties' bonded springs, P = A + N^T K N the far
+/// field's effective matrix with the ties (factorized once), G = N P^-1 N^T (2m x 2m, 2m solves
+/// per dt), w0 = N P^-1 f (one solve per step): in the ties' trial states (springs K', forces
+/// F0, dK = K' - K) the far field's tie displacements are w = R w0 + M (K' z + F0) with
+/// R = (I + G dK)^-1, M = R G, z the blocks' tie displacements; the ties' force on the far
+/// field is F = K' (z - w) + F0 and on the blocks -F, which gives TiedBody's H and g. Bonded
+/// ties (dK = 0) need no dense solve; a state change costs one dense LU of 2m x 2m. See
+/// coupling/README.md.
+class FarFieldTies final : public dda::TiedBody
+{
+public:
+  /// Finds the block edges on the part, places the ties, attaches the springs to the far field
+  /// and ties the points to the system. Throws InputError if the blocks do not fill the part.
+  FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field,
+               const InterfaceDescription& description);
+
+  std::string begin_step(double dt, const Eigen::VectorXd& displacements) override;
+  const Eigen::MatrixXd& stiffness() const override { return h; }
+  const Eigen::VectorXd& force() const override { return g; }
+  std::size_t update_trial_states(const Eigen::VectorXd& delta) override;
+  std::string end_step(const Eigen::VectorXd& delta) override;
+  double work_on_blocks() const override { return work_blocks; }
+
+  std::size_t n_ties() const { return ties.size(); }
+  std::size_t n_tied_edges() const { return tied_edges; }
+  std::size_t n_tied_blocks() const;
+  double tied_length() const { return length_tied; }    ///< [m]
+  double part_length() const { return length_of_part; } ///< [m]
+  const std::vector<Tie>& get_ties() const { return ties; }
+  TieCounts counts() const;
+  /// Work of the ties on the far field since t = 0 [J] (the energy that crossed into it).
+  double work_on_far_field() const;
+  /// Energy held or dissipated by the tie springs: -(work on blocks + work on far field) [J].
+  double tie_energy() const { return -(work_blocks + work_on_far_field()); }
+  /// Wall time [s]: G (once per dt), the tie algebra of the steps (H, g, states).
+  double condensation_seconds() const { return time_condensation; }
+  double tie_seconds() const { return time_ties; }
+
+private:
+  /// K', F0, R w0, M, H and g from the trial states.
+  void build_terms();
+  /// w = R w0 + M (K' z + F0).
+  Eigen::VectorXd far_field_displacements(const Eigen::VectorXd& z) const;
+
+  fem::ElasticWaveModel& far_field;
+  std::vector<Tie> ties;
+  std::size_t tied_edges = 0;
+  double length_tied = 0.0, length_of_part = 0.0;
+  bool linear = true; ///< infinite strength: no state changes
+
+  Eigen::MatrixXd k_bonded;    ///< K, block diagonal (2 x 2 per tie) [N/m]
+  Eigen::MatrixXd flexibility; ///< G [m/N]
+  double flexibility_dt = 0.0;
+
+  // The step in progress.
+  Eigen::VectorXd w0;              ///< free far-field displacements at the ties [m]
+  Eigen::VectorXd start;           ///< c: the blocks' tie displacements at the step start [m]
+  Eigen::MatrixXd k_trial;         ///< K' [N/m]
+  Eigen::VectorXd f_trial;         ///< F0 [N]
+  Eigen::VectorXd r_w0;            ///< R w0 [m]
+  Eigen::MatrixXd m_matrix;        ///< M = R G [m/N]
+  Eigen::MatrixXd h;               ///< H = K' - K' M K' [N/m]
+  Eigen::VectorXd g;               ///< [N]
+  bool bonded_terms_valid = false; ///< h holds the all-bonded H of flexibility_dt
+
+  Eigen::VectorXd previous_force; ///< F on the far field at the step start [N]
+  double work_blocks = 0.0;
+  double time_condensation = 0.0, time_ties = 0.0;
+};
+
+} // namespace ddafem::coupling

@@ -1,0 +1,44 @@
+// A body outside the DDA model tied to points of its blocks: the System's view of the deal.II
+// far field (coupling/ implements it; dda/ never sees fem/).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <string>
+
+namespace ddafem::dda
+{
+/// A linear body tied to m points of the blocks, condensed onto those points. Over a step, in
+/// each trial state of its ties, the ties' forces on the blocks at the end of the step are
+///   f = g - H delta   [N] (2m: x, y per tie point),
+/// delta the displacement increments of the tie points over the step [m] (2m) and H (2m x 2m,
+/// symmetric positive semidefinite) [N/m] the stiffness of the ties in series with the body's
+/// condensed dynamic stiffness. The System adds T^T H T and T^T g to its step and hands back
+/// the increments; the body advances itself in end_step() with the same dt: one implicit system
+/// per step, no lag between the two sides.
+class TiedBody
+{
+public:
+  virtual ~TiedBody() = default;
+
+  /// Starts (or restarts, after a cut) a step of dt [s]. `displacements` (2m) are the tie points'
+  /// displacements since the ties were made [m]. The ties' trial states start from their
+  /// accepted ones. Returns an empty string, or why the body cannot take the step.
+  virtual std::string begin_step(double dt, const Eigen::VectorXd& displacements) = 0;
+  /// H of the ties' trial states [N/m].
+  virtual const Eigen::MatrixXd& stiffness() const = 0;
+  /// g of the ties' trial states [N].
+  virtual const Eigen::VectorXd& force() const = 0;
+  /// Sets the ties' trial states from the trial increments `delta` (2m) [m]; returns the number
+  /// of ties whose state changed (H and g then change).
+  virtual std::size_t update_trial_states(const Eigen::VectorXd& delta) = 0;
+  /// Accepts the step with the increments of the converged trial: the body advances to t + dt.
+  /// Returns an empty string, or why it failed (the System then reports a solver failure).
+  virtual std::string end_step(const Eigen::VectorXd& delta) = 0;
+  /// Work [J] done by the ties on the blocks since the ties were made (the energy that crossed
+  /// the interface into the blocks, negative when it left them).
+  virtual double work_on_blocks() const = 0;
+};
+
+} // namespace ddafem::dda
