@@ -20,44 +20,6 @@ using run_support::Clock;
 using run_support::elapsed;
 using run_support::format;
 
-const char* part_name(fem::BoundaryPart p)
-{
-  switch (p)
-  {
-  case fem::BoundaryPart::bottom:
-    return "bottom";
-  case fem::BoundaryPart::right:
-    return "right";
-  case fem::BoundaryPart::top:
-    return "top";
-  case fem::BoundaryPart::left:
-    return "left";
-  case fem::BoundaryPart::hole:
-    return "hole";
-  }
-  return "";
-}
-
-const char* kind_name(fem::BoundaryKind k)
-{
-  switch (k)
-  {
-  case fem::BoundaryKind::free:
-    return "free";
-  case fem::BoundaryKind::fixed:
-    return "fixed";
-  case fem::BoundaryKind::lysmer:
-    return "lysmer";
-  case fem::BoundaryKind::input:
-    return "input";
-  case fem::BoundaryKind::roller:
-    return "roller";
-  case fem::BoundaryKind::free_field:
-    return "free_field";
-  }
-  return "";
-}
-
 std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& d)
 {
   std::vector<HistoryChannel> channels;
@@ -128,7 +90,7 @@ std::string check_far_field(const Scene& scene)
         << " Hz: " << format(model.s_wave_speed() / f / model.element_size() * d.degree, 3)
         << " nodes per S wavelength\n";
   for (const fem::BoundaryCondition& b : d.boundaries)
-    out << "  " << part_name(b.part) << ": " << kind_name(b.kind)
+    out << "  " << fem::name_of(b.part) << ": " << fem::name_of(b.kind)
         << (b.kind == fem::BoundaryKind::lysmer || b.kind == fem::BoundaryKind::input
                 ? " (a " + format(b.a) + ", b " + format(b.b) + ")"
                 : "")

@@ -4,9 +4,11 @@
 
 #include "common/history_writer.h"
 #include "common/input_error.h"
+#include "coupling/far_field_ties.h"
 #include "dda/system.h"
 #include "dda/time_stepper.h"
 #include "dda/vtu_writer.h"
+#include "fem/elastic_wave_model.h"
 
 #include <nlohmann/json.hpp>
 #include <unistd.h>
@@ -75,6 +77,9 @@ std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
   channels.push_back({"energy/work_of_supports", 1, "J", "prescribed support motion since t = 0"});
   channels.push_back({"energy/work_of_boundaries", 1, "J",
                       "viscous boundaries on the model since t = 0 (negative: absorbed)"});
+  channels.push_back({"energy/work_of_ties", 1, "J",
+                      "ties to the far field on the blocks since t = 0 (the energy that crossed "
+                      "the interface into the blocks; 0 without a far field)"});
   channels.push_back({"energy/dissipated", 1, "J",
                       "initial + work - stored: algorithmic damping of the integrator, friction "
                       "and contact impacts"});
@@ -106,13 +111,113 @@ std::vector<double> history_row(const dda::System& system, const LastStep& last)
   }
   const dda::EnergyBalance e = system.energy();
   row.insert(row.end(), {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
-                         e.work_of_boundaries, e.dissipated});
+                         e.work_of_boundaries, e.work_of_ties, e.dissipated});
   const dda::ContactCounts n = system.contact_counts();
   row.insert(row.end(),
              {static_cast<double>(n.open), static_cast<double>(n.slide),
               static_cast<double>(n.lock), static_cast<double>(system.get_joints().size()), last.dt,
               static_cast<double>(last.n_open_close_iterations)});
   return row;
+}
+
+/// The far field and the interface of a coupled run (after the blocks' channels).
+void add_coupled_channels(std::vector<HistoryChannel>& channels, const fem::FarFieldDescription& d)
+{
+  for (const fem::Monitor& m : d.monitors)
+    run_support::add_monitor_channels(channels, m.name, "of the far field at the point",
+                                      "of the far field at the point");
+  const std::string ff = "far_field/energy/";
+  channels.push_back({ff + "kinetic", 1, "J", "v^T M v / 2 of the far field"});
+  channels.push_back({ff + "strain", 1, "J", "u^T K u / 2 of the far field"});
+  channels.push_back({ff + "work_of_input", 1, "J", "incident-wave tractions since t = 0"});
+  channels.push_back(
+      {ff + "work_of_dashpots", 1, "J", "Lysmer dashpots since t = 0 (negative: absorbed)"});
+  channels.push_back(
+      {ff + "work_of_rayleigh", 1, "J", "Rayleigh damping since t = 0 (negative: absorbed)"});
+  channels.push_back({ff + "work_of_ties", 1, "J",
+                      "ties on the far field since t = 0: the energy that crossed the interface "
+                      "into it"});
+  channels.push_back({ff + "dissipated", 1, "J", "initial + work - stored: the integrator's"});
+  channels.push_back({"interface/tie_energy", 1, "J",
+                      "held in or dissipated by the tie springs: -(work of the ties on the "
+                      "blocks + on the far field)"});
+  channels.push_back({"interface/ties", 4, "", "number of ties (intact, locked, sliding, open)"});
+}
+
+void append_coupled_row(std::vector<double>& row, const fem::ElasticWaveModel& far_field,
+                        const coupling::FarFieldTies& ties, std::size_t n_monitors)
+{
+  for (std::size_t k = 0; k < n_monitors; ++k)
+  {
+    const fem::MonitorSample s = far_field.sample_monitor(k);
+    row.insert(row.end(), {s.displacement[0], s.displacement[1], s.velocity[0], s.velocity[1],
+                           s.stress[0], s.stress[1], s.stress[2]});
+  }
+  const fem::EnergyBalance e = far_field.energy();
+  row.insert(row.end(),
+             {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots, e.work_of_rayleigh,
+              e.work_of_springs, e.dissipated, -(ties.work_on_blocks() + e.work_of_springs)});
+  const coupling::TieCounts n = ties.counts();
+  row.insert(row.end(), {static_cast<double>(n.intact), static_cast<double>(n.lock),
+                         static_cast<double>(n.slide), static_cast<double>(n.open)});
+}
+
+/// The ties as contact points for VTU: state (bonded while intact), normal out of the block,
+/// forces (normal compression positive, shear along the edge tangent), opening and slip.
+std::vector<dda::ContactSnapshot> tie_snapshot(const coupling::FarFieldTies& ties,
+                                               const dda::System& system)
+{
+  std::vector<dda::ContactSnapshot> out;
+  const std::vector<dda::MaterialPoint>& points = system.get_tie_points();
+  for (std::size_t k = 0; k < ties.n_ties(); ++k)
+  {
+    const coupling::Tie& t = ties.get_ties()[k];
+    dda::ContactSnapshot c;
+    c.id = k;
+    c.block_a = c.block_b = t.block;
+    switch (t.forces.state)
+    {
+    case dda::ContactState::lock:
+      c.state = t.forces.intact ? dda::ContactPointState::bonded : dda::ContactPointState::lock;
+      break;
+    case dda::ContactState::slide:
+      c.state = dda::ContactPointState::slide;
+      break;
+    case dda::ContactState::open:
+      c.state = dda::ContactPointState::open;
+      break;
+    }
+    c.position = points[k].position;
+    c.normal = t.normal;
+    c.normal_force = t.forces.normal_force;
+    c.shear_force = t.forces.shear_force;
+    c.gap = -t.normal.dot(t.stretch);
+    c.slip = t.tangent.dot(t.stretch);
+    out.push_back(c);
+  }
+  return out;
+}
+
+/// DIR/model.pvd: every snapshot's parts (blocks, far field, contacts, ties) at one time, so
+/// that ParaView opens the whole model from one file.
+void write_model_pvd(const std::filesystem::path& dir,
+                     const std::vector<std::pair<double, std::vector<std::string>>>& snapshots)
+{
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\"?>\n"
+         "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         "  <Collection>\n";
+  out.precision(17);
+  for (const auto& [time, files] : snapshots)
+    for (std::size_t part = 0; part < files.size(); ++part)
+      out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"" << part << "\" file=\""
+          << files[part] << "\"/>\n";
+  out << "  </Collection>\n</VTKFile>\n";
+  const std::filesystem::path path = dir / "model.pvd";
+  std::ofstream f(path);
+  f << out.str();
+  if (!f)
+    throw std::runtime_error("cannot write " + path.string());
 }
 
 const char* integrator_name(dda::Integrator i)
@@ -286,9 +391,16 @@ TimeStepAdvice suggest_time_step(const Scene& scene)
 
 std::string check_scene(const Scene& scene)
 {
-  if (scene.far_field)
+  if (scene.far_field && !scene.coupled())
     return check_far_field(scene);
-  const dda::System system(scene.model); // finds joints; throws InputError on engine-level issues
+  dda::System system(scene.model); // finds joints; throws InputError on engine-level issues
+  std::unique_ptr<fem::ElasticWaveModel> far_field;
+  std::unique_ptr<coupling::FarFieldTies> ties;
+  if (scene.coupled())
+  {
+    far_field = std::make_unique<fem::ElasticWaveModel>(*scene.far_field);
+    ties = std::make_unique<coupling::FarFieldTies>(system, *far_field, *scene.interface);
+  }
   const dda::ModelDescription& model = scene.model;
   std::ostringstream out;
   out << "scene: " << scene.name << " (" << scene.file << ")\n";
@@ -349,6 +461,36 @@ std::string check_scene(const Scene& scene)
       << " s (" << advice.reason << ")\n";
   if (!model.boundaries.empty())
     describe_boundaries(system, model.time.dt, out);
+  if (ties)
+  {
+    const fem::FarFieldDescription& d = *scene.far_field;
+    out << "  far field: " << far_field->n_cells() << " cells of "
+        << format(far_field->smallest_element_size()) << " to " << format(far_field->element_size())
+        << " m, FE_Q(" << d.degree << "), " << far_field->n_dofs() << " DOFs, solver "
+        << far_field->solver_name() << ", integrator "
+        << (d.integrator == fem::Integrator::dda ? "dda" : "newmark_trapezoidal") << "\n";
+    out << "  far field material: VP " << format(far_field->p_wave_speed(), 5) << " m/s, VS "
+        << format(far_field->s_wave_speed(), 5) << " m/s\n";
+    const double f = std::max(d.max_frequency, d.incident.velocity.characteristic_frequency());
+    if (f > 0.0)
+      out << "  far-field resolution at " << format(f) << " Hz: "
+          << format(far_field->s_wave_speed() / f / far_field->element_size() * d.degree, 3)
+          << " nodes per S wavelength in the largest element\n";
+    const coupling::InterfaceDescription& i = *scene.interface;
+    out << "  interface: part " << fem::name_of(i.part) << " (" << format(ties->part_length())
+        << " m), " << ties->n_tied_edges() << " block edges of " << ties->n_tied_blocks()
+        << " blocks, " << ties->n_ties() << " ties (" << 2 * ties->n_ties()
+        << " condensed unknowns); p " << format(i.normal_stiffness) << " N/m, shear ratio "
+        << i.shear_ratio << ", "
+        << (std::isinf(i.cohesion) && std::isinf(i.tensile_strength)
+                ? std::string("bonded (unlimited strength)")
+                : "phi " + format(i.friction_angle) + " deg, c " + format(i.cohesion) +
+                      " Pa, tensile " + format(i.tensile_strength) + " Pa")
+        << "\n";
+    for (const fem::BoundaryCondition& b : d.boundaries)
+      out << "  far field " << fem::name_of(b.part) << ": " << fem::name_of(b.kind) << "\n";
+    out << "  far-field monitors: " << d.monitors.size() << "\n";
+  }
   for (const std::string& w : unstable_boundaries(system, model.time.dt))
     out << "warning: " << w << " (`run` refuses it without --allow-unstable)\n";
   return out.str();
@@ -356,10 +498,17 @@ std::string check_scene(const Scene& scene)
 
 int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
 {
-  if (scene.far_field)
+  if (scene.far_field && !scene.coupled())
     return run_far_field(scene, options, log);
   const auto wall_start = Clock::now();
   dda::System system(scene.model); // input errors surface here, before anything is written
+  std::unique_ptr<fem::ElasticWaveModel> far_field;
+  std::unique_ptr<coupling::FarFieldTies> ties;
+  if (scene.coupled())
+  {
+    far_field = std::make_unique<fem::ElasticWaveModel>(*scene.far_field);
+    ties = std::make_unique<coupling::FarFieldTies>(system, *far_field, *scene.interface);
+  }
 
   const std::filesystem::path dir =
       options.output_directory.empty() ? scene.output.directory : options.output_directory;
@@ -381,11 +530,16 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   for (const std::string& w : warnings)
     log << "warning: " << w << "\n";
 
-  HistoryWriter history((dir / "histories.h5").string(), history_channels(scene.model));
+  std::vector<HistoryChannel> channels = history_channels(scene.model);
+  if (ties)
+    add_coupled_channels(channels, *scene.far_field);
+  HistoryWriter history((dir / "histories.h5").string(), channels);
   history.set_attribute("scene", scene.file);
   history.set_attribute("version", DDAFEM_VERSION);
   dda::VtuSeriesWriter vtu(dir.string(), "blocks");
   dda::VtuSeriesWriter contact_vtu(dir.string(), "contacts");
+  dda::VtuSeriesWriter tie_vtu(dir.string(), "ties");
+  std::vector<std::pair<double, std::vector<std::string>>> model_snapshots;
 
   std::vector<dda::Stage> stages = scene.model.stages;
   if (stages.empty())
@@ -401,11 +555,24 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   const auto write_state = [&](bool snapshot)
   {
     const auto start = Clock::now();
-    history.append(system.time(), history_row(system, last_step));
+    std::vector<double> row = history_row(system, last_step);
+    if (ties)
+      append_coupled_row(row, *far_field, *ties, scene.far_field->monitors.size());
+    history.append(system.time(), row);
     if (snapshot)
     {
-      vtu.write(system.time(), system.snapshot());
-      contact_vtu.write(system.time(), system.contact_snapshot());
+      const auto name = [](const std::string& path)
+      { return std::filesystem::path(path).filename().string(); };
+      std::vector<std::string> files = {
+          name(vtu.write(system.time(), system.snapshot())),
+          name(contact_vtu.write(system.time(), system.contact_snapshot()))};
+      if (ties)
+      {
+        files.push_back(far_field->write_snapshot(dir.string(), "far_field"));
+        files.push_back(name(tie_vtu.write(system.time(), tie_snapshot(*ties, system))));
+      }
+      model_snapshots.emplace_back(system.time(), files);
+      write_model_pvd(dir, model_snapshots);
     }
     output_time += elapsed(start);
   };
@@ -537,6 +704,39 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   summary["model"] = {{"blocks", system.get_blocks().size()},
                       {"bonded_joints", system.get_joints().size()},
                       {"dofs", system.n_dofs()}};
+  if (ties)
+  {
+    const fem::Timings& ft = far_field->timings();
+    const fem::EnergyBalance fe = far_field->energy();
+    summary["model"]["far_field_cells"] = far_field->n_cells();
+    summary["model"]["far_field_dofs"] = far_field->n_dofs();
+    summary["model"]["element_size_m"] = far_field->element_size();
+    summary["model"]["ties"] = ties->n_ties();
+    summary["model"]["tied_edges"] = ties->n_tied_edges();
+    summary["model"]["tied_blocks"] = ties->n_tied_blocks();
+    summary["far_field"] = {{"solver", far_field->solver_name()},
+                            {"timings_s",
+                             {{"setup", ft.setup},
+                              {"assemble", ft.assemble},
+                              {"solve", ft.solve},
+                              {"update", ft.update}}},
+                            {"energy_J",
+                             {{"kinetic", fe.kinetic},
+                              {"strain", fe.strain},
+                              {"work_of_input", fe.work_of_input},
+                              {"work_of_dashpots", fe.work_of_dashpots},
+                              {"work_of_rayleigh", fe.work_of_rayleigh},
+                              {"work_of_ties", fe.work_of_springs},
+                              {"dissipated", fe.dissipated}}}};
+    const coupling::TieCounts n = ties->counts();
+    summary["interface"] = {
+        {"ties", {{"intact", n.intact}, {"lock", n.lock}, {"slide", n.slide}, {"open", n.open}}},
+        {"work_into_blocks_J", ties->work_on_blocks()},
+        {"work_into_far_field_J", fe.work_of_springs},
+        {"tie_energy_J", ties->tie_energy()},
+        {"timings_s",
+         {{"condensation", ties->condensation_seconds()}, {"ties", ties->tie_seconds()}}}};
+  }
   const dda::ContactCounts counts = system.contact_counts();
   summary["contacts"] = {{"open", counts.open},
                          {"slide", counts.slide},
@@ -556,15 +756,22 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
                          {"work_of_loads", e.work_of_loads},
                          {"work_of_supports", e.work_of_supports},
                          {"work_of_boundaries", e.work_of_boundaries},
+                         {"work_of_ties", e.work_of_ties},
                          {"initial", e.initial},
                          {"dissipated", e.dissipated}};
   summary["warnings"] = warnings;
   summary["outputs"] = {{"histories", "histories.h5"},
+                        {"model", "model.pvd"},
                         {"blocks", "blocks.pvd"},
                         {"contacts", "contacts.pvd"},
                         {"snapshots", vtu.n_written()}};
+  if (ties)
+  {
+    summary["outputs"]["far_field"] = "far_field.pvd";
+    summary["outputs"]["ties"] = "ties.pvd";
+  }
   return run_support::finish_run(dir, summary, failed ? failure.message : std::string(),
-                                 system.n_steps(), system.time(), wall, "blocks.pvd", log);
+                                 system.n_steps(), system.time(), wall, "model.pvd", log);
 }
 
 } // namespace ddafem

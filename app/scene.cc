@@ -768,10 +768,13 @@ void read_blocks(const MapReader& top, const std::vector<std::string>& material_
   const std::vector<MapReader> items = top.section_list("blocks");
   if (items.empty() && !top.has("far_field"))
     throw top.error("blocks", "expected at least one block (or a `far_field`)");
-  if (!items.empty() && top.has("far_field"))
-    throw top.error("far_field", "blocks inside a far field need the DDA-FEM coupling, which is "
-                                 "not available yet (issue 6): expected either `blocks` or "
-                                 "`far_field`");
+  if (!items.empty() && top.has("far_field") && !top.has("interface"))
+    throw top.error("far_field", "blocks and a far field need an `interface` section: expected "
+                                 "`interface: {part: PART}` naming the far field's part the "
+                                 "blocks fill (e.g. hole)");
+  if (top.has("interface") && (items.empty() || !top.has("far_field")))
+    throw top.error("interface", "an interface ties blocks to a far field: expected both "
+                                 "`blocks` and `far_field`");
   for (std::size_t i = 0; i < items.size(); ++i)
   {
     const MapReader& r = items[i];
@@ -930,14 +933,22 @@ void check_overlaps(const dda::ModelDescription& model, const std::vector<BlockS
 }
 
 /// Points of loads, supports and monitors must be inside or on the boundary of some block.
-void check_point_in_blocks(const MapReader& r, const std::string& key, const Point& p,
-                           const dda::ModelDescription& model, const std::vector<Box>& boxes,
-                           double tol)
+bool in_some_block(const Point& p, const dda::ModelDescription& model,
+                   const std::vector<Box>& boxes, double tol)
 {
   for (std::size_t b = 0; b < model.blocks.size(); ++b)
     if (boxes[b].contains(p, tol) &&
         dda::locate_point(model.blocks[b].vertices, p, tol) != dda::PointLocation::outside)
-      return;
+      return true;
+  return false;
+}
+
+void check_point_in_blocks(const MapReader& r, const std::string& key, const Point& p,
+                           const dda::ModelDescription& model, const std::vector<Box>& boxes,
+                           double tol)
+{
+  if (in_some_block(p, model, boxes, tol))
+    return;
   throw r.error(key, "the point " + format_point(p) +
                          " lies outside every block; expected a point inside or on the boundary "
                          "of a block");
@@ -1169,6 +1180,17 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
                                      : fem::BoundaryKind::free;
     bc.a = r.number("a");
     bc.b = r.number("b");
+    if (r.has("springs"))
+    {
+      if (bc.kind != fem::BoundaryKind::lysmer)
+        throw r.error("springs", "springs stand beside Lysmer dashpots: expected `type: lysmer`");
+      const MapReader sr = r.section_reader("springs");
+      bc.springs.enabled = true;
+      const Vector2 c = sr.vector2("center");
+      bc.springs.center = {c.x(), c.y()};
+      bc.springs.alpha_n = sr.number("alpha_n");
+      bc.springs.alpha_t = sr.number("alpha_t");
+    }
     d.boundaries.push_back(bc);
   }
   if (f.has("incident"))
@@ -1178,6 +1200,39 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
         inc.choice("type") == "p" ? fem::IncidentWave::Type::p : fem::IncidentWave::Type::sv;
     d.incident.velocity = read_time_function(inc, "velocity");
   }
+  return d;
+}
+
+/// The `interface` section: ties between the blocks and the far field's part they fill.
+coupling::InterfaceDescription read_interface(const MapReader& r,
+                                              const dda::ModelDescription& model,
+                                              const std::vector<std::string>& joint_names)
+{
+  coupling::InterfaceDescription d;
+  d.part = part_of(r.choice("part"));
+  // Springs from the named joint material (and its strength), else from joints.default.
+  const dda::JointMaterial* source = nullptr;
+  if (r.has("joint_material"))
+  {
+    source = &model.joint_materials[find_name(r, "joint_material", r.string("joint_material"),
+                                              joint_names, "joint material")];
+    d.cohesion = source->cohesion;
+    d.tensile_strength = source->tensile_strength;
+    d.friction_angle = source->friction_angle;
+  }
+  else if (model.default_joint_material < model.joint_materials.size())
+    source = &model.joint_materials[model.default_joint_material];
+  d.normal_stiffness = r.has("normal_stiffness") ? r.number("normal_stiffness")
+                       : source                  ? source->normal_stiffness
+                                                 : 0.0;
+  if (!(d.normal_stiffness > 0.0))
+    throw r.error("normal_stiffness", "no spring for the ties: expected `normal_stiffness` [N/m], "
+                                      "a `joint_material`, or `joints.default`");
+  d.shear_ratio = r.has("shear_ratio") ? r.number("shear_ratio")
+                  : source             ? source->shear_ratio
+                                       : d.shear_ratio;
+  d.points_per_face = static_cast<unsigned>(r.integer("points_per_face"));
+  d.tolerance = r.number("tolerance");
   return d;
 }
 
@@ -1475,14 +1530,16 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
       throw r.error("name", "duplicate monitor name (also used by " + it->second +
                                 "): expected unique names");
     m.point = r.vector2("point");
-    if (scene.far_field)
+    // In a coupled scene a monitor belongs to the block it lies in, else to the far field.
+    const bool in_blocks = !model.blocks.empty() && in_some_block(m.point, model, boxes, tol);
+    if (scene.far_field && !in_blocks)
     {
       if (scene.far_field->mesh_file.file.empty())
         check_point_in_far_field(r, "point", m.point, *scene.far_field);
       scene.far_field->monitors.push_back({m.name, {m.point.x(), m.point.y()}});
+      continue;
     }
-    else
-      check_point_in_blocks(r, "point", m.point, model, boxes, tol);
+    check_point_in_blocks(r, "point", m.point, model, boxes, tol);
     model.monitors.push_back(m);
   }
 
@@ -1554,9 +1611,20 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   {
     scene.far_field->dt = model.time.dt;
     scene.far_field->end_time = model.time.end_time;
-    scene.far_field->integrator = model.time.integrator == dda::Integrator::dda
-                                      ? fem::Integrator::dda
-                                      : fem::Integrator::newmark_trapezoidal;
+    const MapReader f = top.section_reader("far_field");
+    const bool dda_scheme = f.has("integrator") ? f.choice("integrator") == "dda"
+                                                : model.time.integrator == dda::Integrator::dda;
+    scene.far_field->integrator =
+        dda_scheme ? fem::Integrator::dda : fem::Integrator::newmark_trapezoidal;
+  }
+  if (scene.coupled())
+  {
+    // The far field's effective matrix and its condensation onto the ties belong to one dt.
+    if (time.has("control") && model.time.control != dda::TimeControl::fixed)
+      throw time.error("control", "blocks tied to a far field step with one dt (the far field "
+                                  "is factorized and condensed for it): expected `fixed`");
+    model.time.control = dda::TimeControl::fixed;
+    scene.interface = read_interface(top.section_reader("interface"), model, joint_names);
   }
 
   const MapReader solver = top.section_reader("solver");

@@ -1,6 +1,7 @@
 // A scene: the YAML file a user writes, read into validated model descriptions.
 #pragma once
 
+#include "coupling/far_field_ties.h"
 #include "dda/model_description.h"
 #include "fem/far_field_description.h"
 
@@ -27,6 +28,9 @@ struct Scene
   std::string description;     ///< `description:` key (free text)
   dda::ModelDescription model; ///< the blocks (empty for a far-field-only scene)
   std::optional<fem::FarFieldDescription> far_field; ///< the `far_field` section, if any
+  /// Blocks tied to the far field (both `blocks` and `far_field`): the `interface` section.
+  std::optional<coupling::InterfaceDescription> interface;
+  bool coupled() const { return far_field && !model.blocks.empty(); }
   OutputSettings output;
 };
 

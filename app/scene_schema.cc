@@ -231,7 +231,12 @@ SceneSchema::SceneSchema()
         key("far_field", T::section)
             .section("far_field")
             .default_note("none")
-            .meaning("a deal.II continuum (issue 5); without blocks the scene is FE only"),
+            .meaning("a deal.II continuum; without blocks the scene is FE only, with blocks it "
+                     "surrounds them (see `interface`)"),
+        key("interface", T::section)
+            .section("interface")
+            .default_note("required with both `blocks` and `far_field`")
+            .meaning("ties between the blocks and the far-field part they fill"),
         key("point_loads", T::section_list)
             .section("point_loads[i]")
             .default_note("none")
@@ -440,8 +445,9 @@ SceneSchema::SceneSchema()
       {"far_field",
        "A rectangular elastic continuum meshed with FE_Q elements (deal.II), in the scene's "
        "`analysis.plane` and advanced with `time.dt` and `time.integrator` (the trapezoidal rule "
-       "is exact for energy; `dda` damps like the blocks). Monitors may lie in it. Blocks and a "
-       "far field in one scene need the coupling of issue 6 and are refused for now.",
+       "is exact for energy; `dda` damps like the blocks). Monitors may lie in it. With `blocks` "
+       "the far field surrounds them (a `hole`, or a side they adjoin) and `interface` ties the "
+       "two into one implicit system per step.",
        {key("material", T::string).required().meaning("name of a material in `materials`"),
         key("lower", T::vector2)
             .unit("m")
@@ -500,7 +506,49 @@ SceneSchema::SceneSchema()
         key("incident", T::section)
             .section("far_field.incident")
             .default_note("none")
-            .meaning("a vertically incident plane wave entering through an `input` side")}});
+            .meaning("a vertically incident plane wave entering through an `input` side"),
+        key("integrator", T::choice)
+            .choices({"dda", "newmark_trapezoidal"})
+            .default_note("time.integrator")
+            .meaning("the far field's Newmark scheme when it differs from the blocks'")}});
+
+  all_sections.push_back(
+      {"interface",
+       "Blocks tied to the far field (coupling/README.md). The block edges on the far field's "
+       "part are tied at Gauss points (composite over the pieces between far-field face ends) "
+       "by normal and shear springs, like a bonded joint; the far field is condensed onto the "
+       "ties so that blocks and far field advance in one implicit system per step with "
+       "`time.dt` (`time.control` must be fixed). The blocks must cover the part exactly.",
+       {key("part", T::choice)
+            .required()
+            .choices({"bottom", "right", "top", "left", "hole"})
+            .meaning("the far field's part the blocks fill or adjoin"),
+        key("normal_stiffness", T::number)
+            .unit("N/m")
+            .default_note("that of `joint_material`, else of `joints.default`")
+            .greater_than(0)
+            .meaning("normal spring per tied edge end (a bonded joint's p): an edge's ties share "
+                     "2 p by their quadrature weights"),
+        key("shear_ratio", T::number)
+            .default_note("that of `joint_material`, else of `joints.default`, else 0.4")
+            .greater_than(0)
+            .meaning("shear spring / normal spring"),
+        key("joint_material", T::string)
+            .default_note("none: ties of unlimited strength (a linear interface)")
+            .meaning("a joint material whose friction angle, cohesion and tensile strength the "
+                     "ties follow (Mohr-Coulomb per tie, open / slide / lock in the open-close "
+                     "iteration): blocks can slip on or separate from the far field"),
+        key("points_per_face", T::integer)
+            .default_yaml("3")
+            .at_least(1)
+            .meaning("Gauss points per piece of a block edge between far-field face ends (3 "
+                     "integrates the ties exactly against degree-2 faces)"),
+        key("tolerance", T::number)
+            .unit("m")
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("largest distance of a tied block edge from the part; 0: 1e-6 of the "
+                     "blocks' extent")}});
 
   all_sections.push_back(
       {"far_field.boundaries[i]",
@@ -521,10 +569,31 @@ SceneSchema::SceneSchema()
                      "alongside plus its stress, t = sigma_ff n - D (v - v_ff) (free-field "
                      "boundary of Zienkiewicz et al. 1989, Nielsen 2006)"),
         key("a", T::number).default_yaml("1").greater_than(0).meaning("normal dashpot factor"),
-        key("b", T::number)
+        key("b", T::number).default_yaml("1").greater_than(0).meaning("tangential dashpot factor"),
+        key("springs", T::section)
+            .section("far_field.boundaries[i].springs")
+            .default_note("none: dashpots only")
+            .meaning("lysmer: springs beside the dashpots (viscous-spring boundary) for waves "
+                     "radiating from a source inside")}});
+
+  all_sections.push_back(
+      {"far_field.boundaries[i].springs",
+       "The viscous-spring artificial boundary (Deeks & Randolph 1994; Liu et al. 2006): "
+       "springs K = G / R (alpha_n n n^T + alpha_t (I - n n^T)) per unit length beside the "
+       "dashpots, R the distance from the source. A wave from a source inside reaches the "
+       "boundary as a cylindrical wave whose near-field part the dashpots alone reflect.",
+       {key("center", T::vector2)
+            .unit("m")
+            .required()
+            .meaning("where the waves come from (the source, the opening)"),
+        key("alpha_n", T::number)
             .default_yaml("1")
-            .greater_than(0)
-            .meaning("tangential dashpot factor")}});
+            .at_least(0)
+            .meaning("normal spring factor (Liu et al. 2006, 2D: 0.8 to 1.2)"),
+        key("alpha_t", T::number)
+            .default_yaml("0.5")
+            .at_least(0)
+            .meaning("tangential spring factor (0.35 to 0.65)")}});
 
   all_sections.push_back(
       {"far_field.hole",

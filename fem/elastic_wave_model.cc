@@ -372,6 +372,11 @@ void ElasticWaveModel::Impl::validate() const
                               "' is 'free_field', which needs the generated rectangle (its "
                               "column spans [lower, upper] in y), not a mesh file");
     }
+    if (bc.springs.enabled)
+      require(bc.kind == BoundaryKind::lysmer && bc.springs.alpha_n >= 0.0 &&
+                  bc.springs.alpha_t >= 0.0,
+              std::string("boundary part '") + name_of(bc.part) +
+                  "': springs need a lysmer part and alpha_n, alpha_t >= 0");
     if (bc.kind == BoundaryKind::input)
       require(bc.part == BoundaryPart::bottom || bc.part == BoundaryPart::top,
               std::string("boundary part '") + name_of(bc.part) +
@@ -503,7 +508,10 @@ void ElasticWaveModel::Impl::assemble_matrices()
   const QGauss<1> face_quadrature(fe.degree + 1);
   FEFaceValues<2> face_values(fe, face_quadrature,
                               update_values | update_normal_vectors | update_JxW_values);
-  FullMatrix<double> cell_damping(n, n);
+  FEFaceValues<2> spring_values(fe, face_quadrature,
+                                update_values | update_normal_vectors | update_JxW_values |
+                                    update_quadrature_points);
+  FullMatrix<double> cell_damping(n, n), cell_springs(n, n);
   Vector<double> cell_input(n);
   for (const auto& cell : dof_handler.active_cell_iterators())
     for (const unsigned int f : cell->face_indices())
@@ -541,6 +549,39 @@ void ElasticWaveModel::Impl::assemble_matrices()
       }
       cell->get_dof_indices(dofs);
       full_damping.add(dofs, cell_damping);
+      if (bc.springs.enabled)
+      {
+        // Viscous-spring boundary: K = G / R (alpha_n n n^T + alpha_t (I - n n^T)), part of the
+        // stiffness (its energy counts as strain energy).
+        spring_values.reinit(cell, f);
+        cell_springs = 0.0;
+        for (const unsigned int q : spring_values.quadrature_point_indices())
+        {
+          const Tensor<1, 2> normal = spring_values.normal_vector(q);
+          const Point<2> x = spring_values.quadrature_point(q);
+          const double r = std::hypot(x[0] - bc.springs.center[0], x[1] - bc.springs.center[1]);
+          require(r > 1e-6 * h, std::string("boundary part '") + name_of(bc.part) +
+                                    "': the springs' center lies on the part, expected the "
+                                    "wave source's position inside the far field");
+          double K[2][2];
+          for (unsigned int a = 0; a < 2; ++a)
+            for (unsigned int c = 0; c < 2; ++c)
+              K[a][c] = mu / r *
+                        (bc.springs.alpha_n * normal[a] * normal[c] +
+                         bc.springs.alpha_t * ((a == c ? 1.0 : 0.0) - normal[a] * normal[c]));
+          for (unsigned int i = 0; i < n; ++i)
+          {
+            const unsigned int ci = fe.system_to_component_index(i).first;
+            for (unsigned int j = 0; j < n; ++j)
+            {
+              const unsigned int cj = fe.system_to_component_index(j).first;
+              cell_springs(i, j) += spring_values.shape_value(i, q) * K[ci][cj] *
+                                    spring_values.shape_value(j, q) * spring_values.JxW(q);
+            }
+          }
+        }
+        stiffness.add(dofs, cell_springs);
+      }
       for (unsigned int i = 0; i < n; ++i)
         input_shape(dofs[i]) += cell_input(i);
     }

@@ -58,12 +58,31 @@ enum class BoundaryPart
   hole
 };
 
+/// Scene name of a part: "bottom", ..., "hole".
+const char* name_of(BoundaryPart part);
+/// Scene name of a kind: "free", "fixed", "lysmer", "input", "roller", "free_field".
+const char* name_of(BoundaryKind kind);
+
+/// Springs beside the dashpots of a lysmer part: the viscous-spring artificial boundary of Deeks
+/// & Randolph (1994) and Liu et al. (2006), K = G / R (alpha_n n n^T + alpha_t (I - n n^T)) per
+/// unit length, R the distance from the wave source `center`. A wave radiating from the centre
+/// is cylindrical at the boundary: the dashpots alone absorb its far-field (plane) part and
+/// reflect the near-field part, which the springs take up.
+struct BoundarySprings
+{
+  bool enabled = false;
+  std::array<double, 2> center{{0.0, 0.0}}; ///< [m]
+  double alpha_n = 1.0;                     ///< [-] (Liu et al. 2006, 2D: 0.8 to 1.2)
+  double alpha_t = 0.5;                     ///< [-] (0.35 to 0.65)
+};
+
 struct BoundaryCondition
 {
   BoundaryPart part = BoundaryPart::bottom;
   BoundaryKind kind = BoundaryKind::free;
-  double a = 1.0; ///< Lysmer normal coefficient [-]
-  double b = 1.0; ///< Lysmer tangential coefficient [-]
+  double a = 1.0;          ///< Lysmer normal coefficient [-]
+  double b = 1.0;          ///< Lysmer tangential coefficient [-]
+  BoundarySprings springs; ///< lysmer parts only
 };
 
 /// A vertically incident plane wave entering through the `input` part: particle velocity

@@ -526,6 +526,26 @@ const char* name_of(const BoundaryPart part)
   return "?";
 }
 
+const char* name_of(const BoundaryKind kind)
+{
+  switch (kind)
+  {
+  case BoundaryKind::free:
+    return "free";
+  case BoundaryKind::fixed:
+    return "fixed";
+  case BoundaryKind::lysmer:
+    return "lysmer";
+  case BoundaryKind::input:
+    return "input";
+  case BoundaryKind::roller:
+    return "roller";
+  case BoundaryKind::free_field:
+    return "free_field";
+  }
+  return "?";
+}
+
 double distance_from_hole(const HoleDescription& hole, const double x, const double y)
 {
   if (hole.shape == HoleShape::none)

@@ -14,9 +14,6 @@ dealii::types::boundary_id boundary_id_of(BoundaryPart part);
 /// Boundary id of boundary lines a Gmsh file leaves untagged or tags with no part name (free).
 constexpr dealii::types::boundary_id untagged_boundary_id = 5;
 
-/// Scene name of a part: "bottom", ..., "hole".
-const char* name_of(BoundaryPart part);
-
 /// Builds the far-field mesh into the empty `mesh`:
 /// - no hole, no file: `subdivided_hyper_rectangle` with elements of at most `far_size`;
 /// - a hole: an O-grid of quadrilaterals between the hole and a box about twice its size, a

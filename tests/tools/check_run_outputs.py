@@ -74,6 +74,22 @@ def main():
             if name not in names:
                 fail(f"contact VTU lacks {name!r}")
 
+    if "model" in summary["outputs"]:
+        # One PVD for the whole model: every snapshot time lists each part (blocks, contacts,
+        # and for coupled runs far field and ties) once, and every file exists.
+        model = ET.parse(os.path.join(run_dir, summary["outputs"]["model"])).getroot()
+        entries = model.findall("./Collection/DataSet")
+        n_parts = 4 if "far_field" in summary["outputs"] else 2
+        if len(entries) != n_parts * len(datasets):
+            fail(f"model.pvd has {len(entries)} entries, expected {n_parts} x {len(datasets)}")
+        for k, entry in enumerate(entries):
+            if int(entry.get("part")) != k % n_parts:
+                fail(f"model.pvd entry {k} has part {entry.get('part')}")
+            if abs(float(entry.get("timestep")) - times[k // n_parts]) > 1e-9:
+                fail(f"model.pvd entry {k} has time {entry.get('timestep')}")
+            if not os.path.exists(os.path.join(run_dir, entry.get("file"))):
+                fail(f"model.pvd names {entry.get('file')}, which does not exist")
+
     if expected_status == "completed":
         png = os.path.join(run_dir, "check.png")
         subprocess.run(["/usr/bin/python3", os.path.join(source_dir, "tools/plot_histories.py"),
