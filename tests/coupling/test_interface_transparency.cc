@@ -13,6 +13,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
 
 namespace ddafem::coupling
 {
@@ -44,6 +47,39 @@ double relative_difference(const std::vector<double>& a, const std::vector<doubl
     difference = std::max(difference, std::abs(a[k] - b[k]));
   }
   return difference / peak;
+}
+
+/// With DDAFEM_TRANSPARENCY_RECORDS=FILE set, each measurement appends one JSON line to FILE
+/// (tools/verify_coupling.py turns them into docs/verification/interface.*): the numbers and
+/// both monitor histories.
+void record(const std::string& wave, const std::string& direction, double block_size,
+            double element_size, double reflection, double energy_mismatch, double dt,
+            const std::vector<double>& coupled, const std::vector<double>& reference)
+{
+  const char* file = std::getenv("DDAFEM_TRANSPARENCY_RECORDS");
+  if (file == nullptr)
+    return;
+  std::ofstream out(file, std::ios::app);
+  const auto list = [](const std::vector<double>& v)
+  {
+    std::string s = "[";
+    char number[32];
+    for (std::size_t k = 0; k < v.size(); ++k)
+    {
+      std::snprintf(number, sizeof(number), "%s%.6e", k ? ", " : "", v[k]);
+      s += number;
+    }
+    return s + "]";
+  };
+  char head[512];
+  std::snprintf(head, sizeof(head),
+                "{\"wave\": \"%s\", \"direction\": \"%s\", \"block_size_m\": %g, "
+                "\"element_size_m\": %g, \"reflection\": %.6g, \"energy_mismatch\": %.6g, "
+                "\"dt_s\": %g, ",
+                wave.c_str(), direction.c_str(), block_size, element_size, reflection,
+                energy_mismatch, dt);
+  out << head << "\"coupled\": " << list(coupled) << ", \"reference\": " << list(reference)
+      << "}\n";
 }
 
 struct Transparency
@@ -94,6 +130,8 @@ Transparency blocks_into_far_field(Wave wave, double element_size)
               "arrived %.6g J (mismatch %.2e), in the tie springs %.3g J\n",
               wave == Wave::s ? "S" : "P", coupled.far_field->element_size(), t.reflection, crossed,
               arrived, t.energy_mismatch, coupled.ties->tie_energy());
+  record(wave == Wave::s ? "S" : "P", "blocks_to_far_field", s.block_size,
+         coupled.far_field->element_size(), t.reflection, t.energy_mismatch, s.dt, got, expected);
   return t;
 }
 
@@ -138,6 +176,8 @@ Transparency far_field_into_blocks(Wave wave)
               "(mismatch %.2e), in the tie springs %.3g J\n",
               wave == Wave::s ? "S" : "P", t.reflection, crossed, arrived, t.energy_mismatch,
               coupled.ties->tie_energy());
+  record(wave == Wave::s ? "S" : "P", "far_field_to_blocks", s.block_size,
+         coupled.far_field->element_size(), t.reflection, t.energy_mismatch, s.dt, got, expected);
   return t;
 }
 
