@@ -749,7 +749,8 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   summary["peak_memory_mb"] = run_support::peak_memory_mb();
   summary["timings_s"] = {{"broad_phase", t.broad_phase}, {"narrow_phase", t.narrow_phase},
                           {"assemble", t.assemble},       {"solve", t.solve},
-                          {"update", t.update},           {"output", output_time}};
+                          {"update", t.update},           {"output", output_time},
+                          {"tie_terms", t.tie_terms},     {"tied_body", t.tied_body}};
   summary["energy_J"] = {{"kinetic", e.kinetic},
                          {"strain", e.strain},
                          {"spring", e.spring},

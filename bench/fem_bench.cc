@@ -73,9 +73,9 @@ int main(int argc, char** argv)
   d.density = 2000.0;
   d.youngs_modulus = 5e9;
   d.poisson_ratio = 0.25;
-  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0},
-                  {BoundaryPart::left, BoundaryKind::lysmer, 1.0, 1.0},
-                  {BoundaryPart::right, BoundaryKind::lysmer, 1.0, 1.0}};
+  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0, {}},
+                  {BoundaryPart::left, BoundaryKind::lysmer, 1.0, 1.0, {}},
+                  {BoundaryPart::right, BoundaryKind::lysmer, 1.0, 1.0, {}}};
   d.incident.type = IncidentWave::Type::sv;
   d.incident.velocity = TimeFunction::sine_pulse(0.1, 12.5, 1.0, 0.0);
   d.dt = 2e-3;

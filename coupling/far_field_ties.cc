@@ -1,7 +1,6 @@
 #include "coupling/far_field_ties.h"
 
 #include "common/input_error.h"
-#include "fem/far_field_mesh.h"
 
 #include <deal.II/base/quadrature_lib.h>
 
@@ -366,7 +365,12 @@ std::string FarFieldTies::end_step(const Eigen::VectorXd& delta)
     t.stretch = z.segment<2>(2 * k) - w.segment<2>(2 * k);
     t.forces = t.trial;
     t.forces.normal_force = t.normal.dot(f.segment<2>(2 * k));
-    t.forces.shear_force = t.tangent.dot(f.segment<2>(2 * k));
+    // A sliding tie keeps the trial's shear force, the Mohr-Coulomb limit at the normal force
+    // of the step's end, for the next step to apply (DDA's one-step lag, as System's contacts):
+    // the force this step applied is the limit at the previous step's normal force, and taking
+    // it would freeze S at the normal force the tie started to slide with.
+    if (t.trial.state != dda::ContactState::slide)
+      t.forces.shear_force = t.tangent.dot(f.segment<2>(2 * k));
   }
   time_ties += seconds_since(t0);
   return {};

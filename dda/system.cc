@@ -274,6 +274,17 @@ void System::tie(TiedBody& body, const std::vector<MaterialPoint>& points)
   }
   std::sort(tie_blocks.begin(), tie_blocks.end());
   tie_blocks.erase(std::unique(tie_blocks.begin(), tie_blocks.end()), tie_blocks.end());
+  tie_slots.clear();
+  for (const MaterialPoint& p : points)
+    tie_slots.push_back(static_cast<std::size_t>(
+        std::lower_bound(tie_blocks.begin(), tie_blocks.end(), p.block) - tie_blocks.begin()));
+  // Rows of H T that add_tie_terms reads in the columns of slot s: those of the tie points on
+  // slots up to s (the upper blocks), i.e. up to the last such point.
+  tie_row_ends.assign(tie_blocks.size(), 0);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    tie_row_ends[tie_slots[k]] = static_cast<Eigen::Index>(2 * (k + 1));
+  for (std::size_t s = 1; s < tie_row_ends.size(); ++s)
+    tie_row_ends[s] = std::max(tie_row_ends[s], tie_row_ends[s - 1]);
   tied_body = &body;
   tie_points = points;
   tie_matrices.resize(points.size());
@@ -318,7 +329,9 @@ StepStatus System::advance(double dt)
       tie_matrices[k] = point_matrix(tie_points[k]);
       displacements.segment<2>(2 * k) = tie_points[k].position - tie_points[k].initial;
     }
+    start = Clock::now();
     const std::string failure = tied_body->begin_step(dt, displacements);
+    timings.tied_body += seconds_since(start);
     if (!failure.empty())
       return {StepOutcome::solver_failure, failure + " " + when, {}};
   }
@@ -384,13 +397,15 @@ StepStatus System::advance(double dt)
   }
 
   // 5. Update the tied body, blocks and contacts.
-  start = Clock::now();
   if (tied_body)
   {
+    start = Clock::now();
     const std::string failure = tied_body->end_step(tie_increments(solution));
+    timings.tied_body += seconds_since(start);
     if (!failure.empty())
       return {StepOutcome::solver_failure, failure + " " + when, status.solve};
   }
+  start = Clock::now();
   update_blocks(dt, solution);
   for (Contact& c : trial_contacts)
   {
@@ -712,27 +727,37 @@ void System::add_tie_terms()
 {
   if (!tied_body)
     return;
+  const auto start = Clock::now();
   const Eigen::MatrixXd& h = tied_body->stiffness();
   const Eigen::VectorXd& g = tied_body->force();
-  // (A + T^T H T) d = b + T^T g: block (i, j) gains the sum over tie points k on i and l on j
-  // of T_k^T H_kl T_l; the upper block of i < j is filled from the pairs with b(k) < b(l).
-  for (std::size_t k = 0; k < tie_points.size(); ++k)
+  const auto m = static_cast<Eigen::Index>(tie_points.size());
+  // (A + T^T H T) d = b + T^T g, grouped by block: Y = H T (2m rows, 6 columns per tie block),
+  // the columns of slot s summing H(:, l) T_l over the tie points l on tie_blocks[s]; then
+  // block (i, j) gains the sum over the tie points k on i of T_k^T Y(k, slot of j). The matrix
+  // stores the diagonal blocks and the upper ones (i < j) only, so the columns of slot s need
+  // only the rows of the tie points on slots up to s. Y costs 24 m^2 multiplications, 12 m^2
+  // over many blocks with the points ordered by block (as FarFieldTies places them: half of H
+  // is read), against 96 m^2 over the pairs of tie points.
+  tie_products.setZero(2 * m, static_cast<Eigen::Index>(6 * tie_blocks.size()));
+  for (Eigen::Index l = 0; l < m; ++l)
+  {
+    const Eigen::Index rows = tie_row_ends[tie_slots[l]];
+    tie_products.block(0, static_cast<Eigen::Index>(6 * tie_slots[l]), rows, 6).noalias() +=
+        h.block(0, 2 * l, rows, 2) * tie_matrices[l];
+  }
+  for (Eigen::Index k = 0; k < m; ++k)
   {
     const std::size_t bk = tie_points[k].block;
     const Matrix26& tk = tie_matrices[k];
     rhs.segment<6>(6 * bk).noalias() += tk.transpose() * g.segment<2>(2 * k);
-    for (std::size_t l = 0; l < tie_points.size(); ++l)
-    {
-      const std::size_t bl = tie_points[l].block;
-      if (bk > bl)
-        continue;
-      const Matrix6 c = tk.transpose() * h.block<2, 2>(2 * k, 2 * l) * tie_matrices[l];
-      if (bk == bl)
-        matrix.diagonal(bk) += c;
-      else
-        matrix.upper(coupling_of(bk, bl)) += c;
-    }
+    matrix.diagonal(bk).noalias() +=
+        tk.transpose() *
+        tie_products.block<2, 6>(2 * k, static_cast<Eigen::Index>(6 * tie_slots[k]));
+    for (std::size_t s = tie_slots[k] + 1; s < tie_blocks.size(); ++s)
+      matrix.upper(coupling_of(bk, tie_blocks[s])).noalias() +=
+          tk.transpose() * tie_products.block<2, 6>(2 * k, static_cast<Eigen::Index>(6 * s));
   }
+  timings.tie_terms += seconds_since(start);
 }
 
 Eigen::VectorXd System::tie_increments(const Eigen::VectorXd& d) const

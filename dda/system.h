@@ -85,6 +85,10 @@ struct PhaseTimings
   double assemble = 0.0;     ///< the step's matrix and right-hand side without contacts
   double solve = 0.0;        ///< the open-close iteration: contact terms, solves, trial states
   double update = 0.0;
+  double tie_terms = 0.0; ///< T^T H T and T^T g of a tied body (part of `solve`)
+  /// The tied body's own work (begin_step, end_step: the far field's solves and the tie
+  /// algebra), in no other phase.
+  double tied_body = 0.0;
   std::size_t n_steps = 0;                 ///< accepted steps
   std::size_t n_attempts = 0;              ///< steps tried, accepted or not
   std::size_t n_open_close_iterations = 0; ///< over all attempts
@@ -251,6 +255,11 @@ private:
   std::vector<MaterialPoint> tie_points;
   std::vector<Matrix26> tie_matrices;  ///< T of each tie point at the step start
   std::vector<std::size_t> tie_blocks; ///< blocks with tie points, sorted
+  std::vector<std::size_t> tie_slots;  ///< each tie point's block's index in tie_blocks
+  /// Y = H T of add_tie_terms: 2m rows, 6 columns per tie block in the order of tie_blocks
+  Eigen::MatrixXd tie_products;
+  /// The rows of Y that add_tie_terms reads in the columns of each tie block
+  std::vector<Eigen::Index> tie_row_ends;
   std::vector<Contact> contacts;       ///< of the last accepted step
   std::vector<Contact> trial_contacts; ///< of the step being tried
   std::vector<ContactFrame> frames;    ///< of trial_contacts

@@ -564,11 +564,11 @@ void ElasticWaveModel::Impl::assemble_matrices()
                                     "': the springs' center lies on the part, expected the "
                                     "wave source's position inside the far field");
           double K[2][2];
-          for (unsigned int a = 0; a < 2; ++a)
+          for (unsigned int row = 0; row < 2; ++row)
             for (unsigned int c = 0; c < 2; ++c)
-              K[a][c] = mu / r *
-                        (bc.springs.alpha_n * normal[a] * normal[c] +
-                         bc.springs.alpha_t * ((a == c ? 1.0 : 0.0) - normal[a] * normal[c]));
+              K[row][c] = mu / r *
+                          (bc.springs.alpha_n * normal[row] * normal[c] +
+                           bc.springs.alpha_t * ((row == c ? 1.0 : 0.0) - normal[row] * normal[c]));
           for (unsigned int i = 0; i < n; ++i)
           {
             const unsigned int ci = fe.system_to_component_index(i).first;
@@ -795,8 +795,8 @@ void ElasticWaveModel::Impl::make_free_field_column()
   for (const auto& bc : d.boundaries)
     if (bc.part == BoundaryPart::bottom || bc.part == BoundaryPart::top)
       c.boundaries.push_back(bc);
-  c.boundaries.push_back({BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0});
-  c.boundaries.push_back({BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0});
+  c.boundaries.push_back({BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0, {}});
+  c.boundaries.push_back({BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0, {}});
   column = std::make_unique<ElasticWaveModel>(c);
 
   const Impl& col = *column->impl;

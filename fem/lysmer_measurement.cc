@@ -477,7 +477,7 @@ LysmerMeasurement measure_lysmer_reflection(const LysmerMeasurementSettings& s)
   d.poisson_ratio = 0.25;
   for (const auto part :
        {BoundaryPart::bottom, BoundaryPart::right, BoundaryPart::top, BoundaryPart::left})
-    d.boundaries.push_back({part, BoundaryKind::lysmer, 1.0, 1.0});
+    d.boundaries.push_back({part, BoundaryKind::lysmer, 1.0, 1.0, {}});
   d.monitors = {{"monitor", {{x_m, y_m}}}};
   d.dt = 1.0 / (f0 * s.steps_per_period);
   ElasticWaveModel model(d);

@@ -74,7 +74,7 @@ TEST(FarFieldScene, Errors)
 {
   EXPECT_NE(error_of(base + "blocks:\n  - {material: rock, vertices: [[0,0],[1,0],[1,1]]}\n",
                      "ff_and_blocks.yaml")
-                .find("need the DDA-FEM coupling"),
+                .find("blocks and a far field need an `interface` section"),
             std::string::npos);
   EXPECT_NE(error_of(base + "monitors:\n  - {name: m, point: [50, 10]}\n", "ff_monitor.yaml")
                 .find("lies outside the far field"),

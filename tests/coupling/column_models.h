@@ -107,9 +107,9 @@ inline fem::FarFieldDescription column_far_field(const ColumnSpec& s)
   d.poisson_ratio = 0.0;
   d.plane_mode = fem::PlaneMode::strain;
   d.incident.type = s.wave == Wave::s ? fem::IncidentWave::Type::sv : fem::IncidentWave::Type::p;
-  d.boundaries = {{fem::BoundaryPart::left, fem::BoundaryKind::roller, 1.0, 1.0},
-                  {fem::BoundaryPart::right, fem::BoundaryKind::roller, 1.0, 1.0},
-                  {fem::BoundaryPart::top, fem::BoundaryKind::lysmer, 1.0, 1.0}};
+  d.boundaries = {{fem::BoundaryPart::left, fem::BoundaryKind::roller, 1.0, 1.0, {}},
+                  {fem::BoundaryPart::right, fem::BoundaryKind::roller, 1.0, 1.0, {}},
+                  {fem::BoundaryPart::top, fem::BoundaryKind::lysmer, 1.0, 1.0, {}}};
   d.dt = s.dt;
   d.integrator = fem::Integrator::newmark_trapezoidal;
   return d;
@@ -169,9 +169,9 @@ struct UpwardColumn
     c.dda_top = 0.0;
     c.fe_top = s.dda_top > s.interface ? s.interface : s.reference_top;
     d = column_far_field(c);
-    d.boundaries = {{fem::BoundaryPart::left, fem::BoundaryKind::roller, 1.0, 1.0},
-                    {fem::BoundaryPart::right, fem::BoundaryKind::roller, 1.0, 1.0},
-                    {fem::BoundaryPart::bottom, fem::BoundaryKind::input, 1.0, 1.0}};
+    d.boundaries = {{fem::BoundaryPart::left, fem::BoundaryKind::roller, 1.0, 1.0, {}},
+                    {fem::BoundaryPart::right, fem::BoundaryKind::roller, 1.0, 1.0, {}},
+                    {fem::BoundaryPart::bottom, fem::BoundaryKind::input, 1.0, 1.0, {}}};
     d.incident.velocity = TimeFunction::sine_pulse(0.1, s.frequency, 1.0, 0.0);
     d.monitors.push_back({"m", {{0.5 * s.width, s.monitor_height}}});
     far_field = std::make_unique<fem::ElasticWaveModel>(d);

@@ -49,10 +49,10 @@ FarFieldDescription column(const IncidentWave::Type type, const BoundaryKind top
   d.density = density;
   d.youngs_modulus = youngs;
   d.poisson_ratio = poisson;
-  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0},
+  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0, {}},
                   {BoundaryPart::top, top, 1.0, 1.0},
-                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0},
-                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0}};
+                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0, {}},
+                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0, {}}};
   d.incident.type = type;
   d.incident.velocity = TimeFunction::sine_pulse(amplitude, frequency, 1.0, 0.0);
   d.monitors = {{"low", {{0.5 * width, 50.0}}},

@@ -36,9 +36,9 @@ FarFieldDescription rock(const double width, const double height, const double e
 FarFieldDescription sv_column()
 {
   FarFieldDescription d = rock(16.0, 200.0, 4.0);
-  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0},
-                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0},
-                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0}};
+  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0, {}},
+                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0, {}},
+                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0, {}}};
   d.incident.type = IncidentWave::Type::sv;
   d.incident.velocity = TimeFunction::sine_pulse(0.1, 25.0, 1.0, 0.0);
   d.monitors = {{"low", {{8.0, 50.0}}}, {"surface", {{8.0, 200.0}}}};
@@ -122,9 +122,9 @@ namespace
 FarFieldDescription gravity_column()
 {
   FarFieldDescription d = rock(16.0, 200.0, 4.0);
-  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0},
-                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0},
-                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0}};
+  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0, {}},
+                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0, {}},
+                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0, {}}};
   d.incident.type = IncidentWave::Type::p;
   d.static_stage.enabled = true;
   d.static_stage.gravity = {{0.0, -9.81}};
@@ -186,9 +186,9 @@ TEST(FarFieldStaticStage, InSituStressAroundAHoleStaysAtRest)
   FarFieldDescription d = gravity_column();
   d.upper = {{100.0, 100.0}};
   d.monitors = {{"crown", {{50.0, 56.0}}}, {"side", {{57.0, 50.0}}}, {"far", {{10.0, 90.0}}}};
-  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0},
-                  {BoundaryPart::left, BoundaryKind::lysmer, 1.0, 1.0},
-                  {BoundaryPart::right, BoundaryKind::lysmer, 1.0, 1.0}};
+  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0, {}},
+                  {BoundaryPart::left, BoundaryKind::lysmer, 1.0, 1.0, {}},
+                  {BoundaryPart::right, BoundaryKind::lysmer, 1.0, 1.0, {}}};
   d.hole.shape = HoleShape::circle;
   d.hole.center = {{50.0, 50.0}};
   d.hole.radius = 5.0;
@@ -226,9 +226,9 @@ TEST(FarFieldRayleigh, FreeVibrationDecayMatchesTheDampingRatio)
   // u_x = sin(pi y / 2H) at f1 = VS / 4H = 2.5 Hz. Rayleigh damping with ratio 0.05 at f1 and
   // 3 f1: the mode's ratio is alpha / (2 w) + beta w / 2 at its discrete frequency w.
   FarFieldDescription d = rock(8.0, 100.0, 2.0);
-  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::fixed, 1.0, 1.0},
-                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0},
-                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0}};
+  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::fixed, 1.0, 1.0, {}},
+                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0, {}},
+                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0, {}}};
   d.incident.type = IncidentWave::Type::sv;
   d.monitors = {{"top", {{4.0, 100.0}}}};
   const double zeta = 0.05, w1 = 2.0 * M_PI * 2.5, w2 = 3.0 * w1;
@@ -328,10 +328,10 @@ double pulse_error(const unsigned int degree, const double h, const double coura
 {
   FarFieldDescription d = rock(4.0, 400.0, h);
   d.degree = degree;
-  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::fixed, 1.0, 1.0},
-                  {BoundaryPart::top, BoundaryKind::fixed, 1.0, 1.0},
-                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0},
-                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0}};
+  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::fixed, 1.0, 1.0, {}},
+                  {BoundaryPart::top, BoundaryKind::fixed, 1.0, 1.0, {}},
+                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0, {}},
+                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0, {}}};
   d.incident.type = IncidentWave::Type::p;
   ElasticWaveModel model(d);
   const double c = model.p_wave_speed();
@@ -418,9 +418,9 @@ SideResult run_with_sides(const BoundaryKind sides)
   d.hole.center = {{400.0, 60.0}};
   d.hole.radius = 10.0;
   d.hole.element_size = 2.5;
-  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0},
-                  {BoundaryPart::left, sides, 1.0, 1.0},
-                  {BoundaryPart::right, sides, 1.0, 1.0}};
+  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0, {}},
+                  {BoundaryPart::left, sides, 1.0, 1.0, {}},
+                  {BoundaryPart::right, sides, 1.0, 1.0, {}}};
   d.incident.type = IncidentWave::Type::sv;
   d.incident.velocity = TimeFunction::sine_pulse(0.1, 10.0, 1.0, 0.0);
   d.monitors = {{"left top", {{0.0, 150.0}}},
@@ -436,9 +436,9 @@ SideResult run_with_sides(const BoundaryKind sides)
   SideResult r;
   // The column: for lysmer sides, the same 1D column solved on its own (rollers).
   FarFieldDescription c = rock(hh, 150.0, hh);
-  c.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0},
-                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0},
-                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0}};
+  c.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0, {}},
+                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0, {}},
+                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0, {}}};
   c.incident = d.incident;
   c.monitors = {{"top", {{0.5 * hh, 150.0}}}};
   c.dt = d.dt;
@@ -481,6 +481,6 @@ TEST(FarFieldFreeField, LateralSidesFollowTheColumnAroundAHole)
 TEST(FarFieldFreeField, OnlyOnLateralSidesOfTheRectangle)
 {
   FarFieldDescription d = rock(40.0, 40.0, 5.0);
-  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::free_field, 1.0, 1.0}};
+  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::free_field, 1.0, 1.0, {}}};
   EXPECT_THROW(ElasticWaveModel{d}, InputError);
 }

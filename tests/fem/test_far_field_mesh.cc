@@ -117,7 +117,7 @@ TEST(FarFieldMesh, RejectsHolesThatDoNotFit)
   d.hole.vertices = {{{5.0, 5.0}}, {{15.0, 10.0}}, {{5.0, 15.0}}, {{14.0, 10.0}}};
   EXPECT_THROW(ElasticWaveModel{d}, InputError);
   d.hole.shape = HoleShape::none;
-  d.boundaries = {{BoundaryPart::hole, BoundaryKind::fixed, 1.0, 1.0}};
+  d.boundaries = {{BoundaryPart::hole, BoundaryKind::fixed, 1.0, 1.0, {}}};
   EXPECT_THROW(ElasticWaveModel{d}, InputError); // a `hole` part without a hole
   d.boundaries.clear();
   d.hole.shape = HoleShape::circle;
@@ -145,10 +145,10 @@ TEST(FarFieldMesh, PColumnWithAGradedHoleStillCarriesThePlaneWave)
   d.hole.lower = {{7.0, 170.0}};
   d.hole.upper = {{9.0, 172.0}};
   d.hole.element_size = 0.5;
-  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0},
-                  {BoundaryPart::top, BoundaryKind::lysmer, 1.0, 1.0},
-                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0},
-                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0}};
+  d.boundaries = {{BoundaryPart::bottom, BoundaryKind::input, 1.0, 1.0, {}},
+                  {BoundaryPart::top, BoundaryKind::lysmer, 1.0, 1.0, {}},
+                  {BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0, {}},
+                  {BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0, {}}};
   d.incident.type = IncidentWave::Type::p;
   d.incident.velocity = TimeFunction::sine_pulse(0.1, 25.0, 1.0, 0.0);
   d.monitors = {{"low", {{8.0, 50.0}}}, {"mid", {{8.0, 100.0}}}};
@@ -198,8 +198,8 @@ TEST(FarFieldMesh, GmshFileWithNamedParts)
                          {BoundaryPart::right, 2},
                          {BoundaryPart::top, 3},
                          {BoundaryPart::hole, 5}}; // tag 4 (left) stays free
-    d.boundaries = {{BoundaryPart::bottom, BoundaryKind::fixed, 1.0, 1.0},
-                    {BoundaryPart::hole, BoundaryKind::lysmer, 1.0, 1.0}};
+    d.boundaries = {{BoundaryPart::bottom, BoundaryKind::fixed, 1.0, 1.0, {}},
+                    {BoundaryPart::hole, BoundaryKind::lysmer, 1.0, 1.0, {}}};
     d.monitors = {{"corner", {{5.5, 3.5}}}};
     const ElasticWaveModel model(d);
     EXPECT_EQ(model.n_cells(), 20u);
