@@ -11,7 +11,8 @@ Sample command lines:
 Writes two figures:
   OUT.png         one subplot per monitor: the chosen quantity against time [ms]
                   (stress [MPa], tension positive; displacement [mm]; velocity [mm/s]);
-  OUT_energy.png  every dataset under /energy against time [ms], in J.
+  OUT_energy.png  every dataset under /energy against time [ms], in J (and, for coupled runs,
+                  those under /far_field/energy beside it).
 Default OUT: histories_<quantity>.png next to the HDF5 file.
 
 HDF5 layout read (as written by the engine; extra datasets are ignored):
@@ -161,28 +162,34 @@ def plot_monitors(h5, time_ms, args, path):
 
 
 def plot_energy(h5, time_ms, args, path):
-    """Every dataset under /energy in one axes; returns False if there is none."""
-    energy = h5.get("energy")
-    names = sorted(name for name in energy
-                   if isinstance(energy[name], h5py.Dataset)) if energy else []
-    if not names:
+    """Every dataset under /energy in one axes, and beside it those under /far_field/energy
+    (coupled runs: the far field's balance; its work_of_ties is the energy that crossed the
+    interface); returns False if there is none."""
+    groups = [(title, h5.get(group)) for title, group in
+              (("blocks", "energy"), ("far field", "far_field/energy"))]
+    groups = [(title, g, sorted(n for n in g if isinstance(g[n], h5py.Dataset)))
+              for title, g in groups if g is not None]
+    groups = [group for group in groups if group[2]]
+    if not groups:
         print("plot_histories.py: %s has no /energy datasets; energy figure skipped"
               % args.histories)
         return False
-    figure, ax = plt.subplots(figsize=(8.0, 4.5))
-    units = set()
-    for name in names:
-        values, unit = scaled(energy[name], "J")
-        units.add(unit)
-        if values.ndim != 1:
-            values = values.reshape(values.shape[0], -1)[:, 0]
-        n = min(len(time_ms), values.shape[0])
-        ax.plot(time_ms[:n], values[:n], label=name)
-    ax.set_xlabel("time [ms]")
-    ax.set_ylabel("energy [%s]" % ", ".join(sorted(units)))
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize="small")
-    ax.set_title("%s: energy" % os.path.basename(args.histories))
+    figure, axes = plt.subplots(1, len(groups), figsize=(8.0 * len(groups), 4.5), squeeze=False)
+    for ax, (title, group, names) in zip(axes[0], groups):
+        units = set()
+        for name in names:
+            values, unit = scaled(group[name], "J")
+            units.add(unit)
+            if values.ndim != 1:
+                values = values.reshape(values.shape[0], -1)[:, 0]
+            n = min(len(time_ms), values.shape[0])
+            ax.plot(time_ms[:n], values[:n], label=name)
+        ax.set_xlabel("time [ms]")
+        ax.set_ylabel("energy [%s]" % ", ".join(sorted(units)))
+        ax.grid(True, alpha=0.3)
+        ax.legend(loc="best", fontsize="small")
+        ax.set_title("%s: energy of the %s" % (os.path.basename(args.histories), title)
+                     if len(groups) > 1 else "%s: energy" % os.path.basename(args.histories))
     figure.tight_layout()
     figure.savefig(path, dpi=150)
     plt.close(figure)
