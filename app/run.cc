@@ -21,6 +21,8 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <map>
+#include <optional>
 #include <sstream>
 
 namespace ddafem
@@ -218,6 +220,55 @@ void write_model_pvd(const std::filesystem::path& dir,
   f << out.str();
   if (!f)
     throw std::runtime_error("cannot write " + path.string());
+}
+
+/// The tied blocks with their joints as one continuum, against the far field's material.
+struct InterfaceImpedance
+{
+  double blocks_modulus = 0.0;    ///< E_eff of the tied blocks and the joints behind them [Pa]
+  double far_field_modulus = 0.0; ///< [Pa]
+  double reflection = 0.0;        ///< of a normally incident plane wave [-]
+};
+
+/// E_eff = 1 / (1/E + 1/(k_n d)) per tied block, averaged over the tied length: k_n = 2 p / L
+/// the normal springs per unit area of the joint behind a block (p at each end of an edge of
+/// length L, the tied edge's), d = area / L the block's depth behind the edge. Densities are
+/// equal, so the impedance ratio is sqrt(E_eff / E_far) and the reflection
+/// |1 - ratio| / (1 + ratio). Needs `joints.default` (else nothing is estimated).
+std::optional<InterfaceImpedance> interface_impedance(const Scene& scene, const dda::System& system,
+                                                      const coupling::FarFieldTies& ties)
+{
+  const dda::ModelDescription& m = scene.model;
+  if (m.default_joint_material >= m.joint_materials.size())
+    return std::nullopt;
+  const double p = m.joint_materials[m.default_joint_material].normal_stiffness;
+  // The tied length of each tied block.
+  std::map<std::size_t, double> tied_length;
+  for (const coupling::Tie& t : ties.get_ties())
+    tied_length[t.block] += t.length;
+  double sum = 0.0, weight = 0.0;
+  for (const auto& [block, length] : tied_length)
+  {
+    const dda::Block& b = system.get_blocks()[block];
+    const double e = m.materials[b.material].youngs_modulus;
+    const double depth = b.moments.area / length;
+    sum += length / (1.0 / e + length / (2.0 * p * depth));
+    weight += length;
+  }
+  InterfaceImpedance z;
+  z.blocks_modulus = sum / weight;
+  z.far_field_modulus = scene.far_field->youngs_modulus;
+  const double ratio = std::sqrt(z.blocks_modulus / z.far_field_modulus);
+  z.reflection = std::abs(1.0 - ratio) / (1.0 + ratio);
+  return z;
+}
+
+std::string impedance_warning(const InterfaceImpedance& z)
+{
+  return "the far field (E = " + format(z.far_field_modulus) +
+         " Pa) and the tied blocks with their joints (E_eff = " + format(z.blocks_modulus) +
+         " Pa) differ in impedance: the interface reflects about " + format(100 * z.reflection, 2) +
+         "% of a normally incident wave; a far-field material of the rock mass (E_eff) avoids it";
 }
 
 const char* integrator_name(dda::Integrator i)
@@ -487,6 +538,15 @@ std::string check_scene(const Scene& scene)
                 : "phi " + format(i.friction_angle) + " deg, c " + format(i.cohesion) +
                       " Pa, tensile " + format(i.tensile_strength) + " Pa")
         << "\n";
+    if (const auto z = interface_impedance(scene, system, *ties))
+    {
+      out << "  rock mass at the interface: E_eff " << format(z->blocks_modulus)
+          << " Pa (blocks with their joints), far field E " << format(z->far_field_modulus)
+          << " Pa: reflection of a normally incident wave about " << format(100 * z->reflection, 2)
+          << "%\n";
+      if (z->reflection > 0.01)
+        out << "warning: " << impedance_warning(*z) << "\n";
+    }
     for (const fem::BoundaryCondition& b : d.boundaries)
       out << "  far field " << fem::name_of(b.part) << ": " << fem::name_of(b.kind) << "\n";
     out << "  far-field monitors: " << d.monitors.size() << "\n";
@@ -524,6 +584,9 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
       throw InputError(w + ": expected a smaller time.dt, or --allow-unstable to watch it fail");
     warnings.push_back(w + " (run with --allow-unstable)");
   }
+  if (ties)
+    if (const auto z = interface_impedance(scene, system, *ties); z && z->reflection > 0.01)
+      warnings.push_back(impedance_warning(*z));
   if (time.dt > advice.dt_max)
     warnings.push_back("dt = " + format(time.dt) + " s exceeds the suggested " +
                        format(advice.dt_max, 3) + " s (" + advice.reason + ")");

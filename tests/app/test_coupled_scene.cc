@@ -61,3 +61,21 @@ TEST(CoupledScene, CheckReportsBothSidesAndTheTies)
       << report;
 }
 } // namespace
+
+namespace
+{
+const std::string column =
+    std::string(DDAFEM_SOURCE_DIR) + "/examples/coupled/s_wave_column_hybrid.yaml";
+
+TEST(CoupledScene, CheckEstimatesTheInterfaceReflectionOfTheFarFieldMaterial)
+{
+  // The layers with their joints: E_eff = 1 / (1/E + 50 m / (2 p)) = 33.3 GPa. A far field of
+  // that rock mass matches them; one of the intact rock (50 GPa) reflects
+  // (1 - sqrt(2/3)) / (1 + sqrt(2/3)) = 10.1% and `check` warns.
+  const std::string matched = check_scene(read_scene(column));
+  EXPECT_NE(matched.find("E_eff 3.333e+10 Pa"), std::string::npos) << matched;
+  EXPECT_EQ(matched.find("warning"), std::string::npos) << matched;
+  const std::string intact = check_scene(read_scene(column, {{"far_field.material", "rock"}}));
+  EXPECT_NE(intact.find("reflects about 10%"), std::string::npos) << intact;
+}
+} // namespace
