@@ -513,6 +513,26 @@ void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_
     return std::binary_search(jointed_vertices.begin(), jointed_vertices.end(),
                               std::make_tuple(block, vertex, other));
   };
+  // The blocks a vertex is tied to by intact joints (a range of the sorted list).
+  const auto tied_to = [&](std::size_t block, std::size_t vertex)
+  {
+    const auto first = std::lower_bound(jointed_vertices.begin(), jointed_vertices.end(),
+                                        std::make_tuple(block, vertex, std::size_t{0}));
+    auto last = first;
+    while (last != jointed_vertices.end() && std::get<0>(*last) == block &&
+           std::get<1>(*last) == vertex)
+      ++last;
+    return std::make_pair(first, last);
+  };
+  const auto held_by_common_block =
+      [&](std::size_t a, std::size_t va, std::size_t b, std::size_t vb)
+  {
+    const auto [a_first, a_last] = tied_to(a, va);
+    for (auto it = a_first; it != a_last; ++it)
+      if (jointed(b, vb, std::get<2>(*it)))
+        return true;
+    return false;
+  };
 
   // Two convex blocks held by an intact joint touch only along it (their other vertices lie
   // more than d0 away, d0 being below a quarter of the shortest edge): no narrow phase.
@@ -536,6 +556,17 @@ void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_
       c.edge_block = f.vertex_polygon == 0 ? b : a;
       if (jointed(c.vertex_block, f.vertex, c.edge_block))
         continue;
+      // Corners of diagonal neighbours (four blocks meeting at a point of a jointed grid): when
+      // both corners are held by intact joints to a common third block, that block keeps them
+      // apart and the vertex-vertex contact between them would only flip between states at
+      // rounding-level gaps, costing open-close iterations.
+      if (f.kind == ContactKind::vertex_vertex)
+      {
+        const std::vector<Point>& ev = blocks[c.edge_block].vertices;
+        const std::size_t corner = f.ratio < 0.5 ? f.edge : (f.edge + 1) % ev.size();
+        if (held_by_common_block(c.vertex_block, f.vertex, c.edge_block, corner))
+          continue;
+      }
       c.vertex = f.vertex;
       c.edge = f.edge;
       c.kind = f.kind;
