@@ -484,3 +484,23 @@ TEST(FarFieldFreeField, OnlyOnLateralSidesOfTheRectangle)
   d.boundaries = {{BoundaryPart::bottom, BoundaryKind::free_field, 1.0, 1.0, {}}};
   EXPECT_THROW(ElasticWaveModel{d}, InputError);
 }
+
+TEST(FarFieldViscousSpringBoundary, SpringsStoreGOverRAlongThePart)
+{
+  // Springs G / R (alpha_n n n^T + alpha_t t t^T) on the left side x = 0 of a 10 m square,
+  // R measured from its centre (5, 5): a rigid translation u stores only the springs' energy,
+  // (alpha u^2 / 2) G integral dy / R = alpha u^2 G asinh(1) over y in [0, 10] (the body does
+  // not strain). Gauss quadrature of the smooth 1/R on 0.5 m faces: to 1e-8.
+  FarFieldDescription d = rock(10.0, 10.0, 0.5);
+  BoundaryCondition left{BoundaryPart::left, BoundaryKind::lysmer, 1.0, 1.0, {}};
+  left.springs = {true, {{5.0, 5.0}}, 1.0, 0.5};
+  d.boundaries = {left};
+  d.dt = 1e-3;
+  ElasticWaveModel model(d);
+  const double g = d.youngs_modulus / (2.0 * (1.0 + d.poisson_ratio));
+  const auto rest = [](double, double) { return std::array<double, 2>{{0.0, 0.0}}; };
+  model.set_initial_state([](double, double) { return std::array<double, 2>{{1e-3, 0.0}}; }, rest);
+  EXPECT_NEAR(model.energy().strain, 1.0 * 1e-6 * g * std::asinh(1.0), 1e-8 * 1e-6 * g);
+  model.set_initial_state([](double, double) { return std::array<double, 2>{{0.0, 1e-3}}; }, rest);
+  EXPECT_NEAR(model.energy().strain, 0.5 * 1e-6 * g * std::asinh(1.0), 1e-8 * 1e-6 * g);
+}
