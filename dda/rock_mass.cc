@@ -1,0 +1,900 @@
+#include "dda/rock_mass.h"
+
+#include "common/input_error.h"
+#include "dda/geometry.h"
+
+#include <CGAL/Arr_consolidated_curve_data_traits_2.h>
+#include <CGAL/Arr_extended_dcel.h>
+#include <CGAL/Arr_segment_traits_2.h>
+#include <CGAL/Arrangement_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Polygon_2_algorithms.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <utility>
+
+namespace ddafem::dda
+{
+namespace
+{
+using Kernel = CGAL::Exact_predicates_exact_constructions_kernel;
+using ExactPoint = Kernel::Point_2;
+using Segment = Kernel::Segment_2;
+
+/// What an arrangement edge lies on. Where curves overlap (a joint along the region's boundary,
+/// an opening touching a joint), the edge carries all of them.
+struct CurveSource
+{
+  enum class Kind
+  {
+    region,
+    opening,
+    joint_set,
+    explicit_joint,
+    island_cut ///< added so that no block encloses an island (see cut_islands)
+  };
+  Kind kind = Kind::region;
+  std::size_t index = 0; ///< of the opening, joint set or explicit joint
+
+  bool operator==(const CurveSource& other) const
+  {
+    return kind == other.kind && index == other.index;
+  }
+};
+
+/// Classification of a face by the walk in classify_faces.
+struct FaceInfo
+{
+  bool visited = false;
+  bool in_region = false;
+  std::vector<bool> in_opening; ///< one flag per opening
+  bool block = false;           ///< in the region and in no opening
+  std::size_t index = 0;        ///< position in the arrangement's face list (tie breaks)
+};
+
+using SegmentTraits = CGAL::Arr_segment_traits_2<Kernel>;
+using Traits = CGAL::Arr_consolidated_curve_data_traits_2<SegmentTraits, CurveSource>;
+using Arrangement = CGAL::Arrangement_2<Traits, CGAL::Arr_face_extended_dcel<Traits, FaceInfo>>;
+using Face = Arrangement::Face_handle;
+using Halfedge = Arrangement::Halfedge_handle;
+using Ccb = Arrangement::Ccb_halfedge_circulator;
+
+std::string format_number(double v)
+{
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::string format_point(const Point& p)
+{
+  return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ")";
+}
+
+ExactPoint exact_point(const Point& p)
+{
+  return ExactPoint(p.x(), p.y());
+}
+
+/// The point in double (within an ulp); blocks that share a vertex get the same one.
+Point rounded(const ExactPoint& p)
+{
+  const auto& e = CGAL::exact(p);
+  return Point(CGAL::to_double(e.x()), CGAL::to_double(e.y()));
+}
+
+/// Unit vector at `degrees` from +x, exact for multiples of 90 degrees (so that sets at 0 and
+/// 90 degrees give exactly rectangular blocks).
+Vector2 unit_vector(double degrees)
+{
+  const double quarter_turns = degrees / 90.0;
+  if (quarter_turns == std::round(quarter_turns))
+  {
+    const long q = ((static_cast<long>(quarter_turns) % 4) + 4) % 4;
+    const Vector2 axes[] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+    return axes[q];
+  }
+  const double radians = degrees * M_PI / 180.0;
+  return Vector2(std::cos(radians), std::sin(radians));
+}
+
+// ---- Random perturbations ----------------------------------------------------------------------
+
+/// Draws of xi for one joint set and direction. The engine and std::seed_seq are specified by
+/// the standard, the std:: distributions are not (they differ between standard libraries), so
+/// the draws are made here: a seed gives the same joints with any standard library (up to the
+/// last bit of std::log and std::cos for normal draws).
+class Draws
+{
+public:
+  Draws(std::uint64_t seed, std::size_t set, unsigned stream)
+  {
+    std::seed_seq sequence{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
+                           static_cast<std::uint32_t>(set), stream};
+    engine.seed(sequence);
+  }
+
+  double xi(Distribution distribution)
+  {
+    if (distribution == Distribution::uniform)
+      return 2.0 * unit() - 1.0;
+    // Box-Muller: u1 in (0, 1] keeps the logarithm finite.
+    const double u1 = 1.0 - unit();
+    const double u2 = unit();
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
+  }
+
+private:
+  double unit() { return static_cast<double>(engine() >> 11) * 0x1.0p-53; } ///< [0, 1)
+  std::mt19937_64 engine;
+};
+
+// ---- Joint traces ------------------------------------------------------------------------------
+
+/// One joint line of a set: its normal position c [m] (n.x = c) and the shift of its trace
+/// pattern along the line [m].
+struct JointLine
+{
+  double c = 0.0;
+  double phase = 0.0;
+};
+
+/// The lines of a set that meet the normal interval [n_lo, n_hi] [m]. Lines are generated from
+/// line 0 outwards, one random stream per direction, each line drawing its gap to the next line
+/// and its phase: enlarging the region adds lines but keeps the ones it had.
+std::vector<JointLine> joint_lines(const JointSet& set, std::size_t set_index, std::uint64_t seed,
+                                   double n_lo, double n_hi)
+{
+  const double walk = std::max(std::abs(n_hi - set.offset), std::abs(set.offset - n_lo));
+  if (walk / set.spacing > 1e7)
+    throw InputError("joint set " + std::to_string(set_index) + ": line 0 (offset " +
+                     format_number(set.offset) + " m) is " + format_number(walk / set.spacing) +
+                     " spacings from the far side of the region: expected an offset within 10^7 "
+                     "spacings of the region");
+  const JointPerturbation& p = set.perturbation;
+  const double period = set.persistent() ? 0.0 : set.trace_length + set.bridge;
+  std::vector<JointLine> lines;
+  for (const int direction : {+1, -1})
+  {
+    Draws draws(seed, set_index, direction > 0 ? 0 : 1);
+    double c = set.offset;
+    long k = 0;
+    const auto gap = [&]
+    {
+      double xi = draws.xi(p.distribution);
+      while (1.0 + p.spacing * xi < 0.1)
+        xi = draws.xi(p.distribution);
+      return set.spacing * (1.0 + p.spacing * xi);
+    };
+    if (direction < 0)
+    {
+      c -= gap();
+      k = -1;
+    }
+    while (direction > 0 ? c <= n_hi : c >= n_lo)
+    {
+      const double stagger = (k % 2 == 0) ? 0.0 : 0.5 * period;
+      const double phase = stagger + p.position * period * draws.xi(p.distribution);
+      if (c >= n_lo && c <= n_hi)
+        lines.push_back({c, phase});
+      c += direction * gap();
+      k += direction;
+    }
+  }
+  return lines;
+}
+
+/// Appends the segment from a to b clipped to the box (nothing if they do not cross it).
+void append_clipped(const Point& a, const Point& b, const Kernel::Iso_rectangle_2& box,
+                    CurveSource source, std::vector<Traits::Curve_2>& curves)
+{
+  const auto clipped = CGAL::intersection(Segment(exact_point(a), exact_point(b)), box);
+  if (!clipped)
+    return;
+  // CGAL 5 returns a boost::variant: a point where the segment only touches the box.
+  if (const Segment* s = boost::get<Segment>(&*clipped))
+    if (!s->is_degenerate())
+      curves.emplace_back(*s, source);
+}
+
+/// Every trace of every joint set and every explicit joint, clipped to the region's bounding
+/// box. (Pieces inside the box but outside a polygonal region bound only faces outside it.)
+std::vector<Traits::Curve_2> joint_curves(const RockMassDescription& d)
+{
+  Point lower = d.region.front(), upper = d.region.front();
+  for (const Point& v : d.region)
+  {
+    lower = lower.cwiseMin(v);
+    upper = upper.cwiseMax(v);
+  }
+  const Kernel::Iso_rectangle_2 box(exact_point(lower), exact_point(upper));
+  const Point corners[] = {lower, {upper.x(), lower.y()}, upper, {lower.x(), upper.y()}};
+  const double margin = (upper - lower).norm(); // makes persistent traces reach past the box
+
+  std::vector<Traits::Curve_2> curves;
+  for (std::size_t s = 0; s < d.joint_sets.size(); ++s)
+  {
+    const JointSet& set = d.joint_sets[s];
+    const Vector2 along = unit_vector(set.dip);
+    const Vector2 normal = unit_vector(set.dip + 90.0);
+    double n_lo = corners[0].dot(normal), n_hi = n_lo;
+    double t_lo = corners[0].dot(along), t_hi = t_lo;
+    for (const Point& corner : corners)
+    {
+      n_lo = std::min(n_lo, corner.dot(normal));
+      n_hi = std::max(n_hi, corner.dot(normal));
+      t_lo = std::min(t_lo, corner.dot(along));
+      t_hi = std::max(t_hi, corner.dot(along));
+    }
+    const double n_traces =
+        (n_hi - n_lo) / set.spacing *
+        (set.persistent() ? 1.0 : (t_hi - t_lo) / (set.trace_length + set.bridge) + 1.0);
+    if (n_traces > 1e6)
+      throw InputError("joint set " + std::to_string(s) + ": about " + format_number(n_traces) +
+                       " traces cross the region: expected at most 10^6 (is the spacing, " +
+                       format_number(set.spacing) +
+                       " m, or the period trace_length + bridge too small for the region?)");
+    const CurveSource source{CurveSource::Kind::joint_set, s};
+    for (const JointLine& line : joint_lines(set, s, d.seed, n_lo, n_hi))
+    {
+      const auto at = [&](double t) -> Point { return line.c * normal + t * along; };
+      if (set.persistent())
+      {
+        append_clipped(at(t_lo - margin), at(t_hi + margin), box, source, curves);
+        continue;
+      }
+      const double period = set.trace_length + set.bridge;
+      // Traces j whose span [phase + j P, phase + j P + L] meets [t_lo, t_hi].
+      const double j_first = std::floor((t_lo - line.phase - set.trace_length) / period);
+      for (double j = j_first; line.phase + j * period <= t_hi; ++j)
+      {
+        const double t0 = line.phase + j * period;
+        append_clipped(at(t0), at(t0 + set.trace_length), box, source, curves);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < d.joints.size(); ++i)
+    append_clipped(d.joints[i].from, d.joints[i].to, box, {CurveSource::Kind::explicit_joint, i},
+                   curves);
+  return curves;
+}
+
+/// The closed polygon's edges as curves.
+void append_polygon(const std::vector<Point>& polygon, CurveSource source,
+                    std::vector<Traits::Curve_2>& curves)
+{
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+    curves.emplace_back(
+        Segment(exact_point(polygon[i]), exact_point(polygon[(i + 1) % polygon.size()])), source);
+}
+
+// ---- Faces -------------------------------------------------------------------------------------
+
+/// Calls visit(h) for every halfedge on the boundary of f (outer and inner boundaries), with
+/// f on its left.
+template <typename Visit>
+void for_each_halfedge(Face f, Visit&& visit)
+{
+  const auto visit_ccb = [&](Ccb first)
+  {
+    Ccb h = first;
+    do
+      visit(Halfedge(h));
+    while (++h != first);
+  };
+  if (f->has_outer_ccb())
+    visit_ccb(f->outer_ccb());
+  for (auto inner = f->inner_ccbs_begin(); inner != f->inner_ccbs_end(); ++inner)
+    visit_ccb(*inner);
+}
+
+/// Marks every face as a block or not by a walk over the faces from the unbounded one: crossing
+/// an edge of the region's boundary toggles `in_region`, crossing an opening's boundary toggles
+/// that opening's flag. Exact and independent of how the faces are shaped.
+void classify_faces(Arrangement& arrangement, std::size_t n_openings)
+{
+  std::size_t index = 0;
+  for (auto f = arrangement.faces_begin(); f != arrangement.faces_end(); ++f)
+  {
+    f->data() = FaceInfo{};
+    f->data().index = index++;
+  }
+  Face start = arrangement.unbounded_face();
+  start->data().visited = true;
+  start->data().in_opening.assign(n_openings, false);
+  std::vector<Face> stack{start};
+  while (!stack.empty())
+  {
+    const Face f = stack.back();
+    stack.pop_back();
+    for_each_halfedge(f,
+                      [&](Halfedge h)
+                      {
+                        const Face g = h->twin()->face();
+                        if (g->data().visited)
+                          return;
+                        FaceInfo info = f->data();
+                        info.index = g->data().index;
+                        for (const CurveSource& s : h->curve().data())
+                          if (s.kind == CurveSource::Kind::region)
+                            info.in_region = !info.in_region;
+                          else if (s.kind == CurveSource::Kind::opening)
+                            info.in_opening[s.index] = !info.in_opening[s.index];
+                        info.block = info.in_region &&
+                                     std::none_of(info.in_opening.begin(), info.in_opening.end(),
+                                                  [](bool b) { return b; });
+                        g->data() = info;
+                        stack.push_back(g);
+                      });
+  }
+}
+
+/// Area of the region a boundary encloses [m^2], exact: positive for an outer boundary, negative
+/// for an inner one; dangling edges, walked both ways, add nothing.
+Kernel::FT ccb_area(Ccb first)
+{
+  std::vector<ExactPoint> points;
+  Ccb h = first;
+  do
+    points.push_back(h->source()->point());
+  while (++h != first);
+  return CGAL::polygon_area_2(points.begin(), points.end(), Kernel());
+}
+
+/// Area of a face [m^2], exact: its outer boundary minus what its inner boundaries enclose.
+Kernel::FT face_area(Face f)
+{
+  Kernel::FT area = f->has_outer_ccb() ? ccb_area(f->outer_ccb()) : Kernel::FT(0);
+  for (auto inner = f->inner_ccbs_begin(); inner != f->inner_ccbs_end(); ++inner)
+    area += ccb_area(*inner);
+  return area;
+}
+
+/// Whether h (with f on its left) separates f from another face. Dangling joint traces
+/// (antennae) and traces that connect f's boundary to an island inside f (bridges) have f on
+/// both sides.
+bool separates(Halfedge h, Face f)
+{
+  return h->twin()->face() != f;
+}
+
+/// The halfedges on f's boundaries that separate it from other faces.
+std::vector<Halfedge> separating_halfedges(Face f)
+{
+  std::vector<Halfedge> halfedges;
+  for_each_halfedge(f,
+                    [&](Halfedge h)
+                    {
+                      if (separates(h, f))
+                        halfedges.push_back(h);
+                    });
+  return halfedges;
+}
+
+/// A closed chain of halfedges split into simple loops where it passes a vertex again.
+std::vector<std::vector<Halfedge>> simple_loops(const std::vector<Halfedge>& cycle)
+{
+  std::vector<std::vector<Halfedge>> loops;
+  std::vector<Halfedge> path;
+  std::map<Arrangement::Vertex_handle, std::size_t> position; // in path, by source vertex
+  for (const Halfedge h : cycle)
+  {
+    const auto again = position.find(h->source());
+    if (again != position.end())
+    {
+      const std::size_t start = again->second;
+      loops.emplace_back(path.begin() + static_cast<std::ptrdiff_t>(start), path.end());
+      for (std::size_t k = start; k < path.size(); ++k)
+        position.erase(path[k]->source());
+      path.resize(start);
+    }
+    position[h->source()] = path.size();
+    path.push_back(h);
+  }
+  loops.push_back(path);
+  return loops;
+}
+
+/// The boundary of f as simple loops of separating halfedges: the outer loop (anticlockwise)
+/// and a loop around each island (clockwise). From each halfedge the boundary turns, around
+/// its target vertex, to the next halfedge that separates f from another face, so antennae and
+/// bridges are passed over; where f touches itself at a vertex the loops are split there.
+std::vector<std::vector<Halfedge>> boundary_loops(Face f)
+{
+  const std::vector<Halfedge> halfedges = separating_halfedges(f);
+  std::map<Halfedge, bool> used;
+  for (const Halfedge h : halfedges)
+    used[h] = false;
+  std::vector<std::vector<Halfedge>> loops;
+  for (const Halfedge start : halfedges)
+  {
+    if (used[start])
+      continue;
+    std::vector<Halfedge> cycle;
+    for (Halfedge h = start; !used[h];)
+    {
+      used[h] = true;
+      cycle.push_back(h);
+      h = h->next();
+      while (!separates(h, f))
+        h = h->twin()->next();
+    }
+    for (std::vector<Halfedge>& loop : simple_loops(cycle))
+      loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+Kernel::FT loop_area(const std::vector<Halfedge>& loop)
+{
+  std::vector<ExactPoint> points;
+  for (const Halfedge h : loop)
+    points.push_back(h->source()->point());
+  return CGAL::polygon_area_2(points.begin(), points.end(), Kernel());
+}
+
+/// The point nearest to v where a vertical ray from v (up: dy = +1, down: dy = -1) meets an edge
+/// between f and another face. v lies on f's boundary and f is bounded, so there is one.
+ExactPoint first_hit(Face f, const ExactPoint& v, int dy)
+{
+  const Kernel::Ray_2 ray(v, Kernel::Direction_2(0, dy));
+  std::optional<ExactPoint> best;
+  const auto consider = [&](const ExactPoint& p)
+  {
+    if (p != v && (!best || CGAL::compare_distance_to_point(v, p, *best) == CGAL::SMALLER))
+      best = p;
+  };
+  for_each_halfedge(f,
+                    [&](Halfedge h)
+                    {
+                      if (!separates(h, f))
+                        return;
+                      const Segment edge(h->source()->point(), h->target()->point());
+                      const auto hit = CGAL::intersection(ray, edge);
+                      if (!hit)
+                        return;
+                      if (const ExactPoint* p = boost::get<ExactPoint>(&*hit))
+                        consider(*p);
+                      else if (const Segment* s = boost::get<Segment>(&*hit))
+                      {
+                        consider(s->source());
+                        consider(s->target());
+                      }
+                    });
+  return *best;
+}
+
+/// A block must be a simple polygon, but a block face may enclose islands: an opening no joint
+/// reaches (or only a trace that ends on it), blocks inside a closed ring of joints, or a block
+/// that the face surrounds but touches at one vertex. They show as clockwise boundary loops of
+/// the face. Each island gets two vertical cuts, up from its top vertex and down from its
+/// bottom vertex to the nearest edge of the face, which split the face in two; no cut starts
+/// where the island touches another loop (it is attached there already, and the vertical from
+/// there may leave the face). Returns the number of cuts inserted (0: every block face is
+/// simple); the faces must be classified again after a cut.
+std::size_t cut_islands(Arrangement& arrangement)
+{
+  std::vector<Traits::Curve_2> cuts;
+  const CurveSource source{CurveSource::Kind::island_cut, 0};
+  for (auto f = arrangement.faces_begin(); f != arrangement.faces_end(); ++f)
+  {
+    if (!f->data().block)
+      continue;
+    const std::vector<std::vector<Halfedge>> loops = boundary_loops(f);
+    std::map<Arrangement::Vertex_handle, int> n_visits;
+    for (const std::vector<Halfedge>& loop : loops)
+      for (const Halfedge h : loop)
+        ++n_visits[h->source()];
+    for (const std::vector<Halfedge>& loop : loops)
+    {
+      if (loop_area(loop) > 0)
+        continue; // the outer loop
+      // Top: largest (y, x); bottom: smallest (y, x).
+      const auto above = [](const ExactPoint& a, const ExactPoint& b)
+      { return CGAL::compare_yx(a, b) == CGAL::LARGER; };
+      Arrangement::Vertex_handle top = loop.front()->source(), bottom = top;
+      for (const Halfedge h : loop)
+      {
+        if (above(h->source()->point(), top->point()))
+          top = h->source();
+        if (above(bottom->point(), h->source()->point()))
+          bottom = h->source();
+      }
+      if (n_visits[top] == 1)
+        cuts.emplace_back(Segment(top->point(), first_hit(f, top->point(), +1)), source);
+      if (n_visits[bottom] == 1)
+        cuts.emplace_back(Segment(bottom->point(), first_hit(f, bottom->point(), -1)), source);
+    }
+  }
+  if (!cuts.empty())
+    CGAL::insert(arrangement, cuts.begin(), cuts.end());
+  return cuts.size();
+}
+
+/// Classifies the faces and cuts islands until every block face is simple; returns the cuts.
+std::size_t settle(Arrangement& arrangement, std::size_t n_openings)
+{
+  std::size_t n_cuts = 0;
+  classify_faces(arrangement, n_openings);
+  while (const std::size_t n = cut_islands(arrangement))
+  {
+    n_cuts += n;
+    classify_faces(arrangement, n_openings);
+  }
+  return n_cuts;
+}
+
+// ---- Slivers -----------------------------------------------------------------------------------
+
+/// The size criteria of a sliver.
+struct SliverCriteria
+{
+  double min_area = 0.0;             ///< [m^2]
+  double min_inscribed_radius = 0.0; ///< [m]
+
+  bool is_sliver(double area, double perimeter) const
+  {
+    return area < min_area || 2.0 * area / perimeter < min_inscribed_radius;
+  }
+};
+
+double length(Halfedge h)
+{
+  return std::sqrt(
+      CGAL::to_double(CGAL::squared_distance(h->source()->point(), h->target()->point())));
+}
+
+/// One pass of merging: each sliver (smallest first) whose neighbouring block with the longest
+/// shared boundary was not involved in a merge of this pass is joined to it by removing the
+/// edges they share. Returns the number of merges.
+std::size_t merge_pass(Arrangement& arrangement, const SliverCriteria& criteria)
+{
+  struct Candidate
+  {
+    Face face;
+    std::size_t index = 0;
+    double area = 0.0;
+    std::size_t neighbour = 0; ///< face index of the block sharing the longest boundary
+  };
+  std::vector<Face> faces;
+  std::vector<Candidate> slivers;
+  for (auto f = arrangement.faces_begin(); f != arrangement.faces_end(); ++f)
+  {
+    faces.push_back(f);
+    if (!f->data().block)
+      continue;
+    double perimeter = 0.0;
+    std::vector<std::pair<std::size_t, double>> shared; // (face index, length [m])
+    for (const Halfedge h : separating_halfedges(f))
+    {
+      const double l = length(h);
+      perimeter += l;
+      const FaceInfo& other = h->twin()->face()->data();
+      if (!other.block)
+        continue;
+      const auto it = std::find_if(shared.begin(), shared.end(),
+                                   [&](const auto& s) { return s.first == other.index; });
+      if (it == shared.end())
+        shared.emplace_back(other.index, l);
+      else
+        it->second += l;
+    }
+    const double area = CGAL::to_double(face_area(f));
+    if (shared.empty() || !criteria.is_sliver(area, perimeter))
+      continue;
+    // Longest shared boundary; ties to the lower face index (deterministic).
+    const auto best = std::min_element(shared.begin(), shared.end(),
+                                       [](const auto& a, const auto& b) {
+                                         return a.second > b.second ||
+                                                (a.second == b.second && a.first < b.first);
+                                       });
+    slivers.push_back({f, f->data().index, area, best->first});
+  }
+  std::sort(slivers.begin(), slivers.end(),
+            [](const Candidate& a, const Candidate& b)
+            { return a.area < b.area || (a.area == b.area && a.index < b.index); });
+
+  // Faces deleted or grown by a merge are not looked at again in this pass.
+  std::vector<bool> touched(faces.size(), false);
+  std::size_t n_merged = 0;
+  for (const Candidate& s : slivers)
+  {
+    if (touched[s.index] || touched[s.neighbour])
+      continue;
+    touched[s.index] = touched[s.neighbour] = true;
+    const Face neighbour = faces[s.neighbour];
+    std::vector<Halfedge> shared;
+    for (const Halfedge h : separating_halfedges(s.face))
+      if (h->twin()->face() == neighbour)
+        shared.push_back(h);
+    for (const Halfedge h : shared)
+      arrangement.remove_edge(h);
+    ++n_merged;
+  }
+  return n_merged;
+}
+
+// ---- Blocks ------------------------------------------------------------------------------------
+
+/// Drops vertices between two collinear edges (where a neighbour's vertex or a dangling trace
+/// met the edge), exactly.
+std::vector<ExactPoint> without_collinear_vertices(std::vector<ExactPoint> points)
+{
+  for (bool changed = true; changed && points.size() > 3;)
+  {
+    changed = false;
+    for (std::size_t i = 0; i < points.size() && points.size() > 3;)
+    {
+      const std::size_t n = points.size();
+      if (CGAL::collinear(points[(i + n - 1) % n], points[i], points[(i + 1) % n]))
+      {
+        points.erase(points.begin() + static_cast<std::ptrdiff_t>(i));
+        changed = true;
+      }
+      else
+        ++i;
+    }
+  }
+  return points;
+}
+
+/// The block of a block face whose boundary is one simple loop (as settle() leaves them).
+RockMassBlock make_block(Face f)
+{
+  const std::vector<std::vector<Halfedge>> loops = boundary_loops(f);
+  if (loops.size() != 1)
+    throw InputError("a block near " +
+                     format_point(rounded(loops.front().front()->source()->point())) +
+                     " m is not a simple polygon: it touches itself or an island at vertices "
+                     "that no vertical cut can separate; expected openings and joints that meet "
+                     "the rest of the boundary along edges or not at all");
+  const std::vector<Halfedge>& boundary = loops.front();
+  std::vector<ExactPoint> points;
+  for (const Halfedge h : boundary)
+    points.push_back(h->source()->point());
+
+  RockMassBlock block;
+  for (const Halfedge h : boundary)
+    for (const CurveSource& s : h->curve().data())
+      switch (s.kind)
+      {
+      case CurveSource::Kind::region:
+        block.region_boundary = true;
+        break;
+      case CurveSource::Kind::opening:
+        block.openings.push_back(s.index);
+        break;
+      case CurveSource::Kind::joint_set:
+        block.joint_sets.push_back(s.index);
+        break;
+      case CurveSource::Kind::explicit_joint:
+        block.explicit_joint = true;
+        break;
+      case CurveSource::Kind::island_cut:
+        break;
+      }
+  for (std::vector<std::size_t>* list : {&block.openings, &block.joint_sets})
+  {
+    std::sort(list->begin(), list->end());
+    list->erase(std::unique(list->begin(), list->end()), list->end());
+  }
+
+  points = without_collinear_vertices(std::move(points));
+  // Start at the lowest vertex (smallest y, then x).
+  std::rotate(points.begin(),
+              std::min_element(points.begin(), points.end(),
+                               [](const ExactPoint& a, const ExactPoint& b)
+                               { return CGAL::compare_yx(a, b) == CGAL::SMALLER; }),
+              points.end());
+  block.area = CGAL::to_double(CGAL::polygon_area_2(points.begin(), points.end(), Kernel()));
+  for (const ExactPoint& p : points)
+    block.vertices.push_back(rounded(p));
+  return block;
+}
+
+double perimeter(const std::vector<Point>& vertices)
+{
+  double p = 0.0;
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    p += (vertices[(i + 1) % vertices.size()] - vertices[i]).norm();
+  return p;
+}
+
+/// Anticlockwise copy without a repeated closing vertex.
+std::vector<Point> anticlockwise(std::vector<Point> polygon)
+{
+  if (polygon.size() > 1 && polygon.front() == polygon.back())
+    polygon.pop_back();
+  if (signed_area(polygon) < 0.0)
+    std::reverse(polygon.begin(), polygon.end());
+  return polygon;
+}
+
+/// Input problems the generator cannot work around.
+void check_description(const RockMassDescription& d)
+{
+  const auto expect = [](bool ok, const std::string& what)
+  {
+    if (!ok)
+      throw InputError("rock mass: " + what);
+  };
+  expect(is_simple_polygon(anticlockwise(d.region)),
+         "the region is not a simple polygon: expected at least 3 vertices, no self-intersection "
+         "and a non-zero area");
+  for (std::size_t s = 0; s < d.joint_sets.size(); ++s)
+  {
+    const JointSet& set = d.joint_sets[s];
+    const std::string name = "joint set " + std::to_string(s) + ": ";
+    expect(std::isfinite(set.dip),
+           name + "dip = " + format_number(set.dip) + ": expected a number");
+    expect(set.spacing > 0.0 && std::isfinite(set.spacing),
+           name + "spacing = " + format_number(set.spacing) + " m: expected > 0");
+    expect(set.bridge >= 0.0 && std::isfinite(set.bridge),
+           name + "bridge = " + format_number(set.bridge) + " m: expected >= 0");
+    expect(set.persistent() || (set.trace_length > 0.0 && std::isfinite(set.trace_length)),
+           name + "trace_length = " + format_number(set.trace_length) +
+               " m with a bridge: expected a finite length > 0");
+    expect(set.perturbation.spacing >= 0.0 && set.perturbation.spacing < 1.0,
+           name + "spacing perturbation = " + format_number(set.perturbation.spacing) +
+               ": expected a fraction in [0, 1)");
+    expect(set.perturbation.position >= 0.0 && std::isfinite(set.perturbation.position),
+           name + "position perturbation = " + format_number(set.perturbation.position) +
+               ": expected a fraction >= 0");
+  }
+  for (std::size_t j = 0; j < d.joints.size(); ++j)
+    expect(d.joints[j].from != d.joints[j].to,
+           "joint " + std::to_string(j) + " starts and ends at " + format_point(d.joints[j].from) +
+               ": expected two different points");
+  expect(d.chord_tolerance > 0.0,
+         "chord_tolerance = " + format_number(d.chord_tolerance) + " m: expected > 0");
+  for (std::size_t k = 0; k < d.openings.size(); ++k)
+  {
+    const Opening& o = d.openings[k];
+    const std::string name = "opening " + std::to_string(k) + ": ";
+    if (o.shape == Opening::Shape::circle)
+      expect(o.radius > 0.0, name + "radius = " + format_number(o.radius) + " m: expected > 0");
+    if (o.shape == Opening::Shape::horseshoe)
+      expect(o.width > 0.0 && o.wall_height >= 0.0,
+             name + "width = " + format_number(o.width) + " m, wall_height = " +
+                 format_number(o.wall_height) + " m: expected width > 0 and wall_height >= 0");
+    expect(is_simple_polygon(opening_polygon(o, d.chord_tolerance)),
+           name + "not a simple polygon: expected at least 3 vertices, no self-intersection and "
+                  "a non-zero area");
+  }
+}
+
+/// Fewest chords for `angle` [rad] of arc of radius r such that each stays within `tolerance`
+/// of the arc: a chord over the angle a deviates by r (1 - cos(a / 2)).
+std::size_t n_chords(double angle, double r, double tolerance, std::size_t at_least)
+{
+  const double max_angle = 2.0 * std::acos(std::max(-1.0, 1.0 - tolerance / r));
+  return std::max(at_least, static_cast<std::size_t>(std::ceil(angle / max_angle)));
+}
+} // namespace
+
+std::vector<Point> opening_polygon(const Opening& opening, double chord_tolerance)
+{
+  std::vector<Point> polygon;
+  switch (opening.shape)
+  {
+  case Opening::Shape::circle:
+  {
+    const std::size_t n = n_chords(2.0 * M_PI, opening.radius, chord_tolerance, 8);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double a = 2.0 * M_PI * static_cast<double>(i) / static_cast<double>(n);
+      polygon.push_back(opening.center + opening.radius * Vector2(std::cos(a), std::sin(a)));
+    }
+    return polygon;
+  }
+  case Opening::Shape::horseshoe:
+  {
+    // Floor from left to right, right wall up, roof arc from right to left, left wall down.
+    const double r = 0.5 * opening.width;
+    const Point springline = opening.center + Vector2(0.0, opening.wall_height);
+    polygon.push_back(opening.center + Vector2(-r, 0.0));
+    polygon.push_back(opening.center + Vector2(r, 0.0));
+    if (opening.wall_height > 0.0)
+      polygon.push_back(springline + Vector2(r, 0.0));
+    const std::size_t n = n_chords(M_PI, r, chord_tolerance, 4);
+    for (std::size_t i = 1; i < n; ++i)
+    {
+      const double a = M_PI * static_cast<double>(i) / static_cast<double>(n);
+      polygon.push_back(springline + r * Vector2(std::cos(a), std::sin(a)));
+    }
+    if (opening.wall_height > 0.0)
+      polygon.push_back(springline + Vector2(-r, 0.0));
+    return polygon;
+  }
+  case Opening::Shape::polygon:
+    return anticlockwise(opening.vertices);
+  }
+  return polygon;
+}
+
+RockMassResult generate_blocks(const RockMassDescription& d)
+{
+  check_description(d);
+  RockMassResult result;
+  RockMassStatistics& stats = result.statistics;
+  const std::vector<Point> region = anticlockwise(d.region);
+  const std::size_t n_openings = d.openings.size();
+
+  std::vector<Traits::Curve_2> curves = joint_curves(d);
+  stats.n_traces = curves.size();
+  append_polygon(region, {CurveSource::Kind::region, 0}, curves);
+  for (std::size_t k = 0; k < n_openings; ++k)
+  {
+    result.openings.push_back(opening_polygon(d.openings[k], d.chord_tolerance));
+    append_polygon(result.openings.back(), {CurveSource::Kind::opening, k}, curves);
+  }
+  Arrangement arrangement;
+  CGAL::insert(arrangement, curves.begin(), curves.end()); // sweep line, exact
+  stats.n_island_cuts = settle(arrangement, n_openings);
+
+  double mean_spacing = 0.0;
+  for (const JointSet& set : d.joint_sets)
+    mean_spacing += set.spacing / static_cast<double>(d.joint_sets.size());
+  const SliverCriteria criteria{
+      d.slivers.min_area.value_or(d.slivers.min_area_fraction * mean_spacing * mean_spacing),
+      d.slivers.min_inscribed_radius};
+  stats.min_area = criteria.min_area;
+  if (d.slivers.action == SliverAction::merge)
+    while (const std::size_t n = merge_pass(arrangement, criteria))
+    {
+      stats.n_merged += n;
+      stats.n_island_cuts += settle(arrangement, n_openings);
+    }
+
+  Kernel::FT excavated = 0;
+  for (auto f = arrangement.faces_begin(); f != arrangement.faces_end(); ++f)
+    if (f->data().block)
+      result.blocks.push_back(make_block(f));
+    else if (f->data().in_region)
+      excavated += face_area(f);
+  std::vector<ExactPoint> exact_region;
+  for (const Point& v : region)
+    exact_region.push_back(exact_point(v));
+  stats.region_area =
+      CGAL::to_double(CGAL::polygon_area_2(exact_region.begin(), exact_region.end(), Kernel()));
+  stats.excavated_area = CGAL::to_double(excavated);
+
+  // Bottom row first: by centroid y, then x.
+  std::vector<std::pair<Point, RockMassBlock>> by_centroid;
+  for (RockMassBlock& b : result.blocks)
+    by_centroid.emplace_back(polygon_moments(b.vertices).centroid, std::move(b));
+  std::sort(by_centroid.begin(), by_centroid.end(),
+            [](const auto& a, const auto& b) {
+              return a.first.y() < b.first.y() ||
+                     (a.first.y() == b.first.y() && a.first.x() < b.first.x());
+            });
+  result.blocks.clear();
+  for (auto& [centroid, block] : by_centroid)
+  {
+    const double p = perimeter(block.vertices);
+    if (criteria.is_sliver(block.area, p))
+      result.slivers.push_back({result.blocks.size(), centroid, block.area, 2.0 * block.area / p});
+    result.blocks.push_back(std::move(block));
+  }
+
+  stats.n_blocks = result.blocks.size();
+  stats.n_reported = result.slivers.size();
+  if (!result.blocks.empty())
+  {
+    stats.smallest_area = result.blocks.front().area;
+    for (const RockMassBlock& b : result.blocks)
+    {
+      stats.smallest_area = std::min(stats.smallest_area, b.area);
+      stats.total_area += b.area;
+    }
+    stats.mean_area = stats.total_area / static_cast<double>(stats.n_blocks);
+  }
+  return result;
+}
+
+} // namespace ddafem::dda

@@ -1,0 +1,181 @@
+// Rock mass generation: the blocks of a region cut by joint sets and explicit joints, with
+// openings excavated. Pure geometry (no model, no scene): a description in, block polygons out.
+//
+// The blocks are the bounded faces of a CGAL 2D arrangement (exact kernel) of the region's
+// boundary, the openings' boundaries and every joint trace; a face is a block when it lies
+// inside the region and outside every opening. Joint traces that end inside a face (the tips of
+// non-persistent joints) are dangling edges of that face: they are left out of its polygon, so
+// the rock between collinear traces (the bridge) stays intact.
+#pragma once
+
+#include "dda/types.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <vector>
+
+namespace ddafem::dda
+{
+/// Distribution of a random perturbation xi of mean 0.
+enum class Distribution
+{
+  uniform, ///< xi uniform in [-1, 1]
+  normal   ///< xi standard normal (mean 0, standard deviation 1)
+};
+
+/// Random perturbation of a joint set: each value is its regular value times (1 + fraction xi)
+/// or plus fraction xi times a length, with one draw of xi per joint line.
+struct JointPerturbation
+{
+  /// The gap between consecutive joint lines is spacing (1 + this xi) [-], in [0, 1). Gaps
+  /// below 0.1 spacing are drawn again (a truncated normal distribution).
+  double spacing = 0.0;
+  /// Each line's pattern of traces and bridges is shifted along the line by this xi times its
+  /// period (trace_length + bridge) [-], >= 0. No effect on persistent sets.
+  double position = 0.0;
+  Distribution distribution = Distribution::uniform;
+};
+
+/// A set of parallel joints. The traces run along d = (cos dip, sin dip); their normal is
+/// n = (-sin dip, cos dip). Joint line k (k = 0, +-1, +-2, ...) is {x : n.x = c_k}, with
+/// c_0 = offset and c_k - c_(k-1) = spacing (unperturbed). On line k, along t = d.x, trace j
+/// covers [phase_k + j P, phase_k + j P + trace_length] with the period P = trace_length +
+/// bridge and phase_k = (k mod 2) P / 2 (neighbouring lines staggered by half a period, like
+/// brickwork), plus the position perturbation.
+struct JointSet
+{
+  double dip = 0.0;     ///< angle of the traces from the +x axis, anticlockwise [deg]
+  double spacing = 0.0; ///< mean normal distance between neighbouring lines [m], > 0
+  /// Length of each trace [m], > 0; ignored for a persistent set (bridge = 0).
+  double trace_length = std::numeric_limits<double>::infinity();
+  /// Intact rock between collinear traces [m], >= 0; 0: persistent (traces cross the region).
+  double bridge = 0.0;
+  double offset = 0.0; ///< c_0: normal position of line 0 [m], n.x = offset
+  JointPerturbation perturbation;
+
+  bool persistent() const { return bridge == 0.0; }
+  /// Fraction of a line that is jointed, trace_length / (trace_length + bridge) [-].
+  double persistence() const { return persistent() ? 1.0 : trace_length / (trace_length + bridge); }
+};
+
+/// A single joint: the segment from `from` to `to` [m].
+struct ExplicitJoint
+{
+  Point from = Point::Zero();
+  Point to = Point::Zero();
+};
+
+/// An opening to excavate: exactly one of the shapes, chosen by `shape`.
+struct Opening
+{
+  enum class Shape
+  {
+    circle,    ///< centre, radius; a polygon inscribed in the circle
+    horseshoe, ///< floor centre, width, wall height: straight walls and a semicircular roof
+    polygon    ///< vertices
+  };
+  Shape shape = Shape::circle;
+  Point center = Point::Zero(); ///< circle: its centre; horseshoe: middle of the floor [m]
+  double radius = 0.0;          ///< circle [m], > 0
+  double width = 0.0;           ///< horseshoe: floor width = roof diameter [m], > 0
+  double wall_height = 0.0;     ///< horseshoe: straight walls from floor to roof springline [m]
+  std::vector<Point> vertices;  ///< polygon: a simple polygon, either orientation [m]
+};
+
+/// What happens to blocks below the size threshold.
+enum class SliverAction
+{
+  /// merged into the neighbouring block with which they share the longest boundary; a sliver
+  /// without a neighbouring block is reported
+  merge,
+  report ///< kept and listed in RockMassResult::slivers
+};
+
+/// When a block is a sliver: area below min_area, or 2 A / perimeter (the radius of the
+/// inscribed circle of a triangle or a regular polygon, half the width of a long strip) below
+/// min_inscribed_radius.
+struct SliverSettings
+{
+  /// [m^2]; none: min_area_fraction x (mean spacing of the joint sets)^2 (0 without sets)
+  std::optional<double> min_area;
+  double min_area_fraction = 0.01;   ///< [-], see min_area
+  double min_inscribed_radius = 0.0; ///< [m]; 0: no width criterion
+  SliverAction action = SliverAction::merge;
+};
+
+/// A rock mass: region, joints, openings and how slivers are treated.
+struct RockMassDescription
+{
+  std::vector<Point> region; ///< simple polygon, either orientation [m]
+  std::vector<JointSet> joint_sets;
+  std::vector<ExplicitJoint> joints;
+  std::vector<Opening> openings; ///< may overlap one another; their union is excavated
+  /// Largest distance between a circular arc and its chords [m], > 0 (circles, horseshoe roofs)
+  double chord_tolerance = 0.01;
+  std::uint64_t seed = 0; ///< of the random perturbations
+  SliverSettings slivers;
+};
+
+/// One generated block.
+struct RockMassBlock
+{
+  /// Anticlockwise from the lowest vertex (smallest y, then x), not closed, no two consecutive
+  /// edges collinear [m].
+  std::vector<Point> vertices;
+  double area = 0.0; ///< [m^2] (exact, then rounded)
+  /// Indices of the joint sets with a trace along some edge of the block, ascending.
+  std::vector<std::size_t> joint_sets;
+  bool explicit_joint = false;  ///< an explicit joint along some edge
+  bool region_boundary = false; ///< some edge on the region's boundary
+  /// Indices of the openings whose boundary runs along some edge, ascending.
+  std::vector<std::size_t> openings;
+};
+
+/// A block below the size threshold that was kept: reported, or could not be merged.
+struct Sliver
+{
+  std::size_t block = 0; ///< index into RockMassResult::blocks
+  Point centroid = Point::Zero();
+  double area = 0.0;             ///< [m^2]
+  double inscribed_radius = 0.0; ///< 2 A / perimeter [m]
+};
+
+struct RockMassStatistics
+{
+  std::size_t n_blocks = 0;
+  double smallest_area = 0.0;  ///< [m^2]
+  double mean_area = 0.0;      ///< [m^2]
+  double total_area = 0.0;     ///< sum of the block areas [m^2]
+  double region_area = 0.0;    ///< [m^2]
+  double excavated_area = 0.0; ///< region inside some opening's polygon [m^2]
+  double min_area = 0.0;       ///< the sliver threshold used [m^2]
+  std::size_t n_traces = 0;    ///< joint segments inserted (sets and explicit joints)
+  std::size_t n_merged = 0;    ///< slivers merged into a neighbour
+  std::size_t n_reported = 0;  ///< slivers kept (the size of RockMassResult::slivers)
+  /// Vertical cuts added so that no block encloses an opening or other blocks (a block must be
+  /// a simple polygon): two per enclosed island, from its top and bottom to the block boundary.
+  std::size_t n_island_cuts = 0;
+};
+
+struct RockMassResult
+{
+  std::vector<RockMassBlock> blocks; ///< ordered by centroid, bottom row first, then by x
+  /// The openings as excavated: polygons (circles and roofs as chords), anticlockwise [m].
+  std::vector<std::vector<Point>> openings;
+  std::vector<Sliver> slivers;
+  RockMassStatistics statistics;
+};
+
+/// The polygon of an opening, anticlockwise [m]: a circle becomes the inscribed regular polygon
+/// with the fewest sides (at least 8) whose chords stay within chord_tolerance of the arc,
+/// radius (1 - cos(pi / N)) <= chord_tolerance; the horseshoe's roof likewise.
+std::vector<Point> opening_polygon(const Opening& opening, double chord_tolerance);
+
+/// The blocks of a rock mass (see the file comment). Throws InputError for a description that
+/// cannot be generated (non-positive spacing, a region or opening that is not a simple polygon,
+/// a block whose boundary touches itself, ...).
+RockMassResult generate_blocks(const RockMassDescription& description);
+
+} // namespace ddafem::dda
