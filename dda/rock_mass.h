@@ -25,8 +25,8 @@ enum class Distribution
   normal   ///< xi standard normal (mean 0, standard deviation 1)
 };
 
-/// Random perturbation of a joint set: each value is its regular value times (1 + fraction xi)
-/// or plus fraction xi times a length, with one draw of xi per joint line.
+/// Random perturbation of a joint set by independent draws xi, one for each gap between
+/// neighbouring lines and one for each line's traces.
 struct JointPerturbation
 {
   /// The gap between consecutive joint lines is spacing (1 + this xi) [-], in [0, 1). Gaps
