@@ -67,6 +67,25 @@ SmallestBlock smallest_block(const Scene& scene)
   return s;
 }
 
+/// The `rock_mass` section's blocks: counts, areas, merges, cuts and the slivers kept.
+void describe_rock_mass(const Scene& scene, std::ostream& out)
+{
+  const RockMassReport& r = *scene.rock_mass;
+  const dda::RockMassStatistics& s = r.statistics;
+  out << "  rock mass: " << s.n_blocks << " blocks from block " << r.first_block << ", smallest "
+      << format(s.smallest_area) << " m^2, mean " << format(s.mean_area) << " m^2; total "
+      << format(s.total_area, 6) << " m^2 = region " << format(s.region_area, 6) << " - excavated "
+      << format(s.excavated_area, 6) << " m^2\n";
+  out << "  rock mass: " << s.n_traces << " joint traces, sliver threshold " << format(s.min_area)
+      << " m^2, " << s.n_merged << " slivers merged, " << s.n_reported << " kept, "
+      << s.n_island_cuts << " vertical cuts around enclosed islands\n";
+  for (const dda::Sliver& sliver : r.slivers)
+    out << "  sliver kept: " << scene.model.blocks[sliver.block].origin << " at ("
+        << format(sliver.centroid.x()) << ", " << format(sliver.centroid.y()) << ") m, area "
+        << format(sliver.area) << " m^2, 2 area / perimeter " << format(sliver.inscribed_radius)
+        << " m\n";
+}
+
 std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
 {
   std::vector<HistoryChannel> channels;
@@ -470,6 +489,8 @@ std::string check_scene(const Scene& scene)
   out << "  total mass: " << format(total_mass, 6) << " kg\n";
   out << "  smallest block: " << model.blocks[small.index].origin << ", area " << format(small.area)
       << " m^2, shortest edge " << format(small.shortest_edge) << " m\n";
+  if (scene.rock_mass)
+    describe_rock_mass(scene, out);
   for (const dda::Material& m : model.materials)
   {
     const WaveSpeeds c = wave_speeds(m);
@@ -590,6 +611,9 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   if (time.dt > advice.dt_max)
     warnings.push_back("dt = " + format(time.dt) + " s exceeds the suggested " +
                        format(advice.dt_max, 3) + " s (" + advice.reason + ")");
+  if (scene.rock_mass && !scene.rock_mass->slivers.empty())
+    warnings.push_back("rock_mass: " + std::to_string(scene.rock_mass->slivers.size()) +
+                       " blocks below the sliver threshold kept (`check` lists them)");
   for (const std::string& w : warnings)
     log << "warning: " << w << "\n";
 

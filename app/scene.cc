@@ -3,6 +3,7 @@
 #include "app/scene_schema.h"
 #include "common/input_error.h"
 #include "dda/geometry.h"
+#include "dda/rock_mass.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -739,11 +740,13 @@ struct BlockSource
 {
   YAML::Node node;
   std::string key_path;
+  bool generated = false; ///< by `rock_mass`: disjoint from the other generated blocks
 };
 
-/// Drops a repeated closing vertex, checks that the polygon is simple and orders it
-/// anticlockwise.
-std::vector<Point> clean_polygon(const MapReader& r, std::vector<Point> vertices)
+/// Drops a repeated closing vertex, checks that the polygon (at key `key` of r) is simple and
+/// orders it anticlockwise.
+std::vector<Point> clean_polygon(const MapReader& r, const std::string& key,
+                                 std::vector<Point> vertices)
 {
   if (vertices.size() > 1 && vertices.front() == vertices.back())
     vertices.pop_back();
@@ -752,27 +755,197 @@ std::vector<Point> clean_polygon(const MapReader& r, std::vector<Point> vertices
     if (std::find(distinct.begin(), distinct.end(), v) == distinct.end())
       distinct.push_back(v);
   if (distinct.size() < 3)
-    throw r.error("vertices", "polygon is not closed: needs at least 3 distinct vertices");
+    throw r.error(key, "polygon is not closed: needs at least 3 distinct vertices");
   if (!dda::is_simple_polygon(vertices))
-    throw r.error("vertices", "polygon of " + r.key_path() +
-                                  " is self-intersecting (or repeats a vertex or has zero "
-                                  "area): expected a simple polygon");
+    throw r.error(key, "polygon of " + r.key_path() +
+                           " is self-intersecting (or repeats a vertex or has zero "
+                           "area): expected a simple polygon");
   if (dda::signed_area(vertices) < 0.0)
     std::reverse(vertices.begin(), vertices.end());
   return vertices;
 }
 
+/// [[x, y], ...] as points [m].
+std::vector<Point> points_of(const std::vector<std::array<double, 2>>& pairs)
+{
+  std::vector<Point> points;
+  for (const auto& [x, y] : pairs)
+    points.emplace_back(x, y);
+  return points;
+}
+
+/// The names of the keys of r among `names` that are present, quoted.
+std::vector<std::string> present(const MapReader& r, const std::vector<std::string>& names)
+{
+  std::vector<std::string> found;
+  for (const std::string& name : names)
+    if (r.has(name))
+      found.push_back("'" + name + "'");
+  return found;
+}
+
+/// `rock_mass.region`: the rectangle's or the polygon's corners, anticlockwise.
+std::vector<Point> read_region(const MapReader& r)
+{
+  const std::vector<std::string> given = present(r, {"rectangle", "polygon"});
+  if (given.size() != 1)
+    throw r.ctx().locator.error(
+        r.yaml(), r.key_path(), "",
+        (given.empty() ? std::string("no region given") : "both " + join(given, " and ")) +
+            ": expected exactly one of 'rectangle: {lower: [x, y], upper: [x, y]}' or "
+            "'polygon: [[x, y], ...]'");
+  if (r.has("polygon"))
+    return clean_polygon(r, "polygon", points_of(r.pair_list("polygon")));
+  const MapReader rectangle = r.section_reader("rectangle");
+  const Vector2 lower = rectangle.vector2("lower"), upper = rectangle.vector2("upper");
+  if (!(upper.x() > lower.x() && upper.y() > lower.y()))
+    throw rectangle.error("upper",
+                          "expected upper > lower in both x and y, lower = " + format_point(lower));
+  return {lower, Point(upper.x(), lower.y()), upper, Point(lower.x(), upper.y())};
+}
+
+dda::JointSet read_joint_set(const MapReader& r)
+{
+  dda::JointSet set;
+  set.dip = r.number("dip");
+  set.spacing = r.number("spacing");
+  set.offset = r.number("offset");
+  const bool has_trace = r.has("trace_length"), has_bridge = r.has("bridge");
+  if (has_trace != has_bridge)
+    throw r.error(has_trace ? "trace_length" : "bridge",
+                  std::string(has_trace ? "a trace length needs a `bridge`"
+                                        : "a bridge needs a `trace_length`") +
+                      ": expected both (non-persistent joints) or neither (persistent joints)");
+  if (has_trace)
+  {
+    set.trace_length = r.number("trace_length");
+    set.bridge = r.number("bridge");
+  }
+  const MapReader p = r.section_reader("perturbation");
+  set.perturbation.spacing = p.number("spacing");
+  set.perturbation.position = p.number("position");
+  set.perturbation.distribution =
+      p.choice("distribution") == "normal" ? dda::Distribution::normal : dda::Distribution::uniform;
+  return set;
+}
+
+/// `rock_mass.openings[i]`, checked to lie inside the region (as the polygon excavated).
+dda::Opening read_opening(const MapReader& r, const std::vector<Point>& region,
+                          double chord_tolerance)
+{
+  const std::vector<std::string> given = present(r, {"circle", "horseshoe", "polygon"});
+  if (given.size() != 1)
+    throw r.ctx().locator.error(
+        r.yaml(), r.key_path(), "",
+        (given.empty() ? std::string("no shape given")
+                       : "more than one shape (" + join(given, ", ") + ")") +
+            ": expected exactly one of 'circle: {center, radius}', 'horseshoe: {floor_center, "
+            "width, wall_height}' or 'polygon: [[x, y], ...]'");
+  dda::Opening o;
+  std::string shape = "polygon";
+  if (r.has("circle"))
+  {
+    shape = "circle";
+    const MapReader c = r.section_reader("circle");
+    o.shape = dda::Opening::Shape::circle;
+    o.center = c.vector2("center");
+    o.radius = c.number("radius");
+  }
+  else if (r.has("horseshoe"))
+  {
+    shape = "horseshoe";
+    const MapReader h = r.section_reader("horseshoe");
+    o.shape = dda::Opening::Shape::horseshoe;
+    o.center = h.vector2("floor_center");
+    o.width = h.number("width");
+    o.wall_height = h.number("wall_height");
+  }
+  else
+  {
+    o.shape = dda::Opening::Shape::polygon;
+    o.vertices = clean_polygon(r, "polygon", points_of(r.pair_list("polygon")));
+  }
+  const std::vector<Point> polygon = dda::opening_polygon(o, chord_tolerance);
+  const double area = dda::signed_area(polygon);
+  const double outside = area - dda::overlap_area(polygon, region);
+  if (outside > 1e-9 * area)
+    throw r.error(shape, "the opening reaches outside the region (" + format_number(outside) +
+                             " of its " + format_number(area) +
+                             " m^2): expected an opening inside the region");
+  return o;
+}
+
+/// The `rock_mass` section: generates its blocks and appends them to the model.
+RockMassReport read_rock_mass(const MapReader& r, const std::vector<std::string>& material_names,
+                              dda::ModelDescription& model, std::vector<BlockSource>& sources)
+{
+  dda::RockMassDescription d;
+  const std::size_t material =
+      find_name(r, "material", r.string("material"), material_names, "material");
+  d.region = read_region(r.section_reader("region"));
+  d.chord_tolerance = r.number("chord_tolerance");
+  d.seed = static_cast<std::uint64_t>(r.integer("seed"));
+  for (const MapReader& j : r.section_list("joint_sets"))
+    d.joint_sets.push_back(read_joint_set(j));
+  for (const MapReader& j : r.section_list("joints"))
+  {
+    d.joints.push_back({j.vector2("from"), j.vector2("to")});
+    if (d.joints.back().from == d.joints.back().to)
+      throw j.error("to", "the joint ends where it starts: expected a point other than `from`");
+  }
+  for (const MapReader& o : r.section_list("openings"))
+    d.openings.push_back(read_opening(o, d.region, d.chord_tolerance));
+  if (r.has("min_block_area"))
+    d.slivers.min_area = r.number("min_block_area");
+  d.slivers.min_inscribed_radius = r.number("min_inscribed_radius");
+  d.slivers.action =
+      r.choice("slivers") == "report" ? dda::SliverAction::report : dda::SliverAction::merge;
+
+  dda::RockMassResult result;
+  try
+  {
+    result = dda::generate_blocks(d);
+  }
+  catch (const InputError& e)
+  {
+    throw r.ctx().locator.error(r.yaml(), r.key_path(), "", e.what());
+  }
+  if (result.blocks.empty())
+    throw r.ctx().locator.error(r.yaml(), r.key_path(), "",
+                                "the openings cover the whole region: expected rock left");
+  RockMassReport report;
+  report.first_block = model.blocks.size();
+  report.statistics = result.statistics;
+  for (std::size_t i = 0; i < result.blocks.size(); ++i)
+  {
+    dda::BlockDescription block;
+    block.vertices = std::move(result.blocks[i].vertices);
+    block.material = material;
+    block.origin = "rock_mass block " + std::to_string(i);
+    model.blocks.push_back(std::move(block));
+    sources.push_back({r.yaml(), r.key_path(), true});
+  }
+  for (dda::Sliver sliver : result.slivers)
+  {
+    sliver.block += report.first_block;
+    report.slivers.push_back(sliver);
+  }
+  return report;
+}
+
 void read_blocks(const MapReader& top, const std::vector<std::string>& material_names,
-                 dda::ModelDescription& model, std::vector<BlockSource>& sources)
+                 dda::ModelDescription& model, std::vector<BlockSource>& sources,
+                 std::optional<RockMassReport>& rock_mass)
 {
   const std::vector<MapReader> items = top.section_list("blocks");
-  if (items.empty() && !top.has("far_field"))
-    throw top.error("blocks", "expected at least one block (or a `far_field`)");
-  if (!items.empty() && top.has("far_field") && !top.has("interface"))
+  const bool has_blocks = !items.empty() || top.has("rock_mass");
+  if (!has_blocks && !top.has("far_field"))
+    throw top.error("blocks", "expected at least one block (or a `rock_mass` or a `far_field`)");
+  if (has_blocks && top.has("far_field") && !top.has("interface"))
     throw top.error("far_field", "blocks and a far field need an `interface` section: expected "
                                  "`interface: {part: PART}` naming the far field's part the "
                                  "blocks fill (e.g. hole)");
-  if (top.has("interface") && (items.empty() || !top.has("far_field")))
+  if (top.has("interface") && (!has_blocks || !top.has("far_field")))
     throw top.error("interface", "an interface ties blocks to a far field: expected both "
                                  "`blocks` and `far_field`");
   for (std::size_t i = 0; i < items.size(); ++i)
@@ -792,7 +965,7 @@ void read_blocks(const MapReader& top, const std::vector<std::string>& material_
       std::vector<Point> vertices;
       for (const auto& [x, y] : r.pair_list("vertices"))
         vertices.emplace_back(x, y);
-      block.vertices = clean_polygon(r, std::move(vertices));
+      block.vertices = clean_polygon(r, "vertices", std::move(vertices));
       block.origin = r.key_path();
       model.blocks.push_back(block);
       sources.push_back({r.yaml(), r.key_path()});
@@ -819,6 +992,8 @@ void read_blocks(const MapReader& top, const std::vector<std::string>& material_
         sources.push_back({r.yaml(), r.key_path()});
       }
   }
+  if (top.has("rock_mass"))
+    rock_mass = read_rock_mass(top.section_reader("rock_mass"), material_names, model, sources);
 }
 
 /// Axis-aligned bounding box [m].
@@ -910,6 +1085,8 @@ void check_overlaps(const dda::ModelDescription& model, const std::vector<BlockS
     for (std::size_t oj = oi + 1; oj < n && boxes[order[oj]].lower.x() < boxes[i].upper.x(); ++oj)
     {
       const std::size_t j = order[oj];
+      if (sources[i].generated && sources[j].generated)
+        continue; // faces of one arrangement
       const double tolerated = 1e-9 * std::min(areas[i], areas[j]);
       const double wx = std::min(boxes[i].upper.x(), boxes[j].upper.x()) -
                         std::max(boxes[i].lower.x(), boxes[j].lower.x());
@@ -1473,7 +1650,7 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
     scene.far_field = read_far_field(top.section_reader("far_field"), model, material_names);
 
   std::vector<BlockSource> sources;
-  read_blocks(top, material_names, model, sources);
+  read_blocks(top, material_names, model, sources, scene.rock_mass);
   check_overlaps(model, sources, context.locator);
 
   std::vector<Box> boxes;

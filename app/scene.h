@@ -3,6 +3,7 @@
 
 #include "coupling/far_field_ties.h"
 #include "dda/model_description.h"
+#include "dda/rock_mass.h"
 #include "fem/far_field_description.h"
 
 #include <optional>
@@ -20,6 +21,14 @@ struct OutputSettings
   std::size_t history_every = 1; ///< steps between rows of the HDF5 histories, >= 1
 };
 
+/// What the `rock_mass` section generated (for `check` and the run's warnings).
+struct RockMassReport
+{
+  std::size_t first_block = 0; ///< index of its first block in the model's blocks
+  dda::RockMassStatistics statistics;
+  std::vector<dda::Sliver> slivers; ///< kept slivers; `block` indexes the model's blocks
+};
+
 /// A scene file, read and validated.
 struct Scene
 {
@@ -31,6 +40,7 @@ struct Scene
   /// Blocks tied to the far field (both `blocks` and `far_field`): the `interface` section.
   std::optional<coupling::InterfaceDescription> interface;
   bool coupled() const { return far_field && !model.blocks.empty(); }
+  std::optional<RockMassReport> rock_mass; ///< the `rock_mass` section's blocks, if any
   OutputSettings output;
 };
 

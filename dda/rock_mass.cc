@@ -190,10 +190,10 @@ std::vector<JointLine> joint_lines(const JointSet& set, std::size_t set_index, s
 }
 
 /// Appends the segment from a to b clipped to the box (nothing if they do not cross it).
-void append_clipped(const Point& a, const Point& b, const Kernel::Iso_rectangle_2& box,
+void append_clipped(const ExactPoint& a, const ExactPoint& b, const Kernel::Iso_rectangle_2& box,
                     CurveSource source, std::vector<Traits::Curve_2>& curves)
 {
-  const auto clipped = CGAL::intersection(Segment(exact_point(a), exact_point(b)), box);
+  const auto clipped = CGAL::intersection(Segment(a, b), box);
   if (!clipped)
     return;
   // CGAL 5 returns a boost::variant: a point where the segment only touches the box.
@@ -204,6 +204,9 @@ void append_clipped(const Point& a, const Point& b, const Kernel::Iso_rectangle_
 
 /// Every trace of every joint set and every explicit joint, clipped to the region's bounding
 /// box. (Pieces inside the box but outside a polygonal region bound only faces outside it.)
+/// The points of a joint line are exact, x = c n + t d in rationals: every trace of the line
+/// lies exactly on it (n.d = 0 holds exactly for n = (-d_y, d_x)), and lines meant to pass
+/// through one point (offsets 0 through the origin, a corner of the region) do.
 std::vector<Traits::Curve_2> joint_curves(const RockMassDescription& d)
 {
   Point lower = d.region.front(), upper = d.region.front();
@@ -221,7 +224,7 @@ std::vector<Traits::Curve_2> joint_curves(const RockMassDescription& d)
   {
     const JointSet& set = d.joint_sets[s];
     const Vector2 along = unit_vector(set.dip);
-    const Vector2 normal = unit_vector(set.dip + 90.0);
+    const Vector2 normal(-along.y(), along.x());
     double n_lo = corners[0].dot(normal), n_hi = n_lo;
     double t_lo = corners[0].dot(along), t_hi = t_lo;
     for (const Point& corner : corners)
@@ -242,7 +245,11 @@ std::vector<Traits::Curve_2> joint_curves(const RockMassDescription& d)
     const CurveSource source{CurveSource::Kind::joint_set, s};
     for (const JointLine& line : joint_lines(set, s, d.seed, n_lo, n_hi))
     {
-      const auto at = [&](double t) -> Point { return line.c * normal + t * along; };
+      const auto at = [&](double t)
+      {
+        const Kernel::FT c = line.c, tt = t;
+        return ExactPoint(c * normal.x() + tt * along.x(), c * normal.y() + tt * along.y());
+      };
       if (set.persistent())
       {
         append_clipped(at(t_lo - margin), at(t_hi + margin), box, source, curves);
@@ -259,8 +266,8 @@ std::vector<Traits::Curve_2> joint_curves(const RockMassDescription& d)
     }
   }
   for (std::size_t i = 0; i < d.joints.size(); ++i)
-    append_clipped(d.joints[i].from, d.joints[i].to, box, {CurveSource::Kind::explicit_joint, i},
-                   curves);
+    append_clipped(exact_point(d.joints[i].from), exact_point(d.joints[i].to), box,
+                   {CurveSource::Kind::explicit_joint, i}, curves);
   return curves;
 }
 

@@ -25,8 +25,8 @@ enum class Distribution
   normal   ///< xi standard normal (mean 0, standard deviation 1)
 };
 
-/// Random perturbation of a joint set: each value is its regular value times (1 + fraction xi)
-/// or plus fraction xi times a length, with one draw of xi per joint line.
+/// Random perturbation of a joint set by independent draws xi, one for each gap between
+/// neighbouring lines and one for each line's traces.
 struct JointPerturbation
 {
   /// The gap between consecutive joint lines is spacing (1 + this xi) [-], in [0, 1). Gaps
@@ -55,9 +55,8 @@ struct JointSet
   double offset = 0.0; ///< c_0: normal position of line 0 [m], n.x = offset
   JointPerturbation perturbation;
 
+  /// Persistence, the jointed fraction of a line, is trace_length / (trace_length + bridge).
   bool persistent() const { return bridge == 0.0; }
-  /// Fraction of a line that is jointed, trace_length / (trace_length + bridge) [-].
-  double persistence() const { return persistent() ? 1.0 : trace_length / (trace_length + bridge); }
 };
 
 /// A single joint: the segment from `from` to `to` [m].
@@ -170,7 +169,8 @@ struct RockMassResult
 
 /// The polygon of an opening, anticlockwise [m]: a circle becomes the inscribed regular polygon
 /// with the fewest sides (at least 8) whose chords stay within chord_tolerance of the arc,
-/// radius (1 - cos(pi / N)) <= chord_tolerance; the horseshoe's roof likewise.
+/// radius (1 - cos(pi / N)) <= chord_tolerance; the horseshoe's roof likewise (at least 4
+/// chords).
 std::vector<Point> opening_polygon(const Opening& opening, double chord_tolerance);
 
 /// The blocks of a rock mass (see the file comment). Throws InputError for a description that

@@ -323,6 +323,34 @@ TEST(SceneExamples, BlockStackIsReadAsSpecified)
   EXPECT_EQ(scene.output.interval, 0.1);
 }
 
+TEST(SceneExamples, RockMassExampleIsGenerated)
+{
+  const Scene scene = read_scene(source_dir + "/examples/rock_mass/two_joint_sets.yaml");
+  const dda::ModelDescription& m = scene.model;
+  ASSERT_TRUE(scene.rock_mass);
+  const dda::RockMassStatistics& s = scene.rock_mass->statistics;
+  EXPECT_EQ(scene.rock_mass->first_block, 0u);
+  EXPECT_EQ(s.n_blocks, m.blocks.size());
+  EXPECT_GT(m.blocks.size(), 40u);
+  EXPECT_EQ(m.blocks[0].origin, "rock_mass block 0");
+  EXPECT_EQ(m.blocks.back().origin, "rock_mass block " + std::to_string(m.blocks.size() - 1));
+  double total = 0.0;
+  for (const dda::BlockDescription& b : m.blocks)
+  {
+    EXPECT_EQ(b.material, 0u);
+    EXPECT_GT(dda::signed_area(b.vertices), 0.0);
+    total += dda::signed_area(b.vertices);
+  }
+  // 40 m x 40 m minus the 28-gon inscribed in the 3 m circle.
+  const double excavated = 14.0 * 9.0 * std::sin(2.0 * M_PI / 28.0);
+  EXPECT_NEAR(total, 1600.0 - excavated, 1e-9 * 1600.0);
+  EXPECT_NEAR(s.excavated_area, excavated, 1e-9 * excavated);
+  EXPECT_TRUE(scene.rock_mass->slivers.empty());
+  ASSERT_EQ(m.stages.size(), 1u);
+  EXPECT_EQ(m.stages[0].mode, dda::StageMode::static_equilibrium);
+  EXPECT_EQ(m.fixed_points.size(), 9u);
+}
+
 // ---- Values, defaults and conversions -------------------------------------------------------
 
 TEST_F(SceneTest, DefaultsAreApplied)
@@ -773,7 +801,8 @@ TEST_F(SceneTest, MissingRequiredKeysAreNamed)
   const std::string no_blocks =
       error_of("materials:\n  rock: {density: 1, youngs_modulus: 1, poisson_ratio: 0}\n"
                "time: {dt: 1, end_time: 1}\n");
-  EXPECT_NE(no_blocks.find("key 'blocks': expected at least one block (or a `far_field`)"),
+  EXPECT_NE(no_blocks.find(
+                "key 'blocks': expected at least one block (or a `rock_mass` or a `far_field`)"),
             std::string::npos)
       << no_blocks;
   const std::string no_shape =
@@ -933,6 +962,101 @@ TEST_F(SceneTest, CsvProblemsNameTheFileTheRowAndTheKey)
 }
 
 // ---- Overrides ------------------------------------------------------------------------------
+
+// ---- Rock mass ------------------------------------------------------------------------------
+
+/// A 20 m x 10 m rock mass with two joint sets and a circular opening, after one explicit block.
+const char* rock_mass_scene = R"(materials:
+  rock: {density: 2650, youngs_modulus: 20e9, poisson_ratio: 0.25}
+  concrete: {density: 2400, youngs_modulus: 30e9, poisson_ratio: 0.2}
+joint_materials:
+  bonded: {normal_stiffness: 2e11}
+joints: {default: bonded}
+blocks:
+  - material: concrete
+    vertices: [[9, 4], [11, 4], [11, 6], [9, 6]]
+rock_mass:
+  material: rock
+  region:
+    rectangle: {lower: [0, 0], upper: [20, 10]}
+  joint_sets:
+    - {dip: 0, spacing: 2, offset: 1}
+    - {dip: 90, spacing: 2.5, trace_length: 6, bridge: 2}
+  openings:
+    - circle: {center: [10, 5], radius: 2}
+time: {dt: 1e-4, end_time: 0.01}
+)";
+
+TEST_F(SceneTest, RockMassBlocksFollowTheBlocks)
+{
+  const Scene scene = read(rock_mass_scene);
+  const dda::ModelDescription& m = scene.model;
+  ASSERT_TRUE(scene.rock_mass);
+  EXPECT_EQ(scene.rock_mass->first_block, 1u);
+  ASSERT_EQ(m.blocks.size(), 1 + scene.rock_mass->statistics.n_blocks);
+  EXPECT_EQ(m.blocks[0].origin, "blocks[0]");
+  EXPECT_EQ(m.blocks[0].material, 1u);
+  EXPECT_EQ(m.blocks[1].origin, "rock_mass block 0");
+  EXPECT_EQ(m.blocks[1].material, 0u);
+  // The lining block sits in the opening; the rock mass's blocks are its strips (y = 1, 3, ...)
+  // cut by the vertical traces and the opening.
+  EXPECT_GT(m.blocks.size(), 10u);
+
+  // Points of monitors and loads may lie in generated blocks.
+  const Scene monitored =
+      read(std::string(rock_mass_scene) + "monitors:\n  - {name: a, point: [1, 9]}\n");
+  EXPECT_EQ(monitored.model.monitors.size(), 1u);
+
+  // The same seed, the same blocks; --set changes it.
+  const Scene again = read(rock_mass_scene);
+  EXPECT_EQ(again.model.blocks.back().vertices, m.blocks.back().vertices);
+  const Scene reported =
+      read(rock_mass_scene, {{"rock_mass.slivers", "report"}, {"rock_mass.min_block_area", "3"}});
+  EXPECT_FALSE(reported.rock_mass->slivers.empty());
+  for (const dda::Sliver& sliver : reported.rock_mass->slivers)
+  {
+    EXPECT_GE(sliver.block, 1u);
+    EXPECT_LT(sliver.area, 3.0);
+  }
+}
+
+TEST_F(SceneTest, RockMassProblemsAreNamed)
+{
+  const auto expect_error =
+      [&](const std::string& original, const std::string& replacement, const std::string& expected)
+  {
+    const std::string m = error_of(replaced(rock_mass_scene, original, replacement));
+    EXPECT_NE(m.find(expected), std::string::npos) << m;
+  };
+  expect_error("{dip: 0, spacing: 2, offset: 1}", "{dip: 0, spacing: -2, offset: 1}",
+               "scene.yaml:15: key 'rock_mass.joint_sets[0].spacing' = '-2': expected a number "
+               "> 0 [m]");
+  expect_error("trace_length: 6, bridge: 2", "trace_length: 6",
+               "key 'rock_mass.joint_sets[1].trace_length' = '6': a trace length needs a "
+               "`bridge`");
+  expect_error("center: [10, 5], radius: 2", "center: [19, 5], radius: 2",
+               "scene.yaml:18: key 'rock_mass.openings[0].circle' = '{center: [19, 5], radius: "
+               "2}': the opening reaches outside the region");
+  expect_error("- circle: {center: [10, 5], radius: 2}", "- {}",
+               "key 'rock_mass.openings[0]': no shape given: expected exactly one of");
+  expect_error("    rectangle: {lower: [0, 0], upper: [20, 10]}",
+               "    rectangle: {lower: [0, 0], upper: [-20, 10]}",
+               "key 'rock_mass.region.rectangle.upper' = '[-20, 10]': expected upper > lower");
+  expect_error("    rectangle: {lower: [0, 0], upper: [20, 10]}",
+               "    polygon: [[0, 0], [20, 10], [20, 0], [0, 10]]",
+               "polygon of rock_mass.region is self-intersecting");
+  expect_error("{dip: 0, spacing: 2, offset: 1}", "{dip: 0, spacing: 2, ofset: 1}",
+               "key 'rock_mass.joint_sets[0].ofset': unknown key; did you mean 'offset'?");
+  expect_error("  material: rock\n  region", "  material: granite\n  region",
+               "key 'rock_mass.material' = 'granite': unknown material 'granite'");
+  expect_error("  openings:", "  joints:\n    - {from: [1, 1], to: [1, 1]}\n  openings:",
+               "key 'rock_mass.joints[0].to' = '[1, 1]': the joint ends where it starts");
+  expect_error("  openings:", "  seed: -1\n  openings:",
+               "key 'rock_mass.seed' = '-1': expected an integer >= 0");
+  // The lining block moved to overlap the rock.
+  expect_error("[[9, 4], [11, 4], [11, 6], [9, 6]]", "[[14, 4], [16, 4], [16, 6], [14, 6]]",
+               "blocks overlap: blocks[0] and rock_mass block");
+}
 
 TEST(SceneOverride, ParsesAtTheFirstEqualsSign)
 {
