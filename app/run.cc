@@ -1,5 +1,6 @@
 #include "app/run.h"
 
+#include "app/keyblocks.h"
 #include "app/run_support.h"
 
 #include "common/history_writer.h"
@@ -234,11 +235,7 @@ void write_model_pvd(const std::filesystem::path& dir,
       out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"" << part << "\" file=\""
           << files[part] << "\"/>\n";
   out << "  </Collection>\n</VTKFile>\n";
-  const std::filesystem::path path = dir / "model.pvd";
-  std::ofstream f(path);
-  f << out.str();
-  if (!f)
-    throw std::runtime_error("cannot write " + path.string());
+  run_support::write_text_file(dir / "model.pvd", out.str());
 }
 
 /// The tied blocks with their joints as one continuum, against the far field's material.
@@ -474,6 +471,12 @@ std::string check_scene(const Scene& scene)
   const dda::ModelDescription& model = scene.model;
   std::ostringstream out;
   out << "scene: " << scene.name << " (" << scene.file << ")\n";
+  if (scene.tunnel)
+  {
+    out << "  tunnel, truncation " << name_of(scene.tunnel->truncation) << ": what it chose\n";
+    for (const std::string& reason : scene.tunnel->reasons)
+      out << "    " << reason << "\n";
+  }
   double total_mass = 0.0;
   for (const dda::BlockDescription& b : model.blocks)
     total_mass += model.materials[b.material].density * std::abs(dda::signed_area(b.vertices));
@@ -594,6 +597,12 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   const std::filesystem::path dir =
       options.output_directory.empty() ? scene.output.directory : options.output_directory;
   run_support::create_output_directory(dir);
+  if (scene.tunnel)
+    run_support::write_text_file(dir / "expanded_scene.yaml",
+                                 "# The scene " + scene.file +
+                                     " as its `tunnel` section expanded it (ddafem check prints "
+                                     "why)\n" +
+                                     scene.expanded_yaml + "\n");
 
   const dda::TimeSettings& time = scene.model.time;
   const auto n_steps = static_cast<std::size_t>(std::llround(time.end_time / time.dt));
@@ -620,6 +629,8 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   std::vector<HistoryChannel> channels = history_channels(scene.model);
   if (ties)
     add_coupled_channels(channels, *scene.far_field);
+  KeyblockRecorder keyblocks(scene.model);
+  keyblocks.add_channels(channels);
   HistoryWriter history((dir / "histories.h5").string(), channels);
   history.set_attribute("scene", scene.file);
   history.set_attribute("version", DDAFEM_VERSION);
@@ -645,6 +656,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
     std::vector<double> row = history_row(system, last_step);
     if (ties)
       append_coupled_row(row, *far_field, *ties, scene.far_field->monitors.size());
+    keyblocks.append_row(system, row);
     history.append(system.time(), row);
     if (snapshot)
     {
@@ -783,6 +795,18 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
       {"cuts", n_cuts},
       {"steps_cut", n_cut_steps}};
   summary["stages"] = stage_records;
+  if (scene.tunnel)
+  {
+    const TunnelPlan& plan = *scene.tunnel;
+    summary["tunnel"] = {{"truncation", name_of(plan.truncation)},
+                         {"near_field_lower_m", {plan.near_lower.x(), plan.near_lower.y()}},
+                         {"near_field_upper_m", {plan.near_upper.x(), plan.near_upper.y()}},
+                         {"far_field", plan.far_field},
+                         {"margin_m", plan.margin},
+                         {"rock_mass_modulus_pa", plan.rock_mass_modulus},
+                         {"arrival_time_s", plan.arrival_time},
+                         {"end_time_s", plan.end_time}};
+  }
   summary["integrator"] = integrator_name(time.integrator);
   summary["solver"] = {{"name", system.get_solver().name()},
                        {"factorizations", system.get_solver().n_factorizations()},
@@ -847,6 +871,8 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
                          {"work_of_ties", e.work_of_ties},
                          {"initial", e.initial},
                          {"dissipated", e.dissipated}};
+  if (!keyblocks.empty())
+    summary["keyblocks"] = keyblocks.summary(system);
   summary["warnings"] = warnings;
   summary["outputs"] = {{"histories", "histories.h5"},
                         {"model", "model.pvd"},

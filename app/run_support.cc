@@ -41,6 +41,14 @@ void create_output_directory(const std::filesystem::path& directory)
                      "': " + ec.message());
 }
 
+void write_text_file(const std::filesystem::path& path, const std::string& text)
+{
+  std::ofstream f(path);
+  f << text;
+  if (!f)
+    throw std::runtime_error("cannot write " + path.string());
+}
+
 bool snapshot_due(double time, double interval, double dt, double& next)
 {
   if (interval <= 0.0 || time < next - 1e-9 * dt)

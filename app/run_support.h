@@ -29,6 +29,8 @@ double peak_memory_mb();
 
 /// Creates the output directory (and parents); InputError naming it on failure.
 void create_output_directory(const std::filesystem::path& directory);
+/// Writes `text` to `path`; throws std::runtime_error if it cannot.
+void write_text_file(const std::filesystem::path& path, const std::string& text);
 
 /// Whether a snapshot is due at `time` with the given interval [s], advancing `next`;
 /// interval 0 writes only where the caller asks (first and last).

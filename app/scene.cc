@@ -1,6 +1,7 @@
 #include "app/scene.h"
 
 #include "app/scene_schema.h"
+#include "app/tunnel_scene.h"
 #include "common/input_error.h"
 #include "dda/geometry.h"
 #include "dda/rock_mass.h"
@@ -933,6 +934,137 @@ RockMassReport read_rock_mass(const MapReader& r, const std::vector<std::string>
   return report;
 }
 
+/// The node at `keys` below `node`, or an undefined node if some map on the way is missing.
+YAML::Node nested(const YAML::Node& node, const std::vector<std::string>& keys)
+{
+  YAML::Node n = node;
+  for (const std::string& k : keys)
+  {
+    if (!n.IsMap())
+      return YAML::Node(YAML::NodeType::Undefined);
+    const YAML::Node next = child(n, k);
+    if (!next.IsDefined())
+      return YAML::Node(YAML::NodeType::Undefined);
+    n.reset(next);
+  }
+  return n;
+}
+
+/// The `tunnel` section: reads it, plans the model (app/tunnel_scene.h) and writes the sections
+/// it generates into `root`, which is then read like any scene.
+TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
+{
+  const YAML::Node tunnel_node = child(root, "tunnel");
+  const MapReader r(tunnel_node, context.schema.section("tunnel"), "tunnel", context);
+  TunnelDescription t;
+  t.rock = r.string("rock");
+  const YAML::Node rock_node = nested(root, {"materials", t.rock});
+  if (!rock_node.IsDefined())
+    throw r.error("rock", "expected the name of a material in `materials`");
+  const MapReader rock(rock_node, context.schema.section("materials.<name>"), "materials." + t.rock,
+                       context);
+  t.density = rock.number("density");
+  t.youngs_modulus = rock.number("youngs_modulus");
+  t.poisson_ratio = rock.number("poisson_ratio");
+  const YAML::Node default_joint = nested(root, {"joints", "default"});
+  if (default_joint.IsDefined() && default_joint.IsScalar())
+  {
+    const YAML::Node j = nested(root, {"joint_materials", default_joint.Scalar()});
+    if (j.IsDefined())
+      t.joint_normal_stiffness = MapReader(j, context.schema.section("joint_materials.<name>"),
+                                           "joint_materials." + default_joint.Scalar(), context)
+                                     .number("normal_stiffness");
+  }
+  const YAML::Node gravity = child(root, "gravity");
+  if (gravity.IsDefined())
+  {
+    const MapReader top(root, context.schema.section(SceneSchema::top_level), "", context);
+    const Vector2 g = top.vector2("gravity");
+    if (!(g.y() < 0.0) || g.x() != 0.0)
+      throw top.error("gravity", "expected gravity [0, -g] (downwards) with a tunnel");
+    t.gravity = -g.y();
+  }
+  const YAML::Node plane = nested(root, {"analysis", "plane"});
+  if (plane.IsDefined() && plane.IsScalar() && plane.Scalar() != "strain")
+    throw context.locator.error(plane, "analysis.plane", plane.Scalar(),
+                                "expected strain (or nothing) with a tunnel: a section through "
+                                "a long tunnel is in plane strain");
+
+  t.rock_mass.chord_tolerance = r.number("chord_tolerance");
+  t.rock_mass.seed = static_cast<std::uint64_t>(r.integer("seed"));
+  for (const MapReader& j : r.section_list("joint_sets"))
+    t.rock_mass.joint_sets.push_back(read_joint_set(j));
+  for (const MapReader& j : r.section_list("joints"))
+    t.rock_mass.joints.push_back({j.vector2("from"), j.vector2("to")});
+  const double far = 1e12;
+  t.rock_mass.openings.push_back(
+      read_opening(r.section_reader("opening"),
+                   {Point(-far, -far), Point(far, -far), Point(far, far), Point(-far, far)},
+                   t.rock_mass.chord_tolerance));
+  t.depth = r.number("depth");
+  t.k0 = r.number("k0");
+
+  const MapReader wave = r.section_reader("wave");
+  t.wave_type = wave.choice("type");
+  const TimeFunction velocity = read_time_function(wave, "velocity");
+  const bool pulse = nested(tunnel_node, {"wave", "velocity", "type"}).Scalar() == "sine_pulse";
+  if (wave.has("frequency"))
+    t.wave_frequency = wave.number("frequency");
+  else if (pulse)
+    t.wave_frequency = velocity.characteristic_frequency();
+  else
+    throw wave.error("frequency", "expected the wave's dominant frequency [Hz] for a record");
+  t.max_frequency =
+      wave.has("max_frequency") ? wave.number("max_frequency") : 2.0 * t.wave_frequency;
+  t.wave_duration = velocity.active_until();
+
+  const MapReader near = r.section_reader("near_field");
+  t.size_factor = near.number("size_factor");
+  if (near.has("lower") != near.has("upper"))
+    throw near.error(near.has("lower") ? "upper" : "lower",
+                     "expected both `lower` and `upper`, or neither (size_factor)");
+  if (near.has("lower"))
+  {
+    const Vector2 lower = near.vector2("lower"), upper = near.vector2("upper");
+    if (!(upper.x() > lower.x() && upper.y() > lower.y()))
+      throw near.error("upper", "expected upper > lower in both x and y");
+    t.near_field = std::array<Point, 2>{lower, upper};
+  }
+  const std::string truncation = r.choice("truncation");
+  t.truncation = truncation == "vb1"         ? TunnelTruncation::vb1
+                 : truncation == "dashpot"   ? TunnelTruncation::dashpot
+                 : truncation == "reference" ? TunnelTruncation::reference
+                                             : TunnelTruncation::hybrid;
+  if (r.has("margin"))
+    t.margin = r.number("margin");
+  if (r.has("reference_margin"))
+    t.reference_margin = r.number("reference_margin");
+  t.points_per_wavelength = r.number("points_per_wavelength");
+  t.growth_ratio = r.number("growth_ratio");
+  if (r.has("window"))
+    t.window = r.number("window");
+  if (r.has("dt"))
+    t.dt = r.number("dt");
+  const MapReader stage = r.section_reader("static");
+  t.static_dt = stage.number("dt");
+  t.static_tolerance = stage.number("tolerance");
+  t.static_max_steps = stage.integer("max_steps");
+
+  try
+  {
+    TunnelPlan plan = plan_tunnel(t);
+    write_tunnel_sections(t, plan,
+                          {child(tunnel_node, "opening"), child(tunnel_node, "joint_sets"),
+                           child(tunnel_node, "joints"), nested(tunnel_node, {"wave", "velocity"})},
+                          root);
+    return plan;
+  }
+  catch (const InputError& e)
+  {
+    throw context.locator.error(tunnel_node, "tunnel", "", e.what());
+  }
+}
+
 void read_blocks(const MapReader& top, const std::vector<std::string>& material_names,
                  dda::ModelDescription& model, std::vector<BlockSource>& sources,
                  std::optional<RockMassReport>& rock_mass)
@@ -1723,6 +1855,8 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   for (const MapReader& r : top.section_list("boundaries"))
     model.boundaries.push_back(read_boundary(r, model));
 
+  if (!top.has("time"))
+    throw top.error("time", "expected a `time` section (dt, end_time) or a `tunnel`");
   const MapReader time = top.section_reader("time");
   model.time.dt = time.number("dt");
   model.time.end_time = time.number("end_time");
@@ -1897,7 +2031,14 @@ Scene read_scene(const std::string& file, const std::vector<Override>& overrides
     for (const Override& o : overrides)
       locator.add_override(apply_override(root, o));
     const Context context{schema, locator, std::filesystem::path(file).parent_path()};
-    return read_validated_scene(file, root, context);
+    std::optional<TunnelPlan> tunnel;
+    if (root.IsMap() && child(root, "tunnel").IsDefined())
+      tunnel = expand_tunnel(root, context);
+    Scene scene = read_validated_scene(file, root, context);
+    scene.tunnel = std::move(tunnel);
+    if (scene.tunnel)
+      scene.expanded_yaml = YAML::Dump(root);
+    return scene;
   }
   catch (const YAML::Exception& e)
   {

@@ -1,6 +1,7 @@
 // A scene: the YAML file a user writes, read into validated model descriptions.
 #pragma once
 
+#include "app/tunnel_scene.h"
 #include "coupling/far_field_ties.h"
 #include "dda/model_description.h"
 #include "dda/rock_mass.h"
@@ -41,6 +42,9 @@ struct Scene
   std::optional<coupling::InterfaceDescription> interface;
   bool coupled() const { return far_field && !model.blocks.empty(); }
   std::optional<RockMassReport> rock_mass; ///< the `rock_mass` section's blocks, if any
+  /// What a `tunnel` section chose, and the scene it expanded into (YAML), if any.
+  std::optional<TunnelPlan> tunnel;
+  std::string expanded_yaml;
   OutputSettings output;
 };
 

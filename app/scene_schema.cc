@@ -233,6 +233,12 @@ SceneSchema::SceneSchema()
             .default_note("none")
             .meaning("blocks generated from a region cut by joint sets, with openings excavated "
                      "(after the `blocks`)"),
+        key("tunnel", T::section)
+            .section("tunnel")
+            .default_note("none")
+            .meaning("a tunnel in jointed rock under a seismic wave: generates rock_mass, "
+                     "far_field, interface or boundaries, in_situ_stress, stages, monitors and "
+                     "time (see `tunnel`)"),
         key("far_field", T::section)
             .section("far_field")
             .default_note("none")
@@ -262,7 +268,10 @@ SceneSchema::SceneSchema()
             .section("boundaries[i]")
             .default_note("none")
             .meaning("absorbing (viscous) or free boundaries on outer block edges"),
-        key("time", T::section).section("time").required().meaning("time step and duration"),
+        key("time", T::section)
+            .section("time")
+            .default_note("required unless `tunnel` is given")
+            .meaning("time step and duration"),
         key("contacts", T::section)
             .section("contacts")
             .default_note("see `contacts`")
@@ -482,6 +491,150 @@ SceneSchema::SceneSchema()
        "An axis-parallel rectangle.",
        {key("lower", T::vector2).unit("m").required().meaning("lower-left corner"),
         key("upper", T::vector2).unit("m").required().meaning("upper-right corner")}});
+
+  all_sections.push_back(
+      {"tunnel",
+       "A tunnel dynamic stability analysis from what a rock engineer knows (app/tunnel_scene.h): "
+       "the opening, the joint sets, the depth and k0, the incident wave and the accuracy "
+       "wanted. The program chooses the near field that must be blocks (size_factor x the "
+       "opening), generates them, derives the rock mass's modulus (the blocks with their joints) "
+       "for the far field, sizes the far-field elements by the shortest S wavelength and grades "
+       "them outward, places the truncation, and writes the sections `rock_mass`, `far_field`, "
+       "`interface` (or the blocks' `boundaries`), `in_situ_stress` (lithostatic, k0), "
+       "`stages` (static excavation, then the wave), `monitors` (crown, invert, walls, near-field "
+       "base) and `time` (keys given in `time` win). `check` prints each choice and why. The "
+       "scene must not give those sections itself; joint materials come from `joints` as usual.",
+       {key("rock", T::string).required().meaning("name of the intact rock's material"),
+        key("opening", T::section)
+            .section("rock_mass.openings[i]")
+            .required()
+            .meaning("the tunnel's cross-section: circle, horseshoe or polygon"),
+        key("joint_sets", T::section_list)
+            .section("rock_mass.joint_sets[i]")
+            .default_note("none")
+            .meaning("sets of parallel joints, as in `rock_mass`"),
+        key("joints", T::section_list)
+            .section("rock_mass.joints[i]")
+            .default_note("none")
+            .meaning("single joints, as in `rock_mass`"),
+        key("seed", T::integer)
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("seed of the joint sets' random perturbations"),
+        key("chord_tolerance", T::number)
+            .unit("m")
+            .default_yaml("0.02")
+            .greater_than(0)
+            .meaning("largest distance between the opening's arcs and its chords"),
+        key("depth", T::number)
+            .unit("m")
+            .required()
+            .greater_than(0)
+            .meaning("depth of the opening's centre below the ground surface (overburden)"),
+        key("k0", T::number)
+            .default_yaml("0.5")
+            .at_least(0)
+            .meaning("horizontal over vertical in-situ stress"),
+        key("wave", T::section)
+            .section("tunnel.wave")
+            .required()
+            .meaning("the incident plane wave, travelling up from below"),
+        key("near_field", T::section)
+            .section("tunnel.near_field")
+            .default_note("a square of 4 x the opening's size")
+            .meaning("the region that is blocks"),
+        key("truncation", T::choice)
+            .choices({"hybrid", "vb1", "dashpot", "reference"})
+            .default_yaml("hybrid")
+            .meaning("hybrid: blocks in a graded FE far field with Lysmer dashpots and "
+                     "free-field sides; vb1 / dashpot: blocks only, VB I or the dashpot on the "
+                     "near field's edges, the wave entering at its base; reference: the hybrid "
+                     "with a far field so large that no reflection returns within the run"),
+        key("margin", T::number)
+            .unit("m")
+            .at_least(0)
+            .default_note("one wavelength of the incident wave at its dominant frequency")
+            .meaning("hybrid: far field beyond the near field on each side"),
+        key("reference_margin", T::number)
+            .unit("m")
+            .at_least(0)
+            .default_note("VP x window / 2")
+            .meaning("reference: far field beyond the near field on each side"),
+        key("points_per_wavelength", T::number)
+            .default_yaml("10")
+            .greater_than(0)
+            .meaning("FE nodes per shortest S wavelength (at wave.max_frequency)"),
+        key("growth_ratio", T::number)
+            .default_yaml("1.3")
+            .greater_than(1)
+            .meaning("size ratio of neighbouring far-field elements away from the blocks"),
+        key("window", T::number)
+            .unit("s")
+            .at_least(0)
+            .default_note("near-field crossing x 2 + the pulse + 2 periods")
+            .meaning("dynamic stage after the wave reaches the near field"),
+        key("dt", T::number)
+            .unit("s")
+            .at_least(0)
+            .default_note("1 / (20 max_frequency), within VB I's limit for vb1")
+            .meaning("time step of the dynamic stage (time.dt, if given, wins)"),
+        key("static", T::section)
+            .section("tunnel.static")
+            .default_note("see `tunnel.static`")
+            .meaning("the static stage: gravity, in-situ stress and the excavation")}});
+
+  all_sections.push_back(
+      {"tunnel.wave",
+       "A vertically incident plane wave: particle velocity v_in(t), horizontal for SV, "
+       "vertical for P. It enters through the far field's base (hybrid, reference) or the "
+       "near field's base (vb1, dashpot).",
+       {key("type", T::choice).choices({"p", "sv"}).required().meaning("wave type"),
+        key("velocity", T::time_function).required().meaning("v_in(t) [m/s] of the incident wave"),
+        key("frequency", T::number)
+            .unit("Hz")
+            .greater_than(0)
+            .default_note("the sine pulse's frequency; required for a table or csv")
+            .meaning("dominant frequency (sets the margin and the window)"),
+        key("max_frequency", T::number)
+            .unit("Hz")
+            .greater_than(0)
+            .default_note("2 x frequency")
+            .meaning("highest frequency the model must carry (element sizes, dt)")}});
+
+  all_sections.push_back(
+      {"tunnel.near_field",
+       "The rectangle that is blocks: a square of size_factor x the opening's larger side "
+       "around it, or `lower` and `upper`.",
+       {key("size_factor", T::number)
+            .default_yaml("4")
+            .greater_than(1)
+            .meaning("side of the square over the opening's larger side"),
+        key("lower", T::vector2)
+            .unit("m")
+            .default_note("from size_factor")
+            .meaning("lower-left "
+                     "corner"),
+        key("upper", T::vector2)
+            .unit("m")
+            .default_note("from size_factor")
+            .meaning("upper-right corner")}});
+
+  all_sections.push_back(
+      {"tunnel.static",
+       "The static stage (stages[i] with mode static).",
+       {key("dt", T::number)
+            .unit("s")
+            .default_yaml("1e-3")
+            .greater_than(0)
+            .meaning("pseudo time step"),
+        key("tolerance", T::number)
+            .default_yaml("1e-3")
+            .greater_than(0)
+            .meaning("out-of-balance force ratio of equilibrium"),
+        key("max_steps", T::integer)
+            .default_yaml("5000")
+            .at_least(1)
+            .meaning("the run fails if equilibrium is not reached in this many steps")}});
 
   all_sections.push_back(
       {"rock_mass.joint_sets[i]",

@@ -67,6 +67,20 @@ double TimeFunction::value(double t) const
   return 0.0;
 }
 
+double TimeFunction::active_until() const
+{
+  switch (kind)
+  {
+  case Kind::constant:
+    return 0.0;
+  case Kind::sine_pulse:
+    return start + n_cycles / frequency;
+  case Kind::table:
+    return times.back();
+  }
+  return 0.0;
+}
+
 double TimeFunction::characteristic_frequency() const
 {
   switch (kind)

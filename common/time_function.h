@@ -35,6 +35,9 @@ public:
   /// 1/(smallest table interval) for a table, 0 for a constant.
   double characteristic_frequency() const;
 
+  /// Time [s] after which the function keeps its final value: the end of a sine pulse, the
+  /// last time of a table, 0 for a constant.
+  double active_until() const;
   /// Human-readable one-line description, e.g. "sine pulse 100 Hz x 1 cycle".
   std::string describe() const;
 

@@ -13,6 +13,7 @@ packages=(
   libcgal-dev libgmp-dev libmpfr-dev
   libgtest-dev googletest # tests
   python3 python3-numpy python3-matplotlib python3-h5py  # plots
+  python3-vtk9            # tests/tools/check_vtk_readers.py: VTK's own XML readers
 )
 
 missing=()

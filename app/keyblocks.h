@@ -1,0 +1,114 @@
+// Keyblocks (issue 7): the blocks around the openings of a rock mass, how far they moved during
+// the run and whether they detached or fell. Found from the blocks' geometry alone, so that
+// hand-made block sets around a void count as well as `rock_mass` openings.
+#pragma once
+
+#include "common/history_writer.h"
+#include "dda/model_description.h"
+#include "dda/system.h"
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <unordered_set>
+#include <utility>
+#include <vector>
+
+namespace ddafem
+{
+/// An opening as the blocks see it: a hole in the union of the blocks, bounded by block edges
+/// (or parts of edges) that no other block shares.
+struct OpeningOutline
+{
+  /// Its boundary's pieces [m], each in the direction of its block's anticlockwise edge (so
+  /// clockwise around the hole).
+  std::vector<std::pair<dda::Point, dda::Point>> segments;
+  dda::Point lower = dda::Point::Zero(); ///< bounding box [m]
+  dda::Point upper = dda::Point::Zero();
+  double area = 0.0; ///< enclosed area [m^2]
+
+  /// The largest side of the bounding box [m]: the diameter of a circular opening.
+  double size() const { return std::max(upper.x() - lower.x(), upper.y() - lower.y()); }
+};
+
+/// The openings of a set of blocks and the blocks around them.
+struct KeyblockGeometry
+{
+  /// Ordered by the lower corner of their bounding box: bottom first, then by x.
+  std::vector<OpeningOutline> openings;
+  /// The keyblocks: blocks with an edge, part of an edge or a point on an opening's boundary;
+  /// indices into the blocks, ascending.
+  std::vector<std::size_t> blocks;
+  std::vector<std::size_t> opening_of; ///< per keyblock: the (first) opening it borders
+};
+
+/// Finds the openings of `blocks` (simple polygons, either orientation [m]) and their
+/// keyblocks. Edges count as shared where another block's edge runs along them (collinear within
+/// `tol` [m], opposite direction, see dda::shared_segments); the unshared pieces form closed
+/// loops, the union's outer boundary (anticlockwise) and its holes (clockwise, negative area):
+/// the holes wider than 1000 tol (2 area / perimeter) are the openings. A tunnel cut by
+/// `rock_mass` is one; so is a void enclosed by hand-made blocks. A boundary tied to a far field
+/// is outer: no keyblocks there.
+KeyblockGeometry find_keyblocks(const std::vector<std::vector<dda::Point>>& blocks, double tol);
+
+/// When a keyblock counts as fallen: its residual (final) displacement along gravity exceeds
+/// `fall_fraction` times the size of its opening, or it is detached and still moves along
+/// gravity faster than a free fall over that distance would make it, sqrt(2 g threshold), with
+/// g = |gravity| (9.81 m/s^2 for a scene without gravity).
+struct FallCriterion
+{
+  double fall_fraction = 0.01; ///< [-] of OpeningOutline::size()
+};
+
+/// Records the keyblocks of a run: their centroid displacement in every history row (measured,
+/// like the monitors, from the start of the dynamic stage that follows a static one, else from
+/// t = 0), the peak over the rows, the joints' largest slip and opening, and at the end whether
+/// each detached or fell. Does nothing for a model without openings.
+class KeyblockRecorder
+{
+public:
+  explicit KeyblockRecorder(const dda::ModelDescription& model, FallCriterion fall = {});
+
+  bool empty() const { return geometry.blocks.empty(); }
+  const KeyblockGeometry& get_geometry() const { return geometry; }
+
+  /// Appends one channel per keyblock, `keyblocks/block_<id>/displacement` (ux, uy) [m].
+  void add_channels(std::vector<HistoryChannel>& channels) const;
+  /// Appends the keyblocks' displacements to a history row (in the order of add_channels) and
+  /// updates the peaks and the joints' extremes.
+  void append_row(const dda::System& system, std::vector<double>& row);
+  /// The `keyblocks` section of summary.json from the last row and the system's final state
+  /// (null for a model without openings); see docs/outputs.md.
+  nlohmann::json summary(const dda::System& system) const;
+
+private:
+  /// What a keyblock did over the rows so far.
+  struct Track
+  {
+    dda::Vector2 reference = dda::Vector2::Zero(); ///< centroid displacement it is measured from
+    dda::Vector2 last = dda::Vector2::Zero();      ///< displacement in the last row [m]
+    double peak = 0.0;                             ///< largest |displacement| [m]
+    double peak_time = 0.0;                        ///< [s]
+    /// Largest |slip| of its joints [m]: contacts' accumulated sliding, bonded joints' shear.
+    double max_slip = 0.0;
+    /// Largest normal opening of its joints [m]: bonded joints' stretch, gaps of contacts that
+    /// were closed in an earlier row (contacts exist within the search distance only).
+    double max_opening = 0.0;
+  };
+
+  /// Slip and opening of every joint (contact or bonded joint) of a keyblock, into the tracks.
+  void update_joints(const dda::System& system);
+
+  KeyblockGeometry geometry;
+  FallCriterion criterion;
+  dda::Vector2 down = dda::Vector2(0.0, -1.0); ///< unit vector along gravity
+  double gravity = 9.81;                       ///< |g| [m/s^2] of the fall-speed criterion
+  bool small_displacement = false;
+  std::vector<std::size_t> slot; ///< per model block: its index in geometry.blocks, or npos
+  std::vector<Track> tracks;
+  bool referenced = false;                         ///< the first row has set the references
+  std::unordered_set<std::size_t> closed_contacts; ///< ids of contacts seen closed in some row
+};
+
+} // namespace ddafem

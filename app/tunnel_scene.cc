@@ -1,0 +1,430 @@
+#include "app/tunnel_scene.h"
+
+#include "common/input_error.h"
+#include "dda/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace ddafem
+{
+namespace
+{
+std::string str(double v, int digits = 4)
+{
+  std::ostringstream s;
+  s.precision(digits);
+  s << v;
+  return s.str();
+}
+
+YAML::Node pair(double x, double y)
+{
+  YAML::Node n(YAML::NodeType::Sequence);
+  n.push_back(x);
+  n.push_back(y);
+  n.SetStyle(YAML::EmitterStyle::Flow);
+  return n;
+}
+
+YAML::Node triple(double a, double b, double c)
+{
+  YAML::Node n(YAML::NodeType::Sequence);
+  n.push_back(a);
+  n.push_back(b);
+  n.push_back(c);
+  n.SetStyle(YAML::EmitterStyle::Flow);
+  return n;
+}
+
+/// Length [m] of the polygon's edges lying on the rectangle's sides (to `tolerance`).
+double length_on_rectangle(const std::vector<Point>& vertices, const Point& lower,
+                           const Point& upper, double tolerance)
+{
+  const auto on_side = [&](const Point& a, const Point& b)
+  {
+    return (std::abs(a.x() - lower.x()) < tolerance && std::abs(b.x() - lower.x()) < tolerance) ||
+           (std::abs(a.x() - upper.x()) < tolerance && std::abs(b.x() - upper.x()) < tolerance) ||
+           (std::abs(a.y() - lower.y()) < tolerance && std::abs(b.y() - lower.y()) < tolerance) ||
+           (std::abs(a.y() - upper.y()) < tolerance && std::abs(b.y() - upper.y()) < tolerance);
+  };
+  double length = 0.0;
+  for (std::size_t k = 0; k < vertices.size(); ++k)
+  {
+    const Point& a = vertices[k];
+    const Point& b = vertices[(k + 1) % vertices.size()];
+    if (on_side(a, b))
+      length += (b - a).norm();
+  }
+  return length;
+}
+
+/// An on_line block boundary along the segment from a to b.
+YAML::Node line_boundary(const std::string& type, const Point& a, const Point& b)
+{
+  YAML::Node n;
+  n["type"] = type;
+  n["impedance"] = "effective";
+  n["on_line"]["point"] = pair(a.x(), a.y());
+  n["on_line"]["direction"] = pair(b.x() - a.x(), b.y() - a.y());
+  return n;
+}
+
+YAML::Node monitor(const std::string& name, double x, double y)
+{
+  YAML::Node n;
+  n["name"] = name;
+  n["point"] = pair(x, y);
+  n.SetStyle(YAML::EmitterStyle::Flow);
+  return n;
+}
+} // namespace
+
+const char* name_of(TunnelTruncation truncation)
+{
+  switch (truncation)
+  {
+  case TunnelTruncation::hybrid:
+    return "hybrid";
+  case TunnelTruncation::vb1:
+    return "vb1";
+  case TunnelTruncation::dashpot:
+    return "dashpot";
+  case TunnelTruncation::reference:
+    return "reference";
+  }
+  return "hybrid";
+}
+
+double jointed_block_modulus(double youngs_modulus, double normal_stiffness, double area,
+                             double length)
+{
+  const double depth = area / length;
+  return 1.0 / (1.0 / youngs_modulus + length / (2.0 * normal_stiffness * depth));
+}
+
+TunnelPlan plan_tunnel(const TunnelDescription& t)
+{
+  TunnelPlan plan;
+  plan.truncation = t.truncation;
+  std::vector<std::string>& why = plan.reasons;
+
+  // The opening and the near field around it.
+  const std::vector<Point> opening =
+      dda::opening_polygon(t.rock_mass.openings.front(), t.rock_mass.chord_tolerance);
+  plan.opening_lower = plan.opening_upper = opening.front();
+  for (const Point& p : opening)
+  {
+    plan.opening_lower = plan.opening_lower.cwiseMin(p);
+    plan.opening_upper = plan.opening_upper.cwiseMax(p);
+  }
+  const Point size = plan.opening_upper - plan.opening_lower;
+  const Point center = 0.5 * (plan.opening_lower + plan.opening_upper);
+  if (t.near_field)
+  {
+    plan.near_lower = (*t.near_field)[0];
+    plan.near_upper = (*t.near_field)[1];
+    why.push_back("near field: " + str(plan.near_upper.x() - plan.near_lower.x()) + " x " +
+                  str(plan.near_upper.y() - plan.near_lower.y()) +
+                  " m of blocks, as given (tunnel.near_field.lower/upper)");
+  }
+  else
+  {
+    const double side = t.size_factor * size.maxCoeff();
+    plan.near_lower = center - Point(0.5 * side, 0.5 * side);
+    plan.near_upper = center + Point(0.5 * side, 0.5 * side);
+    why.push_back("near field: " + str(side) + " x " + str(side) + " m of blocks around the " +
+                  str(size.x()) + " x " + str(size.y()) + " m opening, " + str(t.size_factor) +
+                  " x its size (tunnel.near_field.size_factor): the joints matter where the "
+                  "opening concentrates stress, about a diameter around it");
+  }
+  if (!(plan.opening_lower.x() > plan.near_lower.x() &&
+        plan.opening_lower.y() > plan.near_lower.y() &&
+        plan.opening_upper.x() < plan.near_upper.x() &&
+        plan.opening_upper.y() < plan.near_upper.y()))
+    throw InputError("the opening (" + str(plan.opening_lower.x()) + ", " +
+                     str(plan.opening_lower.y()) + ") to (" + str(plan.opening_upper.x()) + ", " +
+                     str(plan.opening_upper.y()) +
+                     ") does not lie inside the near field: expected a larger near field");
+  plan.surface_y = center.y() + t.depth;
+  if (plan.near_upper.y() >= plan.surface_y)
+    throw InputError("the near field reaches y = " + str(plan.near_upper.y()) +
+                     " m, above the ground surface at y = " + str(plan.surface_y) +
+                     " m (the opening's centre " + str(t.depth) +
+                     " m deep): expected a deeper tunnel or a smaller near field");
+
+  // The blocks, once, to measure them.
+  dda::RockMassDescription d = t.rock_mass;
+  d.region = {plan.near_lower, Point(plan.near_upper.x(), plan.near_lower.y()), plan.near_upper,
+              Point(plan.near_lower.x(), plan.near_upper.y())};
+  const dda::RockMassResult blocks = dda::generate_blocks(d);
+  plan.n_blocks = blocks.blocks.size();
+  plan.mean_block_size = std::sqrt(blocks.statistics.mean_area);
+  double shortest_edge = std::numeric_limits<double>::infinity();
+  for (const dda::RockMassBlock& b : blocks.blocks)
+    for (std::size_t k = 0; k < b.vertices.size(); ++k)
+      shortest_edge =
+          std::min(shortest_edge, (b.vertices[(k + 1) % b.vertices.size()] - b.vertices[k]).norm());
+
+  // The rock mass's modulus where the far field meets the blocks (coupling/README.md).
+  const double tolerance = 1e-9 * (plan.near_upper - plan.near_lower).norm();
+  double sum = 0.0, weight = 0.0, vb1_limit = std::numeric_limits<double>::infinity();
+  const double vp_rock =
+      std::sqrt(t.youngs_modulus * (1.0 - t.poisson_ratio) /
+                (t.density * (1.0 + t.poisson_ratio) * (1.0 - 2.0 * t.poisson_ratio)));
+  for (const dda::RockMassBlock& b : blocks.blocks)
+  {
+    const double length =
+        length_on_rectangle(b.vertices, plan.near_lower, plan.near_upper, tolerance);
+    if (length <= 0.0)
+      continue;
+    const double e =
+        t.joint_normal_stiffness > 0.0
+            ? jointed_block_modulus(t.youngs_modulus, t.joint_normal_stiffness, b.area, length)
+            : t.youngs_modulus;
+    sum += length * e;
+    weight += length;
+    // VB I's bound dt <= m / cn (physics.md eq. 44) with m = rho A and cn = rho L VP.
+    vb1_limit = std::min(vb1_limit, b.area / (length * vp_rock));
+  }
+  plan.rock_mass_modulus = weight > 0.0 ? sum / weight : t.youngs_modulus;
+  const double nu = t.poisson_ratio, rho = t.density, e = plan.rock_mass_modulus;
+  plan.vp = std::sqrt(e * (1.0 - nu) / (rho * (1.0 + nu) * (1.0 - 2.0 * nu)));
+  plan.vs = std::sqrt(e / (2.0 * rho * (1.0 + nu)));
+  plan.wave_speed = t.wave_type == "p" ? plan.vp : plan.vs;
+  why.push_back("blocks: " + std::to_string(plan.n_blocks) + ", mean size " +
+                str(plan.mean_block_size) + " m, shortest edge " + str(shortest_edge) +
+                " m; rock mass E_eff " + str(plan.rock_mass_modulus) + " Pa (intact " +
+                str(t.youngs_modulus) + " Pa with the joints behind the near field's edge): VP " +
+                str(plan.vp) + " m/s, VS " + str(plan.vs) + " m/s");
+  const double wavelength = plan.vs / t.max_frequency;
+  why.push_back("shortest S wavelength " + str(wavelength) + " m at " + str(t.max_frequency) +
+                " Hz: " + str(wavelength / plan.mean_block_size) + " blocks per wavelength");
+
+  // The far field.
+  const double half_height = 0.5 * (plan.near_upper.y() - plan.near_lower.y());
+  const double window = t.window > 0.0 ? t.window
+                                       : 2.0 * half_height / plan.wave_speed + t.wave_duration +
+                                             2.0 / t.wave_frequency;
+  plan.far_field =
+      t.truncation == TunnelTruncation::hybrid || t.truncation == TunnelTruncation::reference;
+  if (plan.far_field)
+  {
+    const double dominant_wavelength = plan.wave_speed / t.wave_frequency;
+    if (t.truncation == TunnelTruncation::hybrid)
+    {
+      plan.margin = t.margin > 0.0 ? t.margin : dominant_wavelength;
+      why.push_back("far field: " + str(plan.margin) + " m beyond the blocks" +
+                    (t.margin > 0.0
+                         ? std::string(" (tunnel.margin)")
+                         : ", one wavelength of the incident wave at " + str(t.wave_frequency) +
+                               " Hz: what the opening scatters meets the dashpots "
+                               "nearly normally (tunnel.margin overrides)"));
+    }
+    else
+    {
+      // Nothing reflected at the truncation may return to the opening before the end: a P
+      // wave from the near field's edge there and back takes 2 margin / VP.
+      plan.margin = t.reference_margin > 0.0 ? t.reference_margin : 0.5 * plan.vp * window;
+      why.push_back("far field (reference): " + str(plan.margin) + " m beyond the blocks" +
+                    (t.reference_margin > 0.0
+                         ? std::string(" (tunnel.reference_margin)")
+                         : ": a P wave reflected at the truncation needs more than the " +
+                               str(window) + " s window to come back"));
+    }
+    plan.far_lower = plan.near_lower - Point(plan.margin, plan.margin);
+    plan.far_upper = plan.near_upper + Point(plan.margin, plan.margin);
+    if (plan.far_upper.y() >= plan.surface_y)
+    {
+      plan.far_upper.y() = plan.surface_y;
+      plan.top_is_surface = true;
+      why.push_back("the far field reaches the ground surface at y = " + str(plan.surface_y) +
+                    " m: its top is traction free");
+    }
+    else
+      why.push_back("the ground surface (y = " + str(plan.surface_y) +
+                    " m) lies beyond the far field: its top absorbs (Lysmer), its base takes the "
+                    "incident wave (Lysmer with the input traction), its sides are free-field "
+                    "columns");
+    plan.far_element_size = 2.0 * wavelength / t.points_per_wavelength;
+    plan.near_element_size = std::min(plan.mean_block_size, plan.far_element_size);
+    plan.elements_per_wavelength = wavelength / plan.far_element_size;
+    why.push_back("far elements FE_Q2 of " + str(plan.far_element_size) + " m (" +
+                  str(t.points_per_wavelength) + " nodes per S wavelength at " +
+                  str(t.max_frequency) + " Hz), " + str(plan.near_element_size) +
+                  " m at the blocks (their mean size), growing by " + str(t.growth_ratio));
+    plan.arrival_time = (plan.near_lower.y() - plan.far_lower.y()) / plan.wave_speed;
+  }
+  else
+    why.push_back("no far field: the blocks' outer edges carry " +
+                  std::string(name_of(t.truncation)) +
+                  " boundaries and the wave enters at their base");
+
+  plan.end_time = plan.arrival_time + window;
+  why.push_back("dynamic stage: " + str(plan.end_time) + " s = " + str(plan.arrival_time) +
+                " s for the wave to reach the blocks + " + str(window) +
+                " s to cross them, the pulse and two periods after it" +
+                (t.window > 0.0 ? std::string(" (tunnel.window)") : std::string()));
+  if (t.dt > 0.0)
+    plan.dt = t.dt;
+  else
+  {
+    plan.dt = 1.0 / (20.0 * t.max_frequency);
+    std::string reason = "20 steps per period at " + str(t.max_frequency) + " Hz";
+    if (t.truncation == TunnelTruncation::vb1 && 0.9 * vb1_limit < plan.dt)
+    {
+      plan.dt = 0.9 * vb1_limit;
+      reason = "0.9 x VB I's limit m / cn = " + str(vb1_limit) + " s of the worst boundary block";
+    }
+    why.push_back("dt " + str(plan.dt) + " s: " + reason);
+  }
+  return plan;
+}
+
+void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
+                           const TunnelNodes& nodes, YAML::Node& root)
+{
+  const YAML::Node& given = root; // lookups without creating keys
+  for (const char* generated : {"blocks", "rock_mass", "far_field", "interface", "boundaries",
+                                "in_situ_stress", "stages", "fixed_points"})
+    if (given[generated])
+      throw InputError(std::string("the scene has both `tunnel` and `") + generated +
+                       "`: the tunnel generates " + generated +
+                       "; expected one or the other (see `ddafem check` for what it generates)");
+
+  YAML::Node analysis =
+      given["analysis"] ? YAML::Clone(given["analysis"]) : YAML::Node(YAML::NodeType::Map);
+  analysis["plane"] = "strain";
+  root["analysis"] = analysis;
+  if (!given["gravity"])
+    root["gravity"] = pair(0.0, -t.gravity);
+
+  YAML::Node rock_mass;
+  rock_mass["material"] = t.rock;
+  rock_mass["region"]["rectangle"]["lower"] = pair(plan.near_lower.x(), plan.near_lower.y());
+  rock_mass["region"]["rectangle"]["upper"] = pair(plan.near_upper.x(), plan.near_upper.y());
+  if (nodes.joint_sets)
+    rock_mass["joint_sets"] = nodes.joint_sets;
+  if (nodes.joints)
+    rock_mass["joints"] = nodes.joints;
+  rock_mass["openings"].push_back(nodes.opening);
+  rock_mass["seed"] = static_cast<long long>(t.rock_mass.seed);
+  rock_mass["chord_tolerance"] = t.rock_mass.chord_tolerance;
+  root["rock_mass"] = rock_mass;
+
+  // Lithostatic stress, tension positive: sigma_yy = -rho g (depth of the point).
+  const double center_y = 0.5 * (plan.opening_lower.y() + plan.opening_upper.y());
+  const double syy = -t.density * t.gravity * t.depth, gradient = t.density * t.gravity;
+  YAML::Node in_situ;
+  in_situ["stress"] = triple(t.k0 * syy, syy, 0.0);
+  in_situ["stress_gradient"] = triple(t.k0 * gradient, gradient, 0.0);
+  in_situ["reference_y"] = center_y;
+  // HACK root["in_situ_stress"] = in_situ;
+
+  YAML::Node input;
+  input["type"] = t.wave_type;
+  input["velocity"] = nodes.velocity;
+  if (plan.far_field)
+  {
+    if (given["materials"][std::string("rock_mass_equivalent")])
+      throw InputError("the material name `rock_mass_equivalent` is taken: the tunnel names the "
+                       "far field's material so; expected another name for yours");
+    YAML::Node m;
+    m["density"] = t.density;
+    m["youngs_modulus"] = plan.rock_mass_modulus;
+    m["poisson_ratio"] = t.poisson_ratio;
+    YAML::Node materials = YAML::Clone(given["materials"]);
+    materials["rock_mass_equivalent"] = m;
+    root["materials"] = materials;
+
+    YAML::Node f;
+    f["material"] = "rock_mass_equivalent";
+    f["lower"] = pair(plan.far_lower.x(), plan.far_lower.y());
+    f["upper"] = pair(plan.far_upper.x(), plan.far_upper.y());
+    f["element_size"] = plan.far_element_size;
+    f["max_frequency"] = t.max_frequency;
+    f["points_per_wavelength"] = t.points_per_wavelength;
+    f["degree"] = 2;
+    f["hole"]["shape"] = "rectangle";
+    f["hole"]["lower"] = pair(plan.near_lower.x(), plan.near_lower.y());
+    f["hole"]["upper"] = pair(plan.near_upper.x(), plan.near_upper.y());
+    f["hole"]["element_size"] = plan.near_element_size;
+    f["hole"]["growth_ratio"] = t.growth_ratio;
+    const auto boundary = [](const char* part, const char* type)
+    {
+      YAML::Node b;
+      b["part"] = part;
+      b["type"] = type;
+      b.SetStyle(YAML::EmitterStyle::Flow);
+      return b;
+    };
+    f["boundaries"].push_back(boundary("bottom", "input"));
+    f["boundaries"].push_back(boundary("left", "free_field"));
+    f["boundaries"].push_back(boundary("right", "free_field"));
+    f["boundaries"].push_back(boundary("top", plan.top_is_surface ? "free" : "lysmer"));
+    f["incident"] = input;
+    root["far_field"] = f;
+    YAML::Node interface;
+    interface["part"] = "hole";
+    root["interface"] = interface;
+  }
+  else
+  {
+    const Point& lo = plan.near_lower;
+    const Point& hi = plan.near_upper;
+    const std::string type = name_of(t.truncation);
+    YAML::Node base = line_boundary(type, lo, Point(hi.x(), lo.y()));
+    base["input"] = input;
+    YAML::Node boundaries(YAML::NodeType::Sequence);
+    boundaries.push_back(base);
+    boundaries.push_back(line_boundary(type, Point(hi.x(), lo.y()), hi));
+    boundaries.push_back(line_boundary(type, hi, Point(lo.x(), hi.y())));
+    boundaries.push_back(line_boundary(type, Point(lo.x(), hi.y()), lo));
+    root["boundaries"] = boundaries;
+  }
+
+  // Monitors just outside the opening (in its wall rock) and where the wave enters the blocks.
+  const double offset = 0.1 * plan.mean_block_size;
+  const double cx = 0.5 * (plan.opening_lower.x() + plan.opening_upper.x());
+  YAML::Node monitors =
+      given["monitors"] ? YAML::Clone(given["monitors"]) : YAML::Node(YAML::NodeType::Sequence);
+  monitors.push_back(monitor("crown", cx, plan.opening_upper.y() + offset));
+  monitors.push_back(monitor("invert", cx, plan.opening_lower.y() - offset));
+  monitors.push_back(monitor("left_wall", plan.opening_lower.x() - offset, center_y));
+  monitors.push_back(monitor("right_wall", plan.opening_upper.x() + offset, center_y));
+  monitors.push_back(monitor("near_field_base", cx, plan.near_lower.y() + offset));
+  root["monitors"] = monitors;
+
+  YAML::Node stage_static, stage_dynamic;
+  stage_static["name"] = "excavate";
+  stage_static["mode"] = "static";
+  stage_static["dt"] = t.static_dt;
+  stage_static["tolerance"] = t.static_tolerance;
+  stage_static["max_steps"] = t.static_max_steps;
+  stage_dynamic["name"] = "shake";
+  stage_dynamic["mode"] = "dynamic";
+  YAML::Node stages(YAML::NodeType::Sequence);
+  stages.push_back(stage_static);
+  stages.push_back(stage_dynamic);
+  // HACK2 root["stages"] = stages;
+
+  YAML::Node time = given["time"] ? YAML::Clone(given["time"]) : YAML::Node(YAML::NodeType::Map);
+  if (!time["dt"])
+    time["dt"] = plan.dt;
+  if (!time["end_time"])
+    time["end_time"] = plan.end_time;
+  if (!time["integrator"])
+    time["integrator"] = "newmark_trapezoidal";
+  if (!time["control"])
+    time["control"] = "fixed";
+  root["time"] = time;
+  YAML::Node output =
+      given["output"] ? YAML::Clone(given["output"]) : YAML::Node(YAML::NodeType::Map);
+  if (!output["interval"])
+    output["interval"] = plan.end_time / 40.0;
+  root["output"] = output;
+}
+
+} // namespace ddafem

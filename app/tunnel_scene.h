@@ -1,0 +1,132 @@
+// The `tunnel` scene section: a tunnel in jointed rock under a seismic wave, described by what
+// a rock engineer knows (the opening, the joint sets, the depth, the wave, the accuracy wanted)
+// and expanded into the detailed sections (rock_mass, far_field, interface, boundaries,
+// in_situ_stress, stages, monitors, time) that the scene reader then reads like any others.
+#pragma once
+
+#include "dda/rock_mass.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ddafem
+{
+using dda::Point;
+
+/// How the model around the near field (the blocks) is truncated.
+enum class TunnelTruncation
+{
+  /// (b) the blocks tied to a deal.II far field graded outward, Lysmer dashpots at its base
+  /// (with the incident wave's input) and top, free-field columns at its sides
+  hybrid,
+  /// (a) blocks only: VB I (Bao et al. 2012) on the near field's edges, the wave input at its
+  /// base
+  vb1,
+  /// (a') blocks only with the consistent dashpot on the near field's edges
+  dashpot,
+  /// (c) the hybrid with a far field so large that nothing it reflects comes back to the
+  /// opening within the run
+  reference
+};
+
+/// Scene name of a truncation: "hybrid", "vb1", "dashpot", "reference".
+const char* name_of(TunnelTruncation truncation);
+
+/// The `tunnel` section as read and validated by the scene reader, with the numbers it needs
+/// from the rest of the scene.
+struct TunnelDescription
+{
+  std::string rock;            ///< name of the intact rock's material
+  double density = 0.0;        ///< [kg/m^3]
+  double youngs_modulus = 0.0; ///< of the intact rock [Pa]
+  double poisson_ratio = 0.0;
+  /// Normal spring p of `joints.default` [N/m] (each end of a joint), for the rock mass's
+  /// modulus; 0 without a default joint material.
+  double joint_normal_stiffness = 0.0;
+  /// The joint sets, explicit joints, the opening (openings[0]), seed and chord tolerance; the
+  /// region is the plan's near field.
+  dda::RockMassDescription rock_mass;
+  double depth = 0.0;          ///< of the opening's centre below the ground surface [m]
+  double k0 = 0.5;             ///< horizontal over vertical in-situ stress [-]
+  double gravity = 9.81;       ///< [m/s^2], downwards (-y)
+  std::string wave_type;       ///< "p" or "sv"
+  double wave_frequency = 0.0; ///< dominant frequency of the incident wave [Hz]
+  double max_frequency = 0.0;  ///< highest frequency the model must carry [Hz]
+  double wave_duration = 0.0;  ///< time from t = 0 to the end of the incident pulse [s]
+  double size_factor = 4.0;    ///< near-field side over the opening's width [-]
+  /// Explicit near field [lower, upper] instead of size_factor [m].
+  std::optional<std::array<Point, 2>> near_field;
+  TunnelTruncation truncation = TunnelTruncation::hybrid;
+  double margin = 0.0;           ///< far field beyond the near field [m]; 0: chosen
+  double reference_margin = 0.0; ///< the same for `reference` [m]; 0: chosen
+  double points_per_wavelength = 10.0;
+  double growth_ratio = 1.3;
+  double window = 0.0; ///< dynamic stage after the wave reaches the near field [s]; 0: chosen
+  double dt = 0.0;     ///< [s]; 0: chosen
+  double static_dt = 1e-3;
+  double static_tolerance = 1e-3;
+  long long static_max_steps = 5000;
+};
+
+/// What the program chose for a tunnel, and why (printed by `check`).
+struct TunnelPlan
+{
+  TunnelTruncation truncation = TunnelTruncation::hybrid;
+  Point near_lower = Point::Zero(), near_upper = Point::Zero();       ///< the blocks' rectangle [m]
+  Point opening_lower = Point::Zero(), opening_upper = Point::Zero(); ///< its bounding box [m]
+  std::size_t n_blocks = 0;
+  double mean_block_size = 0.0; ///< sqrt of the mean block area [m]
+  /// E of the near field's boundary blocks with the joints behind them, 1 / (1/E + L/(2 p d))
+  /// averaged over the boundary (coupling/README.md): the far field's modulus [Pa].
+  double rock_mass_modulus = 0.0;
+  double vp = 0.0, vs = 0.0; ///< of the rock mass [m/s] (plane strain)
+  double wave_speed = 0.0;   ///< of the incident wave [m/s]
+  bool far_field = false;
+  Point far_lower = Point::Zero(), far_upper = Point::Zero(); ///< [m]
+  double margin = 0.0;                                        ///< [m]
+  double far_element_size = 0.0;                              ///< [m], FE_Q2
+  double near_element_size = 0.0;                             ///< at the near field [m]
+  double elements_per_wavelength = 0.0; ///< far elements per S wavelength at max_frequency
+  bool top_is_surface = false;          ///< the model reaches the ground surface (traction free)
+  double surface_y = 0.0;               ///< [m]
+  double arrival_time = 0.0;            ///< the incident wave reaches the near field's base [s]
+  double end_time = 0.0;                ///< [s]
+  double dt = 0.0;                      ///< [s]
+  std::vector<std::string> reasons;     ///< one line per choice, for `check`
+};
+
+/// E_eff = 1 / (1/E + L / (2 p d)) [Pa] of a block of modulus E [Pa] and area [m^2] with a
+/// boundary of `length` L [m] on a line, d = area / L its depth behind it, and a joint of
+/// springs p [N/m] at both ends of that edge behind it: the block and its joint as one
+/// continuum normal to the line.
+double jointed_block_modulus(double youngs_modulus, double normal_stiffness, double area,
+                             double length);
+
+/// Chooses the near field, far field, time step and duration. Generates the blocks once to
+/// measure them. Throws InputError (without a location; the caller adds it) when the tunnel
+/// does not fit (e.g. a near field reaching above the ground surface).
+TunnelPlan plan_tunnel(const TunnelDescription& tunnel);
+
+/// The user's YAML for the parts copied into the generated sections.
+struct TunnelNodes
+{
+  YAML::Node opening;    ///< tunnel.opening
+  YAML::Node joint_sets; ///< tunnel.joint_sets (may be undefined)
+  YAML::Node joints;     ///< tunnel.joints (may be undefined)
+  YAML::Node velocity;   ///< tunnel.wave.velocity
+};
+
+/// Writes the generated sections into the scene's root: rock_mass, gravity, in_situ_stress,
+/// analysis.plane, stages, monitors, time (keys the user gave in `time` win), output (likewise),
+/// and for the hybrid and reference a far-field material `rock_mass_equivalent`, far_field and
+/// interface; for vb1 and dashpot the block boundaries. Throws InputError (without a location)
+/// if the scene already has a section the tunnel generates.
+void write_tunnel_sections(const TunnelDescription& tunnel, const TunnelPlan& plan,
+                           const TunnelNodes& nodes, YAML::Node& root);
+
+} // namespace ddafem

@@ -1,0 +1,350 @@
+#!/usr/bin/python3
+"""Write RUN_DIR/report.md: the key numbers of a ddafem run and pictures of it, for people.
+
+Sample command lines:
+
+    /usr/bin/python3 tools/report.py results/circular_sv
+    /usr/bin/python3 tools/report.py results/circular_sv --top 5
+
+Reads RUN_DIR/summary.json, RUN_DIR/histories.h5 and the last snapshot of RUN_DIR/blocks.pvd
+and writes, next to them:
+  report.md                     scene, model size, stages (static equilibrium ratio), wall time,
+                                warnings, the keyblock table sorted by peak displacement,
+                                detached and fallen keyblocks, links to the outputs;
+  report_displacement.png       monitor displacements against time (tools/plot_histories.py);
+  report_velocity.png           monitor velocities against time;
+  report_energy.png             the energy balance (blocks, and far field in coupled runs);
+  report_keyblocks.png          |u| of the keyblocks against time (the largest peaks);
+  report_map.png                the blocks at the end, coloured by |u| over the dynamic stage
+                                (from its start; the whole run when there is no dynamic stage),
+                                keyblocks outlined and numbered; the openings are the holes.
+Pictures that have nothing to show (no monitors, no keyblocks) are left out. See
+docs/outputs.md for what each number means.
+"""
+
+import argparse
+import json
+import os
+import sys
+import xml.etree.ElementTree as ET
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (after choosing the backend)
+from matplotlib import patheffects  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_histories  # noqa: E402  (tools/ on the path first)
+from plot_histories import h5py  # noqa: E402  (its import explains a missing h5py)
+
+
+def fail(message):
+    sys.exit("report.py: " + message)
+
+
+# ---- reading -------------------------------------------------------------------------------
+
+def open_histories(path):
+    """histories.h5 for reading; without HDF5's lock if a run still holds it."""
+    try:
+        return h5py.File(path, "r")
+    except OSError as error:
+        if "lock" not in str(error):
+            fail("cannot open %s: %s" % (path, error))
+        return h5py.File(path, "r", locking=False)
+
+
+def pvd_entries(path):
+    """(time, file, part) of every DataSet of a PVD collection, in file order."""
+    root = ET.parse(path).getroot()
+    return [(float(d.get("timestep")), d.get("file"), int(d.get("part", "0")))
+            for d in root.findall("./Collection/DataSet")]
+
+
+def data_array(piece, name, section):
+    """An ASCII DataArray of a VTU piece as a float array (one row per tuple)."""
+    for array in piece.findall("./%s/DataArray" % section):
+        if array.get("Name") == name:
+            values = np.array(array.text.split(), dtype=float)
+            return values.reshape(-1, int(array.get("NumberOfComponents", "1")))
+    return None
+
+
+def read_blocks_vtu(path):
+    """Block polygons (current vertices) and cell data of one blocks VTU (dda/vtu_writer.cc)."""
+    piece = ET.parse(path).getroot().find("./UnstructuredGrid/Piece")
+    for array in piece.findall("./Points/DataArray"):
+        points = np.array(array.text.split(), dtype=float).reshape(-1, 3)[:, :2]
+    connectivity = data_array(piece, "connectivity", "Cells").astype(int).ravel()
+    offsets = data_array(piece, "offsets", "Cells").astype(int).ravel()
+    starts = np.concatenate(([0], offsets[:-1]))
+    polygons = [points[connectivity[s:e]] for s, e in zip(starts, offsets)]
+    ids = data_array(piece, "block_id", "CellData")
+    ids = ids.astype(int).ravel() if ids is not None else np.arange(len(polygons))
+    return polygons, ids, data_array(piece, "displacement", "CellData")[:, :2]
+
+
+# ---- pictures ------------------------------------------------------------------------------
+
+def plot_monitor_histories(h5, time_ms, histories, run_dir):
+    """Monitor displacement and velocity, and the energy, through tools/plot_histories.py."""
+    written = []
+    for quantity in ("displacement", "velocity"):
+        path = os.path.join(run_dir, "report_%s.png" % quantity)
+        args = argparse.Namespace(histories=histories, quantity=quantity, component=None,
+                                  monitors=None)
+        if plot_histories.plot_monitors(h5, time_ms, args, path):
+            written.append(("Monitor %s" % quantity, path))
+    path = os.path.join(run_dir, "report_energy.png")
+    if plot_histories.plot_energy(h5, time_ms, argparse.Namespace(histories=histories), path):
+        written.append(("Energy", path))
+    return written
+
+
+def keyblock_histories(h5):
+    """{block id: (n, 2) displacement [m]} of the keyblocks in histories.h5."""
+    group = h5.get("keyblocks")
+    if group is None:
+        return {}
+    return {int(name.split("_")[-1]): np.asarray(group[name]["displacement"][...], dtype=float)
+            for name in group if "displacement" in group[name]}
+
+
+def plot_keyblocks(time_ms, histories, keyblocks, top, path):
+    """|u| of the `top` keyblocks with the largest peaks against time."""
+    ranked = sorted(keyblocks["blocks"], key=lambda b: -b["peak_displacement_m"])[:top]
+    figure, ax = plt.subplots(figsize=(8.0, 4.5))
+    for block in ranked:
+        u = histories.get(block["id"])
+        if u is None:
+            continue
+        n = min(len(time_ms), len(u))
+        label = "block %d%s" % (block["id"], " (fell)" if block["fell"] else
+                                " (detached)" if block["detached"] else "")
+        ax.plot(time_ms[:n], 1e3 * np.linalg.norm(u[:n], axis=1), label=label)
+    ax.set_xlabel("time [ms]")
+    ax.set_ylabel("|u| of the centroid [mm]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize="small", ncol=2)
+    ax.set_title("Keyblocks: displacement from the start of the dynamic stage (largest %d peaks)"
+                 % len(ranked), fontsize="medium")
+    figure.tight_layout()
+    figure.savefig(path, dpi=150)
+    plt.close(figure)
+
+
+def plot_map(run_dir, summary, path):
+    """The blocks of the last snapshot coloured by |u| since the first (the dynamic stage's
+    start), keyblocks outlined and numbered. Returns a caption, or None without blocks.pvd."""
+    pvd = os.path.join(run_dir, summary.get("outputs", {}).get("blocks", "blocks.pvd"))
+    if not os.path.isfile(pvd):
+        return None
+    entries = pvd_entries(pvd)
+    if not entries:
+        return None
+    polygons, ids, u_last = read_blocks_vtu(os.path.join(run_dir, entries[-1][1]))
+    u = u_last
+    since = "t = 0"
+    if len(entries) > 1:
+        _, first_ids, u_first = read_blocks_vtu(os.path.join(run_dir, entries[0][1]))
+        if np.array_equal(first_ids, ids):
+            u = u_last - u_first
+            since = "t = %.4g s" % entries[0][0]
+    magnitude = 1e3 * np.linalg.norm(u, axis=1)
+    # Zoom on the openings (with a margin of one opening size) when there are keyblocks; the
+    # colour range is that of the blocks in view.
+    keyblocks = summary.get("keyblocks") or {}
+    openings = keyblocks.get("openings", [])
+    centres = np.array([p.mean(axis=0) for p in polygons])
+    in_view = np.ones(len(polygons), dtype=bool)
+    if openings:
+        margin = max(o["size_m"] for o in openings)
+        lower = np.min([o["lower_m"] for o in openings], axis=0) - margin
+        upper = np.max([o["upper_m"] for o in openings], axis=0) + margin
+        in_view = np.all((centres >= lower) & (centres <= upper), axis=1)
+    figure, ax = plt.subplots(figsize=(8.0, 7.0))
+    collection = PolyCollection(polygons, array=magnitude, cmap="viridis", edgecolors="0.35",
+                                linewidths=0.3)
+    collection.set_clim(0.0, max(magnitude[in_view].max(initial=0.0), 1e-12))
+    ax.add_collection(collection)
+    figure.colorbar(collection, ax=ax, label="|u| since %s [mm]" % since, shrink=0.8)
+    key_ids = {b["id"]: b for b in keyblocks.get("blocks", [])}
+    index = {block_id: k for k, block_id in enumerate(ids)}
+    outlined = [polygons[index[i]] for i in key_ids if i in index]
+    if outlined:
+        ax.add_collection(PolyCollection(outlined, facecolors="none", edgecolors="red",
+                                         linewidths=1.2))
+        for block_id, block in key_ids.items():
+            if block_id in index:
+                centre = polygons[index[block_id]].mean(axis=0)
+                ax.annotate(str(block_id) + (" fell" if block["fell"] else ""), centre,
+                            ha="center", va="center", fontsize=6,
+                            path_effects=[patheffects.withStroke(linewidth=2,
+                                                                 foreground="white")])
+    if openings:
+        ax.set_xlim(lower[0], upper[0])
+        ax.set_ylim(lower[1], upper[1])
+    else:
+        ax.autoscale_view()
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title("Blocks at t = %.4g s (deformed, to scale), keyblocks in red" % entries[-1][0],
+                 fontsize="medium")
+    figure.tight_layout()
+    figure.savefig(path, dpi=150)
+    plt.close(figure)
+    zoom = " around the openings" if openings else ""
+    return "Blocks at the end%s, coloured by |u| since %s" % (zoom, since)
+
+
+# ---- report.md -----------------------------------------------------------------------------
+
+def mm(value):
+    return "%.3g" % (1e3 * value)
+
+
+def model_lines(summary):
+    model = summary.get("model", {})
+    lines = ["- blocks: %s, bonded joints left: %s, DOFs: %s"
+             % (model.get("blocks", 0), model.get("bonded_joints", 0), model.get("dofs", 0))]
+    if "far_field_dofs" in model:
+        lines.append("- far field: %s cells, %s DOFs, elements up to %.3g m"
+                     % (model["far_field_cells"], model["far_field_dofs"],
+                        model.get("element_size_m", float("nan"))))
+    if "ties" in model:
+        lines.append("- interface: %s ties on %s edges of %s blocks"
+                     % (model["ties"], model.get("tied_edges", "?"), model.get("tied_blocks", "?")))
+    contacts = summary.get("contacts")
+    if contacts:
+        lines.append("- contacts at the end: %s open, %s sliding, %s locked; %s joints broke"
+                     % (contacts["open"], contacts["slide"], contacts["lock"],
+                        contacts["broken_joints"]))
+    return lines
+
+
+def stage_lines(summary):
+    stages = summary.get("stages", [])
+    if not stages:
+        return []
+    lines = ["| stage | mode | steps | result |", "|---|---|---|---|"]
+    for s in stages:
+        if s.get("mode") == "static":
+            result = "%s: out-of-balance force ratio %.3g (tolerance %.3g)" % (
+                "equilibrium" if s.get("converged") else "**no equilibrium**",
+                s.get("unbalanced_force_ratio", float("nan")), s.get("tolerance", float("nan")))
+        else:
+            result = "to t = %.4g s" % s.get("end_time_s", float("nan"))
+        lines.append("| %s | %s | %s | %s |" % (s.get("name"), s.get("mode"), s.get("steps"),
+                                               result))
+    return lines
+
+
+def keyblock_lines(keyblocks):
+    if not keyblocks:
+        return ["No keyblocks: the blocks enclose no opening."]
+    lines = []
+    for k, o in enumerate(keyblocks["openings"]):
+        lines.append("- opening %d: %.3g m across (%.3g m^2), from (%.3g, %.3g) to (%.3g, %.3g) m;"
+                     " a keyblock fell if it ended more than %s mm lower (or detached and still "
+                     "falling faster than %.3g m/s)"
+                     % (k, o["size_m"], o["area_m2"], o["lower_m"][0], o["lower_m"][1],
+                        o["upper_m"][0], o["upper_m"][1], mm(o["fall_threshold_m"]),
+                        o["fall_speed_m_s"]))
+    lines.append("- %d keyblocks; largest peak displacement %s mm (block %d); %d detached, "
+                 "%d fell" % (keyblocks["count"], mm(keyblocks["keyblock_peak_m"]),
+                              keyblocks["keyblock_peak_id"], keyblocks["detached"],
+                              keyblocks["fell"]))
+    lines += ["",
+              "| block | name | peak \\|u\\| [mm] | at [s] | residual ux, uy [mm] | "
+              "max slip [mm] | max opening [mm] | detached | fell |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    for b in sorted(keyblocks["blocks"], key=lambda b: -b["peak_displacement_m"]):
+        ux, uy = b["residual_displacement_m"]
+        lines.append("| %d | %s | %s | %.4g | %s, %s | %s | %s | %s | %s |" % (
+            b["id"], b.get("name", ""), mm(b["peak_displacement_m"]), b["peak_time_s"], mm(ux),
+            mm(uy), mm(b["max_slip_m"]), mm(b["max_opening_m"]),
+            "**yes**" if b["detached"] else "no", "**yes**" if b["fell"] else "no"))
+    return lines
+
+
+def write_report(run_dir, summary, figures, path):
+    status = summary.get("status", "?")
+    lines = ["# Run report: %s" % summary.get("name", os.path.basename(run_dir)), "",
+             "- scene: `%s` (ddafem %s)" % (summary.get("scene", "?"), summary.get("version", "?")),
+             "- status: **%s**%s" % (status, ": " + summary["failure"]
+                                     if "failure" in summary else ""),
+             "- simulated %.4g s of %.4g s in %s steps (dt up to %.3g s, smallest %.3g s)"
+             % (summary.get("time_reached_s", 0.0), summary.get("end_time_s", 0.0),
+                summary.get("steps", "?"), summary.get("dt_s", float("nan")),
+                summary.get("time_step", {}).get("smallest_dt_s", float("nan"))),
+             "- wall time: %.3g s, peak memory %.0f MB"
+             % (summary.get("wall_time_s", 0.0), summary.get("peak_memory_mb", 0.0)), ""]
+    lines += ["## Model", ""] + model_lines(summary) + [""]
+    stages = stage_lines(summary)
+    if stages:
+        lines += ["## Stages", ""] + stages + [""]
+    if summary.get("warnings"):
+        lines += ["## Warnings", ""] + ["- " + w for w in summary["warnings"]] + [""]
+    lines += ["## Keyblocks", "",
+              "Blocks with a point of their boundary on an opening. Displacements of the "
+              "centroid from the start of the dynamic stage; slip and opening are the largest "
+              "over the run among the block's joints and contacts.", ""]
+    lines += keyblock_lines(summary.get("keyblocks")) + [""]
+    if figures:
+        lines += ["## Pictures", ""]
+        for caption, figure in figures:
+            lines += ["%s:" % caption, "", "![%s](%s)" % (caption, os.path.basename(figure)), ""]
+    outputs = summary.get("outputs", {})
+    lines += ["## Files", "",
+              "- [summary.json](summary.json): every number above",
+              "- [histories.h5](histories.h5): monitor, energy, contact and keyblock histories"]
+    if "model" in outputs:
+        lines.append("- [%s](%s): the whole model for ParaView (blocks, contacts%s); "
+                     "`pvpython tools/paraview_open.py %s` opens it coloured"
+                     % (outputs["model"], outputs["model"],
+                        ", far field, ties" if "far_field" in outputs else "", run_dir))
+    with open(path, "w") as f:
+        f.write("\n".join(lines).rstrip() + "\n")
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(description="Write RUN_DIR/report.md with plots of a "
+                                     "ddafem run.")
+    parser.add_argument("run_dir", help="the directory of `ddafem run -o RUN_DIR`")
+    parser.add_argument("--top", type=int, default=10,
+                        help="keyblocks drawn in the displacement plot (default 10)")
+    args = parser.parse_args(argv)
+    run_dir = args.run_dir
+    summary_path = os.path.join(run_dir, "summary.json")
+    if not os.path.isfile(summary_path):
+        fail("no %s: expected the output directory of `ddafem run`" % summary_path)
+    with open(summary_path) as f:
+        summary = json.load(f)
+
+    figures = []
+    histories = os.path.join(run_dir, summary.get("outputs", {}).get("histories", "histories.h5"))
+    if os.path.isfile(histories):
+        with open_histories(histories) as h5:
+            time_ms, _ = plot_histories.scaled(h5["time"], "s")
+            time_ms = time_ms.reshape(-1)
+            figures += plot_monitor_histories(h5, time_ms, histories, run_dir)
+            keyblocks = summary.get("keyblocks")
+            if keyblocks and keyblocks.get("blocks"):
+                path = os.path.join(run_dir, "report_keyblocks.png")
+                plot_keyblocks(time_ms, keyblock_histories(h5), keyblocks, args.top, path)
+                figures.append(("Keyblock displacement", path))
+    map_path = os.path.join(run_dir, "report_map.png")
+    caption = plot_map(run_dir, summary, map_path)
+    if caption:
+        figures.append((caption, map_path))
+    report = os.path.join(run_dir, "report.md")
+    write_report(run_dir, summary, figures, report)
+    print("wrote %s (%d pictures)" % (report, len(figures)))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

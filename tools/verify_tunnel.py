@@ -1,0 +1,179 @@
+#!/usr/bin/python3
+"""Compares the truncations of a tunnel scene (issue 7's acceptance) and regenerates
+
+  docs/verification/tunnel.json   one record per run: {scene, method, n_blocks, n_fe_dofs,
+                                  keyblock_peak_m, error_vs_reference, wall_s, ...}
+  docs/verification/tunnel.md     the table
+  docs/verification/figures/tunnel_keyblock.png   the peak keyblock's displacement over time
+
+The same scene (default: the default tunnel scene examples/tunnel/circular_sv.yaml) runs with
+`--set tunnel.truncation=M` for M in
+  reference  (c) blocks in a far field so large that nothing reflected at its truncation returns
+             to the opening within the run: the reference
+  hybrid     (b) blocks in a graded far field, Lysmer dashpots, free-field sides, one wavelength
+             of the incident wave beyond the blocks
+  vb1        (a) blocks only, VB I (Bao et al. 2012) on the near field's edges
+  dashpot    (a') blocks only, the consistent dashpot on the near field's edges
+Each run's keyblocks are the blocks along the opening (summary.json `keyblocks`);
+keyblock_peak_m is the largest peak centroid displacement among them in the dynamic stage
+(relative to the static equilibrium). error_vs_reference = |peak - peak_ref| / peak_ref.
+history_error is the relative L2 difference of that block's displacement history (both
+components) against the reference's same block, the histories aligned on the time the incident
+wave reaches the near field (summary.json tunnel.arrival_time_s) and compared over the shorter
+window. Acceptance: the hybrid within 5% of the reference (keyblock_peak_m).
+
+Usage: tools/verify_tunnel.py [--build build] [--scene S] [--out docs/verification]
+                              [--methods reference,hybrid,vb1,dashpot] [--jobs 2]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+from concurrent.futures import ThreadPoolExecutor
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+LABELS = {
+    "reference": "(c) reference: large far field",
+    "hybrid": "(b) hybrid: blocks + FE far field (Lysmer, free field)",
+    "vb1": "(a) blocks only, VB I",
+    "dashpot": "(a') blocks only, dashpot",
+}
+
+
+def run(build, scene, method, out_root):
+    out = os.path.join(out_root, method)
+    cmd = [os.path.join(build, "ddafem"), "run", scene, "-o", out, "--quiet",
+           "--set", "tunnel.truncation=" + method]
+    done = subprocess.run(cmd, capture_output=True, text=True)
+    summary_path = os.path.join(out, "summary.json")
+    summary = json.load(open(summary_path)) if os.path.exists(summary_path) else {}
+    return {"method": method, "dir": out, "exit": done.returncode,
+            "stderr": done.stderr.strip()[-2000:], "summary": summary}
+
+
+def keyblock_history(run_dir, block_id):
+    with h5py.File(os.path.join(run_dir, "histories.h5"), "r") as f:
+        t = np.array(f["time"])
+        u = np.array(f["keyblocks/block_%d/displacement" % block_id])
+    return t, u
+
+
+def history_error(run, ref, block_id):
+    t, u = keyblock_history(run["dir"], block_id)
+    tr, ur = keyblock_history(ref["dir"], block_id)
+    t = t - run["summary"]["tunnel"]["arrival_time_s"]
+    tr = tr - ref["summary"]["tunnel"]["arrival_time_s"]
+    keep = (t >= 0) & (t <= min(t[-1], tr[-1]))
+    ui = np.column_stack([np.interp(t[keep], tr, ur[:, k]) for k in range(2)])
+    return float(np.sqrt(np.sum((u[keep] - ui) ** 2) / np.sum(ui ** 2)))
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--build", default=os.path.join(ROOT, "build"))
+    p.add_argument("--scene", default=os.path.join(ROOT, "examples/tunnel/circular_sv.yaml"))
+    p.add_argument("--out", default=os.path.join(ROOT, "docs/verification"))
+    p.add_argument("--runs", default=os.path.join(ROOT, "results/verify_tunnel"))
+    p.add_argument("--methods", default="reference,hybrid,vb1,dashpot")
+    p.add_argument("--jobs", type=int, default=2)
+    a = p.parse_args()
+    methods = a.methods.split(",")
+    if "reference" not in methods:
+        sys.exit("the methods must include reference")
+    with ThreadPoolExecutor(a.jobs) as pool:
+        runs = list(pool.map(lambda m: run(a.build, a.scene, m, a.runs), methods))
+    by = {r["method"]: r for r in runs}
+    ref = by["reference"]
+    if ref["exit"] != 0:
+        sys.exit("the reference failed: " + ref["stderr"])
+    peak_id = ref["summary"]["keyblocks"]["keyblock_peak_id"]
+    peak_ref = ref["summary"]["keyblocks"]["keyblock_peak_m"]
+    scene = os.path.relpath(a.scene, ROOT)
+    records = []
+    for r in runs:
+        s = r["summary"]
+        rec = {"scene": scene, "method": r["method"], "exit": r["exit"],
+               "status": s.get("status", "no summary")}
+        if r["exit"] != 0:
+            rec["failure"] = r["stderr"]
+        model = s.get("model", {})
+        kb = s.get("keyblocks", {})
+        rec.update({
+            "n_blocks": model.get("blocks"),
+            "n_fe_dofs": model.get("far_field_dofs", 0),
+            "keyblock_peak_m": kb.get("keyblock_peak_m"),
+            "keyblock_peak_id": kb.get("keyblock_peak_id"),
+            "wall_s": s.get("wall_time_s"),
+            "steps": s.get("steps"),
+            "time_reached_s": s.get("time_reached_s"),
+            "margin_m": s.get("tunnel", {}).get("margin_m"),
+        })
+        if r["exit"] == 0 and rec["keyblock_peak_m"] is not None:
+            rec["error_vs_reference"] = abs(rec["keyblock_peak_m"] - peak_ref) / peak_ref
+            rec["history_error"] = history_error(r, ref, peak_id)
+        else:
+            rec["error_vs_reference"] = None
+            rec["history_error"] = None
+        records.append(rec)
+
+    os.makedirs(os.path.join(a.out, "figures"), exist_ok=True)
+    with open(os.path.join(a.out, "tunnel.json"), "w") as f:
+        json.dump(records, f, indent=1)
+
+    fig, ax = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
+    for r in runs:
+        if r["exit"] != 0:
+            continue
+        t, u = keyblock_history(r["dir"], peak_id)
+        t = t - r["summary"]["tunnel"]["arrival_time_s"]
+        for k in range(2):
+            ax[k].plot(t * 1e3, u[:, k] * 1e3, label=LABELS.get(r["method"], r["method"]))
+    ax[0].set_ylabel("ux [mm]")
+    ax[1].set_ylabel("uy [mm]")
+    ax[1].set_xlabel("time since the wave reached the near field [ms]")
+    ax[0].set_title("keyblock %d (largest peak in the reference): centroid displacement" % peak_id)
+    ax[0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(a.out, "figures", "tunnel_keyblock.png"), dpi=120)
+
+    def cell(v, fmt):
+        return "-" if v is None else fmt % v
+
+    lines = ["# Tunnel truncations compared", "",
+             "Generated by `tools/verify_tunnel.py` from `%s` (do not edit)." % scene, "",
+             "Keyblock peak: the largest peak centroid displacement of the blocks along the "
+             "opening in the dynamic stage. Errors against (c), the reference. History error: "
+             "relative L2 of the reference's peak keyblock's displacement history, aligned on "
+             "the wave's arrival at the near field.", "",
+             "| method | blocks | FE DOFs | margin [m] | keyblock peak [mm] | error vs (c) | "
+             "history error | wall [s] | status |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for r in records:
+        lines.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            LABELS.get(r["method"], r["method"]), r["n_blocks"], r["n_fe_dofs"],
+            cell(r["margin_m"], "%.0f"), cell(r["keyblock_peak_m"] and r["keyblock_peak_m"] * 1e3,
+                                              "%.4f"),
+            cell(r["error_vs_reference"] and 100 * r["error_vs_reference"], "%.2f%%"),
+            cell(r["history_error"] and 100 * r["history_error"], "%.1f%%"),
+            cell(r["wall_s"], "%.1f"), r["status"]))
+    hybrid = next((r for r in records if r["method"] == "hybrid"), None)
+    if hybrid and hybrid["error_vs_reference"] is not None:
+        ok = hybrid["error_vs_reference"] <= 0.05
+        lines += ["", "Acceptance (hybrid within 5%% of the reference): **%s** (%.2f%%)." % (
+            "met" if ok else "NOT met", 100 * hybrid["error_vs_reference"])]
+    lines += ["", "![keyblock](figures/tunnel_keyblock.png)", ""]
+    with open(os.path.join(a.out, "tunnel.md"), "w") as f:
+        f.write("\n".join(lines))
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
