@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ostream>
 #include <string>
 
 namespace ddafem::dda
@@ -217,6 +218,12 @@ struct InputCase
   BoundaryType base;
   BoundaryInput::Type wave;
 };
+
+/// Names the case in gtest's messages.
+void PrintTo(const InputCase& c, std::ostream* out)
+{
+  *out << c.name;
+}
 
 class BoundaryInputTest : public ::testing::TestWithParam<InputCase>
 {
