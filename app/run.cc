@@ -162,7 +162,7 @@ void add_coupled_channels(std::vector<HistoryChannel>& channels, const fem::FarF
   channels.push_back({ff + "dissipated", 1, "J", "initial + work - stored: the integrator's"});
   channels.push_back({"interface/tie_energy", 1, "J",
                       "held in or dissipated by the tie springs: -(work of the ties on the "
-                      "blocks + on the far field)"});
+                      "blocks without their preloads' + on the far field)"});
   channels.push_back({"interface/ties", 4, "", "number of ties (intact, locked, sliding, open)"});
 }
 
@@ -176,9 +176,8 @@ void append_coupled_row(std::vector<double>& row, const fem::ElasticWaveModel& f
                            s.stress[0], s.stress[1], s.stress[2]});
   }
   const fem::EnergyBalance e = far_field.energy();
-  row.insert(row.end(),
-             {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots, e.work_of_rayleigh,
-              e.work_of_springs, e.dissipated, -(ties.work_on_blocks() + e.work_of_springs)});
+  row.insert(row.end(), {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots,
+                         e.work_of_rayleigh, e.work_of_springs, e.dissipated, ties.tie_energy()});
   const coupling::TieCounts n = ties.counts();
   row.insert(row.end(), {static_cast<double>(n.intact), static_cast<double>(n.lock),
                          static_cast<double>(n.slide), static_cast<double>(n.open)});
@@ -211,8 +210,9 @@ std::vector<dda::ContactSnapshot> tie_snapshot(const coupling::FarFieldTies& tie
     }
     c.position = points[k].position;
     c.normal = t.normal;
-    c.normal_force = t.forces.normal_force;
-    c.shear_force = t.forces.shear_force;
+    const dda::Vector2 f = ties.total_force(k); // preload included
+    c.normal_force = t.normal.dot(f);
+    c.shear_force = t.tangent.dot(f);
     c.gap = -t.normal.dot(t.stretch);
     c.slip = t.tangent.dot(t.stretch);
     out.push_back(c);
@@ -364,8 +364,12 @@ void describe_boundaries(const dda::System& system, double dt, std::ostream& out
               });
     out << "    " << boundary_name(model, b) << ", "
         << (bd.impedance == dda::ImpedanceKind::effective ? "effective" : "textbook")
-        << " impedance, a_n " << bd.a_n << ", a_t " << bd.a_t << ", " << mine.size()
-        << " edge(s)\n";
+        << " impedance, a_n " << bd.a_n << ", a_t " << bd.a_t << ", " << mine.size() << " edge(s)"
+        << (bd.has_input ? bd.input.type == dda::BoundaryInput::Type::p
+                               ? ", incident P wave (2 cn v_in)"
+                               : ", incident SV wave (2 ct v_in)"
+                         : "")
+        << "\n";
     const std::size_t shown = std::min<std::size_t>(mine.size(), 5);
     for (std::size_t i = 0; i < shown; ++i)
     {
@@ -390,6 +394,10 @@ void describe_boundaries(const dda::System& system, double dt, std::ostream& out
     if (mine.size() > shown)
       out << "      ... and " << mine.size() - shown << " more edge(s)\n";
   }
+  if (system.n_supports() > 0)
+    out << "  static supports: " << system.n_supports() << " edge ends held by springs of "
+        << format(system.support_stiffness())
+        << " N/m in static stages, their forces kept as edge loads in dynamic ones\n";
 }
 } // namespace
 
@@ -418,6 +426,9 @@ TimeStepAdvice suggest_time_step(const Scene& scene)
   for (const dda::FixedPoint& f : scene.model.fixed_points)
     f_max = std::max({f_max, f.displacement_x.characteristic_frequency(),
                       f.displacement_y.characteristic_frequency()});
+  for (const dda::BoundaryDescription& b : scene.model.boundaries)
+    if (b.has_input)
+      f_max = std::max(f_max, b.input.velocity.characteristic_frequency());
 
   TimeStepAdvice advice;
   advice.dt_max = transit;

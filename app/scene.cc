@@ -741,7 +741,8 @@ struct BlockSource
 {
   YAML::Node node;
   std::string key_path;
-  bool generated = false; ///< by `rock_mass`: disjoint from the other generated blocks
+  bool generated = false;      ///< by `rock_mass`: disjoint from the other generated blocks
+  bool initial_stress = false; ///< has an explicit `initial_stress` (else the in-situ stress)
 };
 
 /// Drops a repeated closing vertex, checks that the polygon (at key `key` of r) is simple and
@@ -1100,7 +1101,7 @@ void read_blocks(const MapReader& top, const std::vector<std::string>& material_
       block.vertices = clean_polygon(r, "vertices", std::move(vertices));
       block.origin = r.key_path();
       model.blocks.push_back(block);
-      sources.push_back({r.yaml(), r.key_path()});
+      sources.push_back({r.yaml(), r.key_path(), false, r.has("initial_stress")});
       continue;
     }
     const MapReader grid = r.section_reader("grid");
@@ -1121,7 +1122,7 @@ void read_blocks(const MapReader& top, const std::vector<std::string>& material_
         block.origin =
             r.key_path() + " (grid cell " + std::to_string(ix) + ", " + std::to_string(iy) + ")";
         model.blocks.push_back(block);
-        sources.push_back({r.yaml(), r.key_path()});
+        sources.push_back({r.yaml(), r.key_path(), false, r.has("initial_stress")});
       }
   }
   if (top.has("rock_mass"))
@@ -1545,6 +1546,36 @@ coupling::InterfaceDescription read_interface(const MapReader& r,
   return d;
 }
 
+/// Stages of blocks tied to a far field: static stages hold the far field (the ties are
+/// springs to fixed ground) and the far field starts at rest from the first dynamic stage, so
+/// every static stage must come before it; a static stage cannot carry a frictional interface
+/// (its ties would need Mohr-Coulomb on the preload plus the spring force).
+void check_coupled_stages(const MapReader& top, const dda::ModelDescription& model)
+{
+  const std::vector<MapReader> items = top.section_list("stages");
+  bool dynamic_seen = false;
+  for (std::size_t i = 0; i < model.stages.size(); ++i)
+  {
+    if (model.stages[i].mode == dda::StageMode::dynamic)
+    {
+      dynamic_seen = true;
+      continue;
+    }
+    if (dynamic_seen)
+      throw items[i].error("mode", "a static stage after a dynamic one in a coupled scene: the "
+                                   "far field carries only the dynamic increment from the first "
+                                   "dynamic stage on and cannot be held again; expected every "
+                                   "static stage before the dynamic ones");
+    if (top.section_reader("interface").has("joint_material"))
+      throw top.section_reader("interface")
+          .error("joint_material",
+                 "static stages hold the ties as springs to fixed ground and do not follow a "
+                 "frictional interface: expected no `interface.joint_material` (a linear "
+                 "interface) with the static stage " +
+                     items[i].key_path());
+  }
+}
+
 // ---- Boundaries -----------------------------------------------------------------------------
 
 /// One `boundaries[i]` item. Only what the text can tell is checked here (types, ranges, one
@@ -1564,6 +1595,17 @@ dda::BoundaryDescription read_boundary(const MapReader& r, const dda::ModelDescr
   b.a_n = r.number("a_n");
   b.a_t = r.number("a_t");
   b.outer = r.boolean("outer");
+  if (r.has("input"))
+  {
+    if (b.type == dda::BoundaryType::free)
+      throw r.error("input", "an incident wave enters through the dashpots of a viscous "
+                             "boundary: expected `type: vb1`, `vb2` or `dashpot`");
+    const MapReader in = r.section_reader("input");
+    b.has_input = true;
+    b.input.type =
+        in.choice("type") == "p" ? dda::BoundaryInput::Type::p : dda::BoundaryInput::Type::sv;
+    b.input.velocity = read_time_function(in, "velocity");
+  }
 
   std::vector<std::string> selectors;
   if (r.has("edges"))
@@ -1784,6 +1826,17 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   std::vector<BlockSource> sources;
   read_blocks(top, material_names, model, sources, scene.rock_mass);
   check_overlaps(model, sources, context.locator);
+  if (top.has("in_situ_stress"))
+  {
+    const MapReader r = top.section_reader("in_situ_stress");
+    model.in_situ_stress.stress = r.voigt("stress");
+    model.in_situ_stress.gradient = r.voigt("stress_gradient");
+    model.in_situ_stress.reference_y = r.number("reference_y");
+    for (std::size_t i = 0; i < model.blocks.size(); ++i)
+      if (!sources[i].initial_stress)
+        model.blocks[i].initial_stress =
+            model.in_situ_stress.at(dda::polygon_moments(model.blocks[i].vertices).centroid);
+  }
 
   std::vector<Box> boxes;
   double tol = 0.0;
@@ -1915,9 +1968,12 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
     }
     model.stages.push_back(stage);
   }
-  if (scene.far_field && !model.stages.empty())
-    throw top.error("stages", "stages apply to block models: expected no `stages` with "
-                              "`far_field`");
+  if (scene.far_field && !model.blocks.empty() && !model.stages.empty())
+    check_coupled_stages(top, model);
+  else if (scene.far_field && !model.stages.empty())
+    throw top.error("stages", "stages apply to block models: expected no `stages` in a "
+                              "far-field-only scene (its own static stage is "
+                              "`far_field.static_stage`)");
   if (scene.far_field)
   {
     scene.far_field->dt = model.time.dt;
@@ -1936,6 +1992,22 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
                                   "is factorized and condensed for it): expected `fixed`");
     model.time.control = dda::TimeControl::fixed;
     scene.interface = read_interface(top.section_reader("interface"), model, joint_names);
+    if (top.has("in_situ_stress") && top.section_reader("interface").has("joint_material"))
+      throw top.section_reader("interface")
+          .error("joint_material",
+                 "a frictional interface cannot carry the in-situ stress's preloads "
+                 "(Mohr-Coulomb would see only the dynamic increment of the tie forces): "
+                 "expected no `interface.joint_material` (a linear interface) with "
+                 "`in_situ_stress`");
+    // The far field carries only the dynamic increment; gravity and the in-situ stress reach
+    // the blocks as the ties' preloads (top-level `in_situ_stress`, coupling/README.md).
+    if (scene.far_field->static_stage.enabled)
+      throw top.section_reader("far_field")
+          .error("static_stage",
+                 "blocks tied to a far field: the far field carries only the dynamic increment "
+                 "(no gravity, no in-situ stress, at rest when the dynamic stage starts), and "
+                 "the in-situ stress reaches the blocks through the ties' preloads: expected a "
+                 "top-level `in_situ_stress` section and `stages` instead");
   }
 
   const MapReader solver = top.section_reader("solver");

@@ -88,6 +88,26 @@ std::string format_number(double v)
   return s.str();
 }
 
+/// `stress` of an in-situ stress sigma0(y) = stress + stress_gradient (y - reference_y)
+/// (`in_situ_stress`, `far_field.static_stage`).
+Key in_situ_stress_key()
+{
+  return key("stress", ValueType::voigt)
+      .unit("Pa")
+      .default_yaml("[0, 0, 0]")
+      .meaning("in-situ stress [sxx, syy, sxy] at reference_y, tension positive");
+}
+
+/// `stress_gradient` of an in-situ stress.
+Key in_situ_gradient_key()
+{
+  return key("stress_gradient", ValueType::voigt)
+      .unit("Pa/m")
+      .default_yaml("[0, 0, 0]")
+      .meaning("d/dy of the in-situ stress, e.g. [K0 rho g, rho g, 0] for lithostatic stress "
+               "with reference_y at the surface");
+}
+
 /// The `type` key of one time-function variant.
 Key time_function_type(const std::string& type_name)
 {
@@ -260,6 +280,12 @@ SceneSchema::SceneSchema()
             .unit("m/s^2")
             .default_yaml("[0, 0]")
             .meaning("body acceleration, e.g. [0, -9.81]"),
+        key("in_situ_stress", T::section)
+            .section("in_situ_stress")
+            .default_note("none")
+            .meaning("the rock mass's initial stress: blocks start with it, and bonded joints, "
+                     "ties to the far field and the static supports of viscous boundaries carry "
+                     "its traction"),
         key("monitors", T::section_list)
             .section("monitors[i]")
             .default_note("none")
@@ -973,15 +999,7 @@ SceneSchema::SceneSchema()
             .unit("m/s^2")
             .default_note("the scene's `gravity`")
             .meaning("body acceleration of the far field, e.g. [0, -9.81]"),
-        key("stress", T::voigt)
-            .unit("Pa")
-            .default_yaml("[0, 0, 0]")
-            .meaning("in-situ stress [sxx, syy, sxy] at reference_y, tension positive"),
-        key("stress_gradient", T::voigt)
-            .unit("Pa/m")
-            .default_yaml("[0, 0, 0]")
-            .meaning("d/dy of the in-situ stress, e.g. [K0 rho g, rho g, 0] for lithostatic "
-                     "stress with reference_y at the surface"),
+        in_situ_stress_key(), in_situ_gradient_key(),
         key("reference_y", T::number)
             .unit("m")
             .default_note("the top of the far field")
@@ -1047,7 +1065,12 @@ SceneSchema::SceneSchema()
        "`edges`, `on_line` or `outer: true`. Each selected edge of length l0 gets the dashpot "
        "coefficients cn = a_n rho l0 VP and ct = a_t rho l0 VS (rho, VP, VS of its block's "
        "material). Edges that are not selected stay free. Which edges a line or `outer` selects "
-       "is decided by the engine: a selector that selects no edge is an error.",
+       "is decided by the engine: a selector that selects no edge is an error. In a static "
+       "stage a vb1, vb2 or dashpot edge is held instead by a normal and a shear spring to "
+       "fixed ground at each end (those of `joints.default`, else the fixed points' default "
+       "penalty and shear ratio 0.4), preloaded with the `in_situ_stress` traction; when the "
+       "first dynamic stage starts their forces become constant edge loads and the dashpots "
+       "take over.",
        {key("type", T::choice)
             .required()
             .choices({"free", "vb1", "vb2", "dashpot"})
@@ -1084,7 +1107,40 @@ SceneSchema::SceneSchema()
             .meaning("every outer edge lying on a straight line"),
         key("outer", T::boolean)
             .default_yaml("false")
-            .meaning("true selects every outer edge (an edge not shared by a joint)")}});
+            .meaning("true selects every outer edge (an edge not shared by a joint)"),
+        key("input", T::section)
+            .section("boundaries[i].input")
+            .default_note("none")
+            .meaning("an incident wave entering through the boundary (vb1, vb2, dashpot)")}});
+
+  all_sections.push_back(
+      {"in_situ_stress",
+       "sigma0(y) = stress + stress_gradient (y - reference_y), tension positive. Every block "
+       "without an explicit `initial_stress` starts with sigma0 at its centroid; every bonded "
+       "joint end, every tie to the far field and every static support of a viscous boundary "
+       "carries the force sigma0 n times its share of the edge (n out of the block): the "
+       "traction the in-situ stress puts across it. With stress_gradient [K0 rho g, rho g, 0] "
+       "and reference_y at the surface it balances gravity. Bonded joints and ties keep this "
+       "preload; a viscous boundary's support hands it on as a constant edge load when the "
+       "first dynamic stage starts.",
+       {in_situ_stress_key(), in_situ_gradient_key(),
+        key("reference_y", T::number)
+            .unit("m")
+            .default_yaml("0")
+            .meaning("height where the in-situ stress is `stress`")}});
+
+  all_sections.push_back(
+      {"boundaries[i].input",
+       "An incident plane wave travelling up (+y) that enters through the boundary's dashpots "
+       "(Joyner & Chen 1975): each edge receives the force 2 C v_in(t) at its midpoint, C = cn n "
+       "n^T + ct t t^T its own dashpots and v_in the incident particle velocity, (0, v_in) for P "
+       "and (v_in, 0) for SV; on a horizontal base that is 2 cn v_in upward (P) or 2 ct v_in "
+       "along x (SV). A uniform traction over a block edge equals its resultant at the midpoint "
+       "for DDA's first-order blocks. Dynamic stages only.",
+       {key("type", T::choice).required().choices({"p", "sv"}).meaning("wave type"),
+        key("velocity", T::time_function)
+            .required()
+            .meaning("v_in(t) [m/s] of the incident (upgoing) wave")}});
 
   all_sections.push_back(
       {"boundaries[i].on_line",
@@ -1172,7 +1228,10 @@ SceneSchema::SceneSchema()
        "under gravity, loads and initial stress; it ends when the largest out-of-balance force "
        "on a block falls below tolerance x the largest applied force (gravity and loads) on a "
        "block. A dynamic stage after it starts at rest from that equilibrium; histories and "
-       "monitor displacements start there.",
+       "monitor displacements start there. With a far field (coupled scenes) the far field is "
+       "held in static stages (the ties are springs to fixed ground with their in-situ "
+       "preloads) and carries only the dynamic increment from the first dynamic stage on: "
+       "static stages come first, with a linear interface.",
        {key("name", T::string).required().meaning("shown in messages and summary.json"),
         key("mode", T::choice)
             .choices({"static", "dynamic"})

@@ -321,7 +321,7 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
   in_situ["stress"] = triple(t.k0 * syy, syy, 0.0);
   in_situ["stress_gradient"] = triple(t.k0 * gradient, gradient, 0.0);
   in_situ["reference_y"] = center_y;
-  // HACK root["in_situ_stress"] = in_situ;
+  root["in_situ_stress"] = in_situ;
 
   YAML::Node input;
   input["type"] = t.wave_type;
@@ -408,7 +408,7 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
   YAML::Node stages(YAML::NodeType::Sequence);
   stages.push_back(stage_static);
   stages.push_back(stage_dynamic);
-  // HACK2 root["stages"] = stages;
+  root["stages"] = stages;
 
   YAML::Node time = given["time"] ? YAML::Clone(given["time"]) : YAML::Node(YAML::NodeType::Map);
   if (!time["dt"])

@@ -195,6 +195,14 @@ FarFieldTies::FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field
     k_bonded.block<2, 2>(2 * k, 2 * k) << springs[k].stiffness[0], springs[k].stiffness[1],
         springs[k].stiffness[2], springs[k].stiffness[3];
   previous_force = Eigen::VectorXd::Zero(n);
+  preload = Eigen::VectorXd::Zero(n);
+  const dda::InSituStress& in_situ = system.get_model().in_situ_stress;
+  for (std::size_t k = 0; k < ties.size(); ++k)
+    preload.segment<2>(2 * k) = in_situ.traction(ties[k].point, ties[k].normal) * ties[k].length;
+  if (!linear && !preload.isZero(0.0))
+    throw InputError("interface: a frictional interface cannot carry the in-situ stress's "
+                     "preloads (Mohr-Coulomb would see only the dynamic increment): expected no "
+                     "`interface.joint_material` with `in_situ_stress`");
   system.tie(*this, points);
 }
 
@@ -207,8 +215,52 @@ std::size_t FarFieldTies::n_tied_blocks() const
   return static_cast<std::size_t>(std::unique(blocks.begin(), blocks.end()) - blocks.begin());
 }
 
+void FarFieldTies::begin_stage(const dda::StageMode mode)
+{
+  if (mode == dda::StageMode::static_equilibrium)
+  {
+    if (dynamic_started)
+      throw InputError("interface: a static stage after a dynamic one: the far field carries "
+                       "the dynamic increment and cannot be held again");
+    if (!linear)
+      throw InputError("interface: a static stage holds the ties as springs to fixed ground "
+                       "and does not follow a frictional interface: expected no "
+                       "`interface.joint_material`");
+    held = true;
+    return;
+  }
+  if (!held)
+    return;
+  // Each tie's whole force on its block, P - K z at the equilibrium, becomes its preload; the
+  // tie displacements restart at 0 (System::begin_stage) with the far field at rest, and the
+  // interface's books start again.
+  held = false;
+  for (std::size_t k = 0; k < ties.size(); ++k)
+  {
+    Tie& t = ties[k];
+    preload.segment<2>(2 * k) -= k_bonded.block<2, 2>(2 * k, 2 * k) * t.stretch;
+    t.stretch.setZero();
+    t.forces.normal_force = t.forces.shear_force = 0.0; // the springs' part starts again
+    t.trial = t.forces;
+  }
+  previous_force.setZero();
+  work_blocks = work_preloads = 0.0;
+}
+
 std::string FarFieldTies::begin_step(const double dt, const Eigen::VectorXd& displacements)
 {
+  if (held)
+  {
+    // The far field held: H = K, g = P - K c; nothing of the far field is solved.
+    const auto t0 = Clock::now();
+    start = displacements;
+    h = k_bonded;
+    bonded_terms_valid = false;
+    g = preload - k_bonded * start;
+    time_ties += seconds_since(t0);
+    return {};
+  }
+  dynamic_started = true;
   if (dt != flexibility_dt)
   {
     const auto t0 = Clock::now();
@@ -298,9 +350,9 @@ void FarFieldTies::build_terms()
       h.block<2, 2>(2 * k, 2 * k) += k_ties[k];
     bonded_terms_valid = false;
   }
-  // f on the blocks = -(K' (z - w) + F0) = g - H delta, z = c + delta.
+  // f on the blocks = P - (K' (z - w) + F0) = g - H delta, z = c + delta.
   const Eigen::VectorXd w_f = r_w0 + m_matrix * f_trial;
-  g = block_diagonal_times(k_ties, w_f) - f_trial - h * start;
+  g = preload + block_diagonal_times(k_ties, w_f) - f_trial - h * start;
 }
 
 Eigen::VectorXd FarFieldTies::far_field_displacements(const Eigen::VectorXd& z) const
@@ -313,7 +365,7 @@ Eigen::VectorXd FarFieldTies::far_field_displacements(const Eigen::VectorXd& z) 
 
 std::size_t FarFieldTies::update_trial_states(const Eigen::VectorXd& delta)
 {
-  if (linear)
+  if (linear || held)
     return 0;
   const auto t0 = Clock::now();
   const Eigen::VectorXd z = start + delta;
@@ -340,6 +392,20 @@ std::string FarFieldTies::end_step(const Eigen::VectorXd& delta)
 {
   auto t0 = Clock::now();
   const Eigen::VectorXd z = start + delta;
+  // The preloads' work on the blocks (constant forces), part of the ties' work on them.
+  work_preloads += preload.dot(delta);
+  work_blocks += preload.dot(delta);
+  if (held)
+  {
+    // Springs to fixed ground: F = K z on the "far field", P - F on the blocks.
+    const Eigen::VectorXd f = k_bonded * z;
+    work_blocks -= 0.5 * (previous_force + f).dot(delta);
+    previous_force = f;
+    for (std::size_t k = 0; k < ties.size(); ++k)
+      set_accepted_forces(k, z.segment<2>(2 * k), f.segment<2>(2 * k));
+    time_ties += seconds_since(t0);
+    return {};
+  }
   const Eigen::VectorXd w = far_field_displacements(z);
   Eigen::VectorXd q(z.size()), f(z.size());
   for (std::size_t k = 0; k < ties.size(); ++k)
@@ -360,20 +426,32 @@ std::string FarFieldTies::end_step(const Eigen::VectorXd& delta)
   work_blocks -= 0.5 * (previous_force + f).dot(delta);
   previous_force = f;
   for (std::size_t k = 0; k < ties.size(); ++k)
-  {
-    Tie& t = ties[k];
-    t.stretch = z.segment<2>(2 * k) - w.segment<2>(2 * k);
-    t.forces = t.trial;
-    t.forces.normal_force = t.normal.dot(f.segment<2>(2 * k));
-    // A sliding tie keeps the trial's shear force, the Mohr-Coulomb limit at the normal force
-    // of the step's end, for the next step to apply (DDA's one-step lag, as System's contacts):
-    // the force this step applied is the limit at the previous step's normal force, and taking
-    // it would freeze S at the normal force the tie started to slide with.
-    if (t.trial.state != dda::ContactState::slide)
-      t.forces.shear_force = t.tangent.dot(f.segment<2>(2 * k));
-  }
+    set_accepted_forces(k, z.segment<2>(2 * k) - w.segment<2>(2 * k), f.segment<2>(2 * k));
   time_ties += seconds_since(t0);
   return {};
+}
+
+dda::Vector2 FarFieldTies::total_force(const std::size_t k) const
+{
+  const Tie& t = ties[k];
+  return (t.forces.normal_force - t.normal.dot(preload.segment<2>(2 * k))) * t.normal +
+         (t.forces.shear_force - t.tangent.dot(preload.segment<2>(2 * k))) * t.tangent;
+}
+
+void FarFieldTies::set_accepted_forces(const std::size_t k, const dda::Vector2& stretch,
+                                       const dda::Vector2& spring_force)
+{
+  Tie& t = ties[k];
+  t.stretch = stretch;
+  t.forces = t.trial;
+  const dda::Vector2& f = spring_force;
+  t.forces.normal_force = t.normal.dot(f);
+  // A sliding tie keeps the trial's shear force, the Mohr-Coulomb limit at the normal force
+  // of the step's end, for the next step to apply (DDA's one-step lag, as System's contacts):
+  // the force this step applied is the limit at the previous step's normal force, and taking
+  // it would freeze S at the normal force the tie started to slide with.
+  if (t.trial.state != dda::ContactState::slide)
+    t.forces.shear_force = t.tangent.dot(f);
 }
 
 TieCounts FarFieldTies::counts() const

@@ -56,8 +56,9 @@ struct Tie
   dda::Vector2 tangent = dda::Vector2::Zero(); ///< normal rotated by +90 deg
   double length = 0.0;                         ///< the share of the edge the tie carries [m]
   dda::ContactLaw law;
-  /// Accepted forces: normal_force compression positive; shear_force S acts on the block as
-  /// -S t and on the far field as +S t (the block is the contact's vertex side).
+  /// Accepted forces of the spring (without the preload, see FarFieldTies::total_force):
+  /// normal_force compression positive; shear_force S acts on the block as -S t and on the far
+  /// field as +S t (the block is the contact's vertex side).
   dda::ContactForces forces;
   dda::ContactForces trial;
   /// r = z - w: the block point's displacement minus the far field's at the tie [m], at the end
@@ -71,8 +72,16 @@ struct Tie
 /// F0, dK = K' - K) the far field's tie displacements are w = R w0 + M (K' z + F0) with
 /// R = (I + G dK)^-1, M = R G, z the blocks' tie displacements; the ties' force on the far
 /// field is F = K' (z - w) + F0 and on the blocks -F, which gives TiedBody's H and g. Bonded
-/// ties (dK = 0) need no dense solve; a state change costs one dense LU of 2m x 2m. See
-/// coupling/README.md.
+/// ties (dK = 0) need no dense solve; a state change costs one dense LU of 2m x 2m.
+///
+/// Preloads (a perturbation decomposition, exact for the linear far field): each tie also puts
+/// a constant force P_k on its block, sigma0(x_k) n_k times its share of the edge (the in-situ
+/// stress's traction across the interface), and the far field carries only the increment: no
+/// gravity, no in-situ stress. In a static stage the far field is held (w = 0: the ties are
+/// springs to fixed ground, H = K, g = P - K c, no far-field solve); when the dynamic stage
+/// starts, P - K z (each tie's whole force on its block) becomes the new P, z restarts at 0
+/// and the far field at rest. Preloads require a linear interface (the scene reader refuses a
+/// frictional one with in-situ stress or stages). See coupling/README.md.
 class FarFieldTies final : public dda::TiedBody
 {
 public:
@@ -81,6 +90,7 @@ public:
   FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field,
                const InterfaceDescription& description);
 
+  void begin_stage(dda::StageMode mode) override;
   std::string begin_step(double dt, const Eigen::VectorXd& displacements) override;
   const Eigen::MatrixXd& stiffness() const override { return h; }
   const Eigen::VectorXd& force() const override { return g; }
@@ -97,8 +107,17 @@ public:
   TieCounts counts() const;
   /// Work of the ties on the far field since t = 0 [J] (the energy that crossed into it).
   double work_on_far_field() const;
-  /// Energy held or dissipated by the tie springs: -(work on blocks + work on far field) [J].
-  double tie_energy() const { return -(work_blocks + work_on_far_field()); }
+  /// Work of the preloads on the blocks [J] (part of work_on_blocks): a dead load standing for
+  /// the far field's in-situ stress, which the far field does not model.
+  double work_of_preloads() const { return work_preloads; }
+  /// Energy held or dissipated by the tie springs: -(work on blocks without the preloads' +
+  /// work on far field) [J].
+  double tie_energy() const { return -(work_blocks - work_preloads + work_on_far_field()); }
+  /// The ties' preloads P on the blocks (x, y per tie) [N].
+  const Eigen::VectorXd& preloads() const { return preload; }
+  /// Tie k's whole force on the far field's side [N]: its spring's minus its preload (which
+  /// acts on the block), i.e. minus the whole force on the block.
+  dda::Vector2 total_force(std::size_t k) const;
   /// Wall time [s]: G (once per dt), the tie algebra of the steps (H, g, states).
   double condensation_seconds() const { return time_condensation; }
   double tie_seconds() const { return time_ties; }
@@ -106,6 +125,10 @@ public:
 private:
   /// K', F0, R w0, M, H and g from the trial states.
   void build_terms();
+  /// Accepts tie k's trial state with its stretch z - w [m] and spring force F on the far field
+  /// [N].
+  void set_accepted_forces(std::size_t k, const dda::Vector2& stretch,
+                           const dda::Vector2& spring_force);
   /// w = R w0 + M (K' z + F0).
   Eigen::VectorXd far_field_displacements(const Eigen::VectorXd& z) const;
 
@@ -130,8 +153,12 @@ private:
   Eigen::VectorXd g;               ///< [N]
   bool bonded_terms_valid = false; ///< h holds the all-bonded H of flexibility_dt
 
-  Eigen::VectorXd previous_force; ///< F on the far field at the step start [N]
+  Eigen::VectorXd preload;      ///< P: constant forces on the blocks (x, y per tie) [N]
+  bool held = false;            ///< static stage: the far field is held, the ties are fixed springs
+  bool dynamic_started = false; ///< the far field has taken a step
+  Eigen::VectorXd previous_force; ///< F on the far field (spring part) at the step start [N]
   double work_blocks = 0.0;
+  double work_preloads = 0.0;
   double time_condensation = 0.0, time_ties = 0.0;
 };
 

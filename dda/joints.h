@@ -19,6 +19,11 @@ struct JointPoint
   MaterialPoint on_b;        ///< the point as part of block b
   double normal_force = 0.0; ///< spring force [N], tension positive (blocks pulled together)
   double shear_force = 0.0;  ///< spring force [N] along the joint tangent t (see Joint::tangent)
+  /// Preload [N] (the in-situ stress's traction across the joint times the end's half length),
+  /// tension positive and along t like the forces: the spring's force is the preload plus the
+  /// springs on the gap, i.e. it starts stretched by preload / stiffness.
+  double normal_preload = 0.0;
+  double shear_preload = 0.0;
 };
 
 /// A bonded joint along the shared stretch of an edge of block a and an edge of block b.

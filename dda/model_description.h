@@ -121,6 +121,21 @@ enum class ImpedanceKind
   effective
 };
 
+/// An incident plane wave entering through a viscous boundary (Joyner & Chen 1975): the wave
+/// travels up (+y) with particle velocity v_in(t) times (0, 1) for P and (1, 0) for SV, and
+/// the boundary's edges receive the input force 2 C v_in, C = cn n n^T + ct t t^T their own
+/// dashpots (on a horizontal base: 2 cn v_in up for P, 2 ct v_in along x for SV).
+struct BoundaryInput
+{
+  enum class Type
+  {
+    p, ///< vertical particle motion
+    sv ///< horizontal particle motion
+  };
+  Type type = Type::sv;
+  TimeFunction velocity = TimeFunction::constant(0.0); ///< v_in(t) [m/s]
+};
+
 /// An absorbing (or free) boundary: a type and the block edges it applies to. Exactly one
 /// selector is used: explicit edges, every outer edge on a line, or every outer edge.
 struct BoundaryDescription
@@ -134,8 +149,30 @@ struct BoundaryDescription
   bool on_line = false;             ///< select outer edges lying on the line below
   Point line_point = Point::Zero(); ///< a point of the line [m]
   Vector2 line_direction = Vector2(0.0, 1.0);
-  bool outer = false; ///< select every outer edge (not shared by a joint)
+  bool outer = false;     ///< select every outer edge (not shared by a joint)
+  bool has_input = false; ///< an incident wave enters through the edges (dynamic stages only)
+  BoundaryInput input;
   std::string origin; ///< for messages, e.g. "boundaries[0]"
+};
+
+/// The in-situ (initial) stress of the rock mass: sigma0(y) = stress + stress_gradient (y -
+/// reference_y) [Pa], (sxx, syy, sxy), tension positive. Blocks without an explicit initial
+/// stress start with sigma0 at their centroid; bonded joints, ties to a far field and the static
+/// supports of viscous boundaries carry the traction sigma0 n it puts across them.
+struct InSituStress
+{
+  Voigt stress = Voigt::Zero();   ///< at reference_y [Pa]
+  Voigt gradient = Voigt::Zero(); ///< d sigma0 / dy [Pa/m]
+  double reference_y = 0.0;       ///< [m]
+
+  Voigt at(const Point& p) const { return stress + gradient * (p.y() - reference_y); }
+  /// The traction sigma0 n [Pa] on a surface of outward unit normal n at p: the force per unit
+  /// length the surrounding rock puts on the body whose normal it is.
+  Vector2 traction(const Point& p, const Vector2& n) const
+  {
+    const Voigt s = at(p);
+    return Vector2(s[0] * n.x() + s[2] * n.y(), s[2] * n.x() + s[1] * n.y());
+  }
 };
 
 /// The time integrator. Both are Newmark schemes: a1 = (d - dt v0 - dt^2 (1/2 - beta) a0) /
@@ -234,6 +271,7 @@ struct ModelDescription
   std::vector<Monitor> monitors;
   std::vector<BoundaryDescription> boundaries;
   Vector2 gravity = Vector2::Zero(); ///< body acceleration [m/s^2], e.g. (0, -9.81)
+  InSituStress in_situ_stress;       ///< zero unless the scene gives one
   TimeSettings time;
   ContactSettings contacts;
   /// The stages in order; empty: one dynamic stage up to time.end_time.

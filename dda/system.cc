@@ -7,6 +7,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -237,10 +238,76 @@ System::System(const ModelDescription& model_)
                        " already has: expected each edge in one boundary only");
   }
   boundary_steps.resize(boundary_edges.size());
+  apply_in_situ_stress();
 
   // The step's matrix structure: joints now, contacts once found.
   set_matrix_structure({});
   initial_energy = energy().stored();
+}
+
+void System::apply_in_situ_stress()
+{
+  const InSituStress& in_situ = model.in_situ_stress;
+  // The traction sigma0 n, linear along a straight edge from x0 to x1 (length l), as the two
+  // end forces that give its exact generalised force for the linear T along the edge:
+  // l/6 (2 t0 + t1) and l/6 (t0 + 2 t1) (each end's half, l/2 t, would miss the moment of a
+  // stress gradient along the edge on the shear-strain unknown).
+  const auto end_forces = [&](const Point& x0, const Point& x1, const Vector2& n, double l)
+  {
+    const Vector2 t0 = in_situ.traction(x0, n), t1 = in_situ.traction(x1, n);
+    return std::array<Vector2, 2>{l / 6.0 * (2.0 * t0 + t1), l / 6.0 * (t0 + 2.0 * t1)};
+  };
+  // Bonded joints: the traction on block a (n out of a): what b puts on a across the joint in
+  // the rock mass at rest.
+  for (Joint& j : joints)
+  {
+    const Vector2 n = j.normal(), t = j.tangent();
+    const std::array<Vector2, 2> f =
+        end_forces(j.points[0].on_a.position, j.points[1].on_a.position, n, j.length);
+    for (std::size_t e = 0; e < 2; ++e)
+    {
+      JointPoint& p = j.points[e];
+      p.normal_preload = p.normal_force = n.dot(f[e]);
+      p.shear_preload = p.shear_force = t.dot(f[e]);
+    }
+  }
+
+  // Static supports of the viscous boundaries' edges: springs like a bonded joint's at both
+  // ends (joints.default's, else the fixed points' default penalty), preloaded with the
+  // in-situ traction over the edge.
+  double ratio = 0.4;
+  support_normal_stiffness = default_fixed_stiffness;
+  if (model.default_joint_material < model.joint_materials.size())
+  {
+    const JointMaterial& jm = model.joint_materials[model.default_joint_material];
+    support_normal_stiffness = jm.normal_stiffness;
+    ratio = jm.shear_ratio;
+  }
+  for (const BoundaryEdge& e : boundary_edges)
+  {
+    if (model.boundaries[e.boundary].type == BoundaryType::free)
+      continue;
+    const std::vector<Point>& v = blocks[e.block].vertices;
+    const Vector2 n = boundary_normal(e), t(-n.y(), n.x());
+    const Eigen::Matrix2d k =
+        support_normal_stiffness * (n * n.transpose() + ratio * (t * t.transpose()));
+    const Point& x0 = v[e.edge];
+    const Point& x1 = v[(e.edge + 1) % v.size()];
+    const std::array<Vector2, 2> f = end_forces(x0, x1, n, e.length);
+    supports.push_back({{e.block, x0, x0}, k, f[0], x0});
+    supports.push_back({{e.block, x1, x1}, k, f[1], x1});
+  }
+}
+
+Vector2 System::input_force(const BoundaryEdge& e, double t) const
+{
+  const BoundaryDescription& b = model.boundaries[e.boundary];
+  if (!b.has_input)
+    return Vector2::Zero();
+  const Vector2 n = boundary_normal(e), tangent(-n.y(), n.x());
+  const double v = b.input.velocity.value(t);
+  const Vector2 v_in = b.input.type == BoundaryInput::Type::p ? Vector2(0.0, v) : Vector2(v, 0.0);
+  return 2.0 * (e.cn * n.dot(v_in) * n + e.ct * tangent.dot(v_in) * tangent);
 }
 
 MaterialPoint System::attach(const Point& p, const std::string& what) const
@@ -287,6 +354,9 @@ void System::tie(TiedBody& body, const std::vector<MaterialPoint>& points)
     tie_row_ends[s] = std::max(tie_row_ends[s], tie_row_ends[s - 1]);
   tied_body = &body;
   tie_points = points;
+  tie_origins.clear();
+  for (const MaterialPoint& p : points)
+    tie_origins.push_back(p.position);
   tie_matrices.resize(points.size());
   set_matrix_structure(coupling_pairs);
 }
@@ -327,7 +397,7 @@ StepStatus System::advance(double dt)
     for (std::size_t k = 0; k < tie_points.size(); ++k)
     {
       tie_matrices[k] = point_matrix(tie_points[k]);
-      displacements.segment<2>(2 * k) = tie_points[k].position - tie_points[k].initial;
+      displacements.segment<2>(2 * k) = tie_points[k].position - tie_origins[k];
     }
     start = Clock::now();
     const std::string failure = tied_body->begin_step(dt, displacements);
@@ -459,14 +529,28 @@ void System::begin_stage(StageMode new_mode)
 {
   const bool after_static = mode == StageMode::static_equilibrium;
   mode = new_mode;
+  matrix_dt = 0.0; // the boundary terms change with the stage: assemble the matrix anew
+  if (tied_body)
+    tied_body->begin_stage(mode);
   if (mode == StageMode::dynamic && !after_static)
     return;
   set_at_rest();
+  // Reaction transfer: what the supports hold at the end of a static stage stays as a constant
+  // load on the edges; a static stage anchors them where the edges are.
+  for (Support& s : supports)
+  {
+    if (after_static)
+      s.load = s.force();
+    if (mode == StageMode::static_equilibrium)
+      s.anchor = s.point.position;
+  }
   if (mode == StageMode::dynamic)
   {
     // Measure the dynamic stage from the equilibrium reached.
     for (std::size_t k = 0; k < monitors.size(); ++k)
       monitor_origins[k] = monitors[k].position;
+    for (std::size_t k = 0; k < tie_points.size(); ++k)
+      tie_origins[k] = tie_points[k].position;
     work_of_loads = work_of_supports = work_of_boundaries = 0.0;
     largest_energy_input = 0.0;
     initial_energy = energy().stored();
@@ -899,9 +983,15 @@ void System::assemble(double dt, bool with_matrix)
         f.stiffness * t.transpose() * (f.target(t1) - f.point.position);
   }
 
-  // Viscous boundaries at their edge midpoints.
+  // Viscous boundaries at their edge midpoints, with the incident wave's input force; in a
+  // static stage their supports hold the edges instead (springs to the anchors plus the load),
+  // in a dynamic one the supports' loads stay on as constant forces.
+  const bool is_static = mode == StageMode::static_equilibrium;
   for (std::size_t k = 0; k < boundary_edges.size(); ++k)
   {
+    boundary_steps[k] = {};
+    if (is_static)
+      continue;
     const BoundaryEdge& e = boundary_edges[k];
     const Block& b = blocks[e.block];
     const Matrix26 t = point_matrix(e.midpoint);
@@ -910,15 +1000,23 @@ void System::assemble(double dt, bool with_matrix)
                       beta, gamma, t * b.velocity, t * b.acceleration);
     if (with_matrix)
       matrix.diagonal(e.block).noalias() += t.transpose() * boundary_steps[k].k * t;
-    rhs.segment<6>(6 * e.block).noalias() += t.transpose() * boundary_steps[k].f;
+    rhs.segment<6>(6 * e.block).noalias() +=
+        t.transpose() * (boundary_steps[k].f + input_force(e, t1));
+  }
+  for (const Support& s : supports)
+  {
+    const Matrix26 t = point_matrix(s.point);
+    if (is_static && with_matrix)
+      matrix.diagonal(s.point.block).noalias() += t.transpose() * s.stiffness * t;
+    rhs.segment<6>(6 * s.point.block).noalias() += t.transpose() * (is_static ? s.force() : s.load);
   }
 
-  // Bonded joints: springs K_s on the gap g + T_b d_b - T_a d_a, with g = x_b - x_a.
+  // Bonded joints: springs K_s on the gap g + T_b d_b - T_a d_a, with g = x_b - x_a, plus the
+  // preloads.
   for (const Joint& j : joints)
   {
-    const Eigen::Matrix2d ks =
-        joint_spring(model.joint_materials[j.joint_material], j.normal(small_displacement()),
-                     j.tangent(small_displacement()));
+    const Vector2 n = j.normal(small_displacement()), tangent = j.tangent(small_displacement());
+    const Eigen::Matrix2d ks = joint_spring(model.joint_materials[j.joint_material], n, tangent);
     for (const JointPoint& p : j.points)
     {
       const Matrix26 ta = point_matrix(p.on_a);
@@ -931,7 +1029,8 @@ void System::assemble(double dt, bool with_matrix)
         matrix.diagonal(j.block_b).noalias() += tb.transpose() * ks_tb;
         matrix.upper(j.coupling).noalias() -= ta.transpose() * ks_tb;
       }
-      const Vector2 force = ks * (p.on_b.position - p.on_a.position);
+      const Vector2 force = ks * (p.on_b.position - p.on_a.position) + p.normal_preload * n +
+                            p.shear_preload * tangent;
       rhs.segment<6>(6 * j.block_a).noalias() += ta.transpose() * force;
       rhs.segment<6>(6 * j.block_b).noalias() -= tb.transpose() * force;
     }
@@ -991,13 +1090,21 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
   for (std::size_t i = 0; i < blocks.size(); ++i)
     work_of_loads += block_mass(blocks[i]) * model.gravity.dot(d.segment<2>(6 * i));
 
-  // Work of the boundaries: their force in the step's equation, -k T d + f, on T d.
+  // Work of the boundaries: their force in the step's equation, -k T d + f, on T d. The
+  // incident wave's input forces (trapezoidal in time) and the supports' constant loads of a
+  // dynamic stage count as loads (static stages: the energy restarts with the dynamic stage).
+  const bool is_static = mode == StageMode::static_equilibrium;
   for (std::size_t k = 0; k < boundary_edges.size(); ++k)
   {
     const BoundaryEdge& e = boundary_edges[k];
     const Vector2 du = point_matrix(e.midpoint) * d.segment<6>(6 * e.block);
     work_of_boundaries += (boundary_steps[k].f - boundary_steps[k].k * du).dot(du);
+    if (!is_static)
+      work_of_loads += 0.5 * (input_force(e, t0) + input_force(e, t1)).dot(du);
   }
+  if (!is_static)
+    for (const Support& s : supports)
+      work_of_loads += s.load.dot(point_matrix(s.point) * d.segment<6>(6 * s.point.block));
 
   // Work done by moving supports: -k (x - X)_mid . dX.
   for (const AttachedFixedPoint& f : fixed_points)
@@ -1023,6 +1130,8 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
     move(p);
   for (BoundaryEdge& e : boundary_edges)
     move(e.midpoint);
+  for (Support& s : supports)
+    move(s.point);
   for (Joint& j : joints)
     for (JointPoint& p : j.points)
     {
@@ -1050,8 +1159,8 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
     for (JointPoint& p : j.points)
     {
       const Vector2 gap = p.on_b.position - p.on_a.position;
-      p.normal_force = jm.normal_stiffness * n.dot(gap);
-      p.shear_force = jm.shear_ratio * jm.normal_stiffness * t.dot(gap);
+      p.normal_force = p.normal_preload + jm.normal_stiffness * n.dot(gap);
+      p.shear_force = p.shear_preload + jm.shear_ratio * jm.normal_stiffness * t.dot(gap);
     }
   }
 }

@@ -136,8 +136,11 @@ public:
   const std::vector<MaterialPoint>& get_tie_points() const { return tie_points; }
 
   /// Starts a stage. Static (Shi's static analysis): velocities are zeroed before every step and
-  /// the clock stands still. A dynamic stage after a static one starts at rest from the state
-  /// reached, with the energy balance and the monitors' displacements measured from there.
+  /// the clock stands still; the edges of viscous boundaries are held by their supports instead
+  /// of the dashpots, and a tied body is held (TiedBody::begin_stage). A dynamic stage after a
+  /// static one starts at rest from the state reached, with the energy balance, the monitors'
+  /// and the ties' displacements measured from there; the supports' forces become constant
+  /// edge loads (reaction transfer).
   void begin_stage(StageMode mode);
   StageMode stage_mode() const { return mode; }
 
@@ -164,6 +167,9 @@ public:
   BoundaryStability stability_of(std::size_t k, double dt) const;
   /// Penalty stiffness of fixed points without an explicit one [N/m].
   double default_fixed_point_stiffness() const { return default_fixed_stiffness; }
+  /// Normal spring [N/m] of each static support of a viscous boundary edge's ends.
+  double support_stiffness() const { return support_normal_stiffness; }
+  std::size_t n_supports() const { return supports.size(); }
 
   std::vector<BlockSnapshot> snapshot() const;
   /// The contacts of the last accepted step and the end springs of the intact bonded joints.
@@ -177,6 +183,19 @@ private:
     MaterialPoint point;
     Vector2 force;
     TimeFunction function;
+  };
+  /// A static support of a viscous boundary: an end of a selected edge held by a normal and a
+  /// shear spring to `anchor` in static stages, with a force `load` [N] (global components) on
+  /// the block: the in-situ traction over half the edge at first, in dynamic stages the force
+  /// the support held when the static stage ended (a constant edge load).
+  struct Support
+  {
+    MaterialPoint point;
+    Eigen::Matrix2d stiffness; ///< p n n^T + p_s t t^T [N/m], n the edge's outward normal
+    Vector2 load;              ///< [N]
+    Point anchor;              ///< fixed ground [m], where the point was when the stage began
+    /// Force on the block [N]: load + stiffness (anchor - position).
+    Vector2 force() const { return load + stiffness * (anchor - point.position); }
   };
   struct AttachedFixedPoint
   {
@@ -195,6 +214,11 @@ private:
   };
 
   MaterialPoint attach(const Point& p, const std::string& what) const;
+  /// Joint preloads and the supports of viscous boundaries from the in-situ stress.
+  void apply_in_situ_stress();
+  /// The Joyner-Chen input force 2 C v_in(t) [N] of boundary edge e at time t (zero without an
+  /// incident wave).
+  Vector2 input_force(const BoundaryEdge& e, double t) const;
   /// Zero velocity and acceleration of every block (static stages, start of a dynamic one).
   void set_at_rest();
   /// Phase 1: block pairs whose boxes, inflated by d0, overlap.
@@ -251,8 +275,12 @@ private:
   /// Each boundary edge's stiffness and force in the current step (set by assemble, used for
   /// the boundary's work in update_blocks).
   std::vector<BoundaryStep> boundary_steps;
+  std::vector<Support> supports; ///< two per edge of a vb1, vb2 or dashpot boundary
+  double support_normal_stiffness = 0.0;
   TiedBody* tied_body = nullptr;
   std::vector<MaterialPoint> tie_points;
+  /// Where each tie point's displacement is measured from: t = 0, then the static equilibrium
+  std::vector<Point> tie_origins;
   std::vector<Matrix26> tie_matrices;  ///< T of each tie point at the step start
   std::vector<std::size_t> tie_blocks; ///< blocks with tie points, sorted
   std::vector<std::size_t> tie_slots;  ///< each tie point's block's index in tie_blocks

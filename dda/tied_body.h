@@ -2,6 +2,8 @@
 // far field (coupling/ implements it; dda/ never sees fem/).
 #pragma once
 
+#include "dda/model_description.h"
+
 #include <Eigen/Core>
 
 #include <cstddef>
@@ -16,12 +18,19 @@ namespace ddafem::dda
 /// symmetric positive semidefinite) [N/m] the stiffness of the ties in series with the body's
 /// condensed dynamic stiffness. The System adds T^T H T and T^T g to its step and hands back
 /// the increments; the body advances itself in end_step() with the same dt: one implicit system
-/// per step, no lag between the two sides.
+/// per step, no lag between the two sides. The ties may carry preloads (the in-situ stress's
+/// traction across the interface), which act on the blocks only: the body itself carries the
+/// dynamic increment.
 class TiedBody
 {
 public:
   virtual ~TiedBody() = default;
 
+  /// Starts a stage (System::begin_stage). Static: the body is held, its ties are springs to
+  /// fixed ground with their preloads, and it does not advance. Dynamic after static: each
+  /// tie's force on the blocks (preload + spring) becomes its constant preload, and the tie
+  /// displacements the System passes are measured from the state reached (they restart at 0).
+  virtual void begin_stage(StageMode mode) = 0;
   /// Starts (or restarts, after a cut) a step of dt [s]. `displacements` (2m) are the tie points'
   /// displacements since the ties were made [m]. The ties' trial states start from their
   /// accepted ones. Returns an empty string, or why the body cannot take the step.
@@ -36,8 +45,9 @@ public:
   /// Accepts the step with the increments of the converged trial: the body advances to t + dt.
   /// Returns an empty string, or why it failed (the System then reports a solver failure).
   virtual std::string end_step(const Eigen::VectorXd& delta) = 0;
-  /// Work [J] done by the ties on the blocks since the ties were made (the energy that crossed
-  /// the interface into the blocks, negative when it left them).
+  /// Work [J] done by the ties on the blocks (preloads included) since the ties were made or the
+  /// first dynamic stage started (the energy that crossed the interface into the blocks,
+  /// negative when it left them).
   virtual double work_on_blocks() const = 0;
 };
 

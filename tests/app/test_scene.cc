@@ -613,6 +613,39 @@ TEST_F(SceneTest, EveryBoundarySelectorIsRead)
   EXPECT_EQ(b[3].line_direction.x(), -1.0);
 }
 
+// Issue 7: blocks without an explicit initial stress start with the in-situ stress at their
+// centroid; a viscous boundary may carry an incident wave.
+TEST_F(SceneTest, InSituStressAndBoundaryInputAreRead)
+{
+  const Scene scene =
+      read(replaced(grid_scene_with_boundaries("  - type: dashpot\n"
+                                               "    on_line: {point: [0, 0], direction: [1, 0]}\n"
+                                               "    input: {type: p, velocity: {type: sine_pulse, "
+                                               "amplitude: 0.1, frequency: 50}}\n"),
+                    "  - material: rock\n",
+                    "  - material: rock\n"
+                    "    vertices: [[0, 3], [1, 3], [1, 4], [0, 4]]\n"
+                    "    initial_stress: [1, 2, 3]\n"
+                    "  - material: rock\n") +
+           "in_situ_stress:\n"
+           "  stress: [-1e6, -2e6, 1e5]\n"
+           "  stress_gradient: [1e4, 2e4, 0]\n"
+           "  reference_y: 4\n");
+  const dda::InSituStress& s = scene.model.in_situ_stress;
+  EXPECT_EQ(s.stress, dda::Voigt(-1e6, -2e6, 1e5));
+  EXPECT_EQ(s.gradient, dda::Voigt(1e4, 2e4, 0));
+  EXPECT_EQ(s.reference_y, 4.0);
+  ASSERT_EQ(scene.model.blocks.size(), 7u);
+  EXPECT_EQ(scene.model.blocks[0].initial_stress, dda::Voigt(1, 2, 3)); // explicit
+  // Grid cell (1, 1): centroid (1.5, 1.5), 2.5 m below reference_y.
+  const dda::Voigt expected(-1e6 - 2.5e4, -2e6 - 5e4, 1e5);
+  EXPECT_NEAR((scene.model.blocks[5].initial_stress - expected).norm(), 0.0, 1e-6);
+  const dda::BoundaryDescription& b = scene.model.boundaries[0];
+  EXPECT_TRUE(b.has_input);
+  EXPECT_EQ(b.input.type, dda::BoundaryInput::Type::p);
+  EXPECT_NEAR(b.input.velocity.value(0.005), 0.1, 1e-12);
+}
+
 TEST_F(SceneTest, EdgeIndicesCountGridCellsAndTheAnticlockwisePolygon)
 {
   // A clockwise triangle after a 2-cell grid: block 2, its edges numbered anticlockwise.
