@@ -80,6 +80,10 @@ void describe_rock_mass(const Scene& scene, std::ostream& out)
   out << "  rock mass: " << s.n_traces << " joint traces, sliver threshold " << format(s.min_area)
       << " m^2, " << s.n_merged << " slivers merged, " << s.n_reported << " kept, "
       << s.n_island_cuts << " vertical cuts around enclosed islands\n";
+  out << "  rock mass: shortest edge " << format(s.shortest_edge) << " m (edges below "
+      << format(s.min_edge_length) << " m collapsed: " << s.n_collapsed_edges
+      << ", left: " << s.n_short_edges << "), " << s.n_straight_vertices
+      << " straight vertices removed\n";
   for (const dda::Sliver& sliver : r.slivers)
     out << "  sliver kept: " << scene.model.blocks[sliver.block].origin << " at ("
         << format(sliver.centroid.x()) << ", " << format(sliver.centroid.y()) << ") m, area "
@@ -702,8 +706,12 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
     const std::size_t first_step = system.n_steps();
     if (stage.mode == dda::StageMode::static_equilibrium)
     {
-      // Equilibrium: out-of-balance forces below tolerance x the applied ones.
-      dda::TimeStepper stepper(system, time, stage.dt);
+      // Equilibrium: out-of-balance forces below tolerance x the applied ones. The pseudo time
+      // step is cut and grown back whatever time.control says: it has no physical meaning, and
+      // a held far field (coupled scenes) needs no flexibility per dt.
+      dda::TimeSettings pseudo_time = time;
+      pseudo_time.control = dda::TimeControl::adaptive;
+      dda::TimeStepper stepper(system, pseudo_time, stage.dt);
       bool converged = false;
       double last_ratio = 0.0;
       for (std::size_t k = 0; k < stage.max_steps && !converged; ++k)

@@ -162,11 +162,6 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
   const dda::RockMassResult blocks = dda::generate_blocks(d);
   plan.n_blocks = blocks.blocks.size();
   plan.mean_block_size = std::sqrt(blocks.statistics.mean_area);
-  double shortest_edge = std::numeric_limits<double>::infinity();
-  for (const dda::RockMassBlock& b : blocks.blocks)
-    for (std::size_t k = 0; k < b.vertices.size(); ++k)
-      shortest_edge =
-          std::min(shortest_edge, (b.vertices[(k + 1) % b.vertices.size()] - b.vertices[k]).norm());
 
   // The rock mass's modulus where the far field meets the blocks (coupling/README.md).
   const double tolerance = 1e-9 * (plan.near_upper - plan.near_lower).norm();
@@ -195,10 +190,11 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
   plan.vs = std::sqrt(e / (2.0 * rho * (1.0 + nu)));
   plan.wave_speed = t.wave_type == "p" ? plan.vp : plan.vs;
   why.push_back("blocks: " + std::to_string(plan.n_blocks) + ", mean size " +
-                str(plan.mean_block_size) + " m, shortest edge " + str(shortest_edge) +
-                " m; rock mass E_eff " + str(plan.rock_mass_modulus) + " Pa (intact " +
-                str(t.youngs_modulus) + " Pa with the joints behind the near field's edge): VP " +
-                str(plan.vp) + " m/s, VS " + str(plan.vs) + " m/s");
+                str(plan.mean_block_size) + " m, shortest edge " +
+                str(blocks.statistics.shortest_edge) + " m; rock mass E_eff " +
+                str(plan.rock_mass_modulus) + " Pa (intact " + str(t.youngs_modulus) +
+                " Pa with the joints behind the near field's edge): VP " + str(plan.vp) +
+                " m/s, VS " + str(plan.vs) + " m/s");
   const double wavelength = plan.vs / t.max_frequency;
   why.push_back("shortest S wavelength " + str(wavelength) + " m at " + str(t.max_frequency) +
                 " Hz: " + str(wavelength / plan.mean_block_size) + " blocks per wavelength");

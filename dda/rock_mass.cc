@@ -14,6 +14,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -86,6 +87,13 @@ Point rounded(const ExactPoint& p)
 {
   const auto& e = CGAL::exact(p);
   return Point(CGAL::to_double(e.x()), CGAL::to_double(e.y()));
+}
+
+/// The point in double from its interval approximation, without computing it exactly: for
+/// tolerances far above rounding.
+Point approximate(const ExactPoint& p)
+{
+  return Point(CGAL::to_double(p.x()), CGAL::to_double(p.y()));
 }
 
 /// Unit vector at `degrees` from +x, exact for multiples of 90 degrees (so that sets at 0 and
@@ -626,19 +634,377 @@ std::size_t merge_pass(Arrangement& arrangement, const SliverCriteria& criteria)
   return n_merged;
 }
 
+// ---- Short edges and straight vertices ---------------------------------------------------------
+
+/// The thresholds of tidy().
+struct EdgeCriteria
+{
+  double min_length = 0.0;     ///< edges shorter than this are collapsed [m]
+  double straight_angle = 0.0; ///< vertices within this of 180 degrees are straight [rad]
+};
+
+/// What one tidy() did.
+struct TidyCounts
+{
+  std::size_t n_collapsed = 0; ///< short edges collapsed
+  std::size_t n_straight = 0;  ///< straight vertices removed
+  bool changed() const { return n_collapsed + n_straight > 0; }
+};
+
+/// Whether an edge lies on the region's or an opening's boundary: those stay where they are.
+bool on_boundary(Halfedge h)
+{
+  return std::any_of(h->curve().data().begin(), h->curve().data().end(),
+                     [](const CurveSource& s) {
+                       return s.kind == CurveSource::Kind::region ||
+                              s.kind == CurveSource::Kind::opening;
+                     });
+}
+
+/// Where a vertex may move so that the region's and the openings' boundaries keep their shape:
+/// anywhere (free), along the one boundary line it lies on (line through p and q), or nowhere
+/// (point p: a corner of the region or an opening, or where two boundaries cross).
+struct Pin
+{
+  enum class Kind
+  {
+    free,
+    line,
+    point
+  };
+  Kind kind = Kind::free;
+  ExactPoint p, q;
+
+  bool holds(const ExactPoint& x) const { return CGAL::collinear(p, q, x); }
+};
+
+/// The pin of a vertex, from the boundary edges at it.
+Pin pin_of(Arrangement::Vertex_handle v)
+{
+  Pin pin;
+  if (v->is_isolated())
+    return pin;
+  auto h = v->incident_halfedges();
+  const auto first = h;
+  do
+  {
+    if (!on_boundary(h))
+      continue;
+    const ExactPoint& other = h->source()->point();
+    if (pin.kind == Pin::Kind::free)
+      pin = {Pin::Kind::line, v->point(), other};
+    else if (pin.kind == Pin::Kind::line && !pin.holds(other))
+      pin = {Pin::Kind::point, v->point(), v->point()};
+  } while (++h != first);
+  return pin;
+}
+
+/// The pin of a set of vertices merged into one: the stricter of the two, or none if they
+/// contradict (two corners, two different lines, a corner off the other's line).
+std::optional<Pin> combine(const Pin& a, const Pin& b)
+{
+  if (a.kind == Pin::Kind::free)
+    return b;
+  if (b.kind == Pin::Kind::free)
+    return a;
+  if (a.kind == Pin::Kind::point && b.kind == Pin::Kind::point)
+    return std::nullopt;
+  if (a.kind == Pin::Kind::point)
+    return b.holds(a.p) ? std::optional<Pin>(a) : std::nullopt;
+  if (b.kind == Pin::Kind::point)
+    return a.holds(b.p) ? std::optional<Pin>(b) : std::nullopt;
+  return a.holds(b.p) && a.holds(b.q) ? std::optional<Pin>(a) : std::nullopt;
+}
+
+/// An edge of the arrangement, by the indices of its vertices.
+struct GraphEdge
+{
+  std::size_t a = 0, b = 0;
+  Halfedge h;
+  bool at_block = false; ///< a block on one side
+};
+
+/// An edge after the moves: the arrangement's edge it still is (if any) and what it lies on.
+struct MovedEdge
+{
+  std::optional<Halfedge> unchanged;
+  std::vector<CurveSource> sources;
+};
+
+void add_sources(std::vector<CurveSource>& to, const std::vector<CurveSource>& from)
+{
+  for (const CurveSource& s : from)
+    if (std::find(to.begin(), to.end(), s) == to.end())
+      to.push_back(s);
+}
+
+std::vector<CurveSource> sources(Halfedge h)
+{
+  return {h->curve().data().begin(), h->curve().data().end()};
+}
+
+/// Removes the edges with one face on both sides that lie on no boundary: dangling traces, and
+/// traces that join an island to the face around it. They bound no block.
+void remove_dangling_edges(Arrangement& arrangement)
+{
+  std::vector<Halfedge> dangling;
+  for (auto e = arrangement.edges_begin(); e != arrangement.edges_end(); ++e)
+    if (e->face() == e->twin()->face() && !on_boundary(e))
+      dangling.push_back(e);
+  for (const Halfedge h : dangling)
+    arrangement.remove_edge(h);
+}
+
+/// Moves vertices of the arrangement so that no block edge is shorter than min_length, and
+/// removes the straight vertices where only two faces meet. A vertex is shared by every face
+/// around it, so each change is the same for all of them: no gap, no overlap. Only the edges
+/// that change are taken out and put in again, exactly: a crossing that a move makes becomes a
+/// vertex, a face folded over becomes a small face that the next call or the sliver merge
+/// removes. The faces must be classified; they must be again if anything changed.
+///
+/// 1. Dangling edges are removed (they bound no block).
+/// 2. Each edge shorter than min_length with a block on one side, shortest first, joins its two
+///    vertices' clusters (union-find) unless their pins contradict (see Pin). Every vertex of a
+///    cluster moves to the member that satisfies the cluster's pin and is nearest to all the
+///    others. The region's and the openings' boundaries keep their shape: their corners stay,
+///    and vertices on them move along them.
+/// 3. A free vertex with two edges whose angle is within straight_angle of 180 degrees is
+///    removed (both faces agree: it is straight on both sides); its two edges become one.
+TidyCounts tidy(Arrangement& arrangement, const EdgeCriteria& criteria)
+{
+  remove_dangling_edges(arrangement);
+
+  using Vertex = Arrangement::Vertex_handle;
+  std::map<Vertex, std::size_t> index;
+  std::vector<ExactPoint> points;
+  std::vector<Vertex> vertices;
+  std::vector<Pin> pins; // exact for the ends of short edges; else free or not (kind point)
+  for (auto v = arrangement.vertices_begin(); v != arrangement.vertices_end(); ++v)
+  {
+    index[v] = points.size();
+    vertices.push_back(v);
+    points.push_back(v->point());
+    Pin pin;
+    if (!v->is_isolated())
+    {
+      auto h = v->incident_halfedges();
+      const auto first = h;
+      do
+        if (on_boundary(h))
+          pin.kind = Pin::Kind::point;
+      while (++h != first);
+    }
+    pins.push_back(pin);
+  }
+  std::vector<GraphEdge> edges;
+  for (auto e = arrangement.edges_begin(); e != arrangement.edges_end(); ++e)
+  {
+    const Face f = e->face(), g = e->twin()->face();
+    edges.push_back({index[e->source()], index[e->target()], e,
+                     f != g && (f->data().block || g->data().block)});
+  }
+
+  // 2. Clusters of the short edges' vertices.
+  std::vector<Point> near; // the vertices in double
+  for (const ExactPoint& p : points)
+    near.push_back(approximate(p));
+  const double min_squared = criteria.min_length * criteria.min_length;
+  const auto squared_length = [&](std::size_t a, std::size_t b)
+  { return (near[a] - near[b]).squaredNorm(); };
+  std::vector<std::pair<double, std::size_t>> short_edges; // (squared length, edge)
+  for (std::size_t e = 0; e < edges.size(); ++e)
+  {
+    const double l2 = squared_length(edges[e].a, edges[e].b);
+    if (edges[e].at_block && l2 < min_squared)
+      short_edges.emplace_back(l2, e);
+  }
+  std::sort(short_edges.begin(), short_edges.end());
+  std::vector<bool> pinned_exactly(points.size(), false);
+  for (const auto& [l2, e] : short_edges)
+    for (const std::size_t i : {edges[e].a, edges[e].b})
+      if (pins[i].kind != Pin::Kind::free && !pinned_exactly[i])
+      {
+        pins[i] = pin_of(vertices[i]);
+        pinned_exactly[i] = true;
+      }
+  std::vector<std::size_t> parent(points.size());
+  for (std::size_t i = 0; i < parent.size(); ++i)
+    parent[i] = i;
+  std::vector<Pin> cluster_pin = pins; // valid at the roots
+  const auto root = [&](std::size_t i)
+  {
+    while (parent[i] != i)
+      i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  TidyCounts counts;
+  for (const auto& [l2, e] : short_edges)
+  {
+    const std::size_t a = root(edges[e].a), b = root(edges[e].b);
+    if (a == b)
+      continue;
+    const std::optional<Pin> pin = combine(cluster_pin[a], cluster_pin[b]);
+    if (!pin)
+      continue; // stays short: RockMassStatistics::n_short_edges
+    parent[b] = a;
+    cluster_pin[a] = *pin;
+    ++counts.n_collapsed;
+  }
+  // Each cluster moves to the member that satisfies its pin and is nearest to all the others.
+  std::vector<std::size_t> target(points.size());
+  std::map<std::size_t, std::vector<std::size_t>> clusters;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    target[i] = i;
+    clusters[root(i)].push_back(i);
+  }
+  for (const auto& [r, members] : clusters)
+  {
+    if (members.size() == 1)
+      continue;
+    const Pin& pin = cluster_pin[r];
+    double best_reach = std::numeric_limits<double>::infinity();
+    std::size_t best = r;
+    for (const std::size_t m : members)
+    {
+      if (pins[m].kind != pin.kind)
+        continue; // a free member of a pinned cluster, or a line member of a cornered one
+      double reach = 0.0;
+      for (const std::size_t other : members)
+        reach = std::max(reach, squared_length(m, other));
+      if (reach < best_reach)
+      {
+        best_reach = reach;
+        best = m;
+      }
+    }
+    for (const std::size_t m : members)
+      target[m] = best;
+  }
+
+  // The edges after the moves; edges that now join the same two vertices become one.
+  using Key = std::pair<std::size_t, std::size_t>;
+  const auto key = [](std::size_t a, std::size_t b) { return Key(std::min(a, b), std::max(a, b)); };
+  std::map<Key, MovedEdge> moved;
+  std::vector<std::vector<std::size_t>> neighbours(points.size());
+  for (const GraphEdge& edge : edges)
+  {
+    const std::size_t a = target[edge.a], b = target[edge.b];
+    if (a == b)
+      continue;
+    const auto [it, inserted] = moved.try_emplace(key(a, b));
+    add_sources(it->second.sources, sources(edge.h));
+    if (a == edge.a && b == edge.b)
+      it->second.unchanged = edge.h;
+    if (inserted)
+    {
+      neighbours[a].push_back(b);
+      neighbours[b].push_back(a);
+    }
+  }
+
+  // 3. Straight free vertices between two edges.
+  const double sin_straight = std::sin(criteria.straight_angle);
+  const auto unlink = [&](std::size_t a, std::size_t b)
+  {
+    std::vector<std::size_t>& n = neighbours[a];
+    n.erase(std::find(n.begin(), n.end(), b));
+  };
+  std::vector<std::size_t> candidates(points.size());
+  for (std::size_t i = 0; i < candidates.size(); ++i)
+    candidates[i] = i;
+  while (!candidates.empty())
+  {
+    const std::size_t v = candidates.back();
+    candidates.pop_back();
+    if (pins[v].kind != Pin::Kind::free || neighbours[v].size() != 2)
+      continue;
+    const std::size_t a = neighbours[v][0], b = neighbours[v][1];
+    const Vector2 in = near[v] - near[a], out = near[b] - near[v];
+    const double sine = in.x() * out.y() - in.y() * out.x();
+    if (in.dot(out) <= 0.0 || std::abs(sine) > sin_straight * in.norm() * out.norm())
+      continue;
+    std::vector<CurveSource> joined = moved[key(a, v)].sources;
+    add_sources(joined, moved[key(v, b)].sources);
+    moved.erase(key(a, v));
+    moved.erase(key(v, b));
+    unlink(a, v);
+    unlink(b, v);
+    neighbours[v].clear();
+    const auto [it, inserted] = moved.try_emplace(key(a, b));
+    add_sources(it->second.sources, joined);
+    if (inserted)
+    {
+      neighbours[a].push_back(b);
+      neighbours[b].push_back(a);
+    }
+    candidates.push_back(a); // their angles changed
+    candidates.push_back(b);
+    ++counts.n_straight;
+  }
+  if (!counts.changed())
+    return counts;
+
+  // Out with the edges that changed, in with what replaces them (an unchanged edge that a
+  // moved one now runs along only gains its sources).
+  std::vector<Traits::Curve_2> curves;
+  std::set<Halfedge> kept;
+  for (const auto& [ab, edge] : moved)
+  {
+    const Segment segment(points[ab.first], points[ab.second]);
+    std::vector<CurveSource> add = edge.sources;
+    if (edge.unchanged)
+    {
+      kept.insert(*edge.unchanged);
+      const std::vector<CurveSource> has = sources(*edge.unchanged);
+      add.erase(std::remove_if(add.begin(), add.end(),
+                               [&](const CurveSource& s)
+                               { return std::find(has.begin(), has.end(), s) != has.end(); }),
+                add.end());
+    }
+    for (const CurveSource& s : add)
+      curves.emplace_back(segment, s);
+  }
+  for (const GraphEdge& edge : edges)
+    if (!kept.count(edge.h))
+      arrangement.remove_edge(edge.h);
+  // One at a time (a walk through the faces each curve crosses) unless they are many: the
+  // aggregated insertion sweeps the whole arrangement.
+  if (10 * curves.size() < arrangement.number_of_edges())
+    for (const Traits::Curve_2& c : curves)
+      CGAL::insert(arrangement, c);
+  else
+    CGAL::insert(arrangement, curves.begin(), curves.end());
+  return counts;
+}
+
 // ---- Blocks ------------------------------------------------------------------------------------
 
 /// Drops vertices between two collinear edges (where a neighbour's vertex or a dangling trace
-/// met the edge), exactly.
-std::vector<ExactPoint> without_collinear_vertices(std::vector<ExactPoint> points)
+/// met the edge): exactly collinear, or within `tolerance` [m] of the line through the vertices
+/// on either side and between them. The tolerance is of the order of rounding: a vertex that
+/// tidy() moved by a rounding error (onto a corner of an opening that a joint missed by 1e-16
+/// m) bends the joints through it by as much, and the vertex is straight to rounding in the
+/// blocks on the outer side of the bend (their neighbours keep it, as where a joint ends on
+/// an edge).
+std::vector<ExactPoint> without_collinear_vertices(std::vector<ExactPoint> points, double tolerance)
 {
+  const auto straight = [&](const ExactPoint& a, const ExactPoint& v, const ExactPoint& b)
+  {
+    if (CGAL::collinear(a, v, b))
+      return true;
+    const Point pa = approximate(a), pv = approximate(v), pb = approximate(b);
+    const Vector2 chord = pb - pa, leg = pv - pa;
+    return leg.dot(chord) > 0.0 && (pb - pv).dot(chord) > 0.0 &&
+           std::abs(chord.x() * leg.y() - chord.y() * leg.x()) <= tolerance * chord.norm();
+  };
   for (bool changed = true; changed && points.size() > 3;)
   {
     changed = false;
     for (std::size_t i = 0; i < points.size() && points.size() > 3;)
     {
       const std::size_t n = points.size();
-      if (CGAL::collinear(points[(i + n - 1) % n], points[i], points[(i + 1) % n]))
+      if (straight(points[(i + n - 1) % n], points[i], points[(i + 1) % n]))
       {
         points.erase(points.begin() + static_cast<std::ptrdiff_t>(i));
         changed = true;
@@ -651,7 +1017,7 @@ std::vector<ExactPoint> without_collinear_vertices(std::vector<ExactPoint> point
 }
 
 /// The block of a block face whose boundary is one simple loop (as settle() leaves them).
-RockMassBlock make_block(Face f)
+RockMassBlock make_block(Face f, double straight_tolerance)
 {
   const std::vector<std::vector<Halfedge>> loops = boundary_loops(f);
   if (loops.size() != 1)
@@ -691,7 +1057,7 @@ RockMassBlock make_block(Face f)
     list->erase(std::unique(list->begin(), list->end()), list->end());
   }
 
-  points = without_collinear_vertices(std::move(points));
+  points = without_collinear_vertices(std::move(points), straight_tolerance);
   // Start at the lowest vertex (smallest y, then x).
   std::rotate(points.begin(),
               std::min_element(points.begin(), points.end(),
@@ -757,6 +1123,12 @@ void check_description(const RockMassDescription& d)
     expect(d.joints[j].from != d.joints[j].to,
            "joint " + std::to_string(j) + " starts and ends at " + format_point(d.joints[j].from) +
                ": expected two different points");
+  if (d.min_edge_length)
+    expect(*d.min_edge_length >= 0.0 && std::isfinite(*d.min_edge_length),
+           "min_edge_length = " + format_number(*d.min_edge_length) + " m: expected >= 0");
+  expect(d.straight_angle >= 0.0 && d.straight_angle < 90.0,
+         "straight_angle = " + format_number(d.straight_angle) +
+             " deg: expected an angle in [0, 90)");
   expect(d.chord_tolerance > 0.0,
          "chord_tolerance = " + format_number(d.chord_tolerance) + " m: expected > 0");
   for (std::size_t k = 0; k < d.openings.size(); ++k)
@@ -773,6 +1145,36 @@ void check_description(const RockMassDescription& d)
            name + "not a simple polygon: expected at least 3 vertices, no self-intersection and "
                   "a non-zero area");
   }
+}
+
+/// Rounds of tidy() and sliver merging at most (two or three are usual).
+constexpr std::size_t max_tidy_rounds = 16;
+
+/// The region's extent in x or y, the larger [m].
+double extent(const std::vector<Point>& region)
+{
+  Point lower = region.front(), upper = region.front();
+  for (const Point& v : region)
+  {
+    lower = lower.cwiseMin(v);
+    upper = upper.cwiseMax(v);
+  }
+  return (upper - lower).maxCoeff();
+}
+
+/// A few hundred rounding errors of the region's coordinates [m]: a vertex this close to the
+/// line between its neighbours is straight (see without_collinear_vertices).
+double rounding_tolerance(const RockMassDescription& d)
+{
+  return 1e-14 * extent(d.region);
+}
+
+/// The shortest block edge [m] (see RockMassDescription::min_edge_length).
+double min_edge_length(const RockMassDescription& d, double mean_spacing)
+{
+  const double wanted =
+      d.min_edge_length.value_or(d.joint_sets.empty() ? d.chord_tolerance : 0.01 * mean_spacing);
+  return std::max(wanted, 1e-9 * extent(d.region));
 }
 
 /// Fewest chords for `angle` [rad] of arc of radius r such that each stays within `tolerance`
@@ -851,17 +1253,34 @@ RockMassResult generate_blocks(const RockMassDescription& d)
       d.slivers.min_area.value_or(d.slivers.min_area_fraction * mean_spacing * mean_spacing),
       d.slivers.min_inscribed_radius};
   stats.min_area = criteria.min_area;
-  if (d.slivers.action == SliverAction::merge)
-    while (const std::size_t n = merge_pass(arrangement, criteria))
-    {
-      stats.n_merged += n;
+  const EdgeCriteria edge_criteria{min_edge_length(d, mean_spacing),
+                                   d.straight_angle * M_PI / 180.0};
+  stats.min_edge_length = edge_criteria.min_length;
+  // Short edges and slivers, until neither changes anything: a collapse may fold a small face
+  // over, a merge may leave a straight vertex.
+  for (std::size_t round = 0; round < max_tidy_rounds; ++round)
+  {
+    const TidyCounts tidied = tidy(arrangement, edge_criteria);
+    stats.n_collapsed_edges += tidied.n_collapsed;
+    stats.n_straight_vertices += tidied.n_straight;
+    if (tidied.changed())
       stats.n_island_cuts += settle(arrangement, n_openings);
-    }
+    std::size_t n_merged = 0;
+    if (d.slivers.action == SliverAction::merge)
+      while (const std::size_t n = merge_pass(arrangement, criteria))
+      {
+        n_merged += n;
+        stats.n_island_cuts += settle(arrangement, n_openings);
+      }
+    stats.n_merged += n_merged;
+    if (!tidied.changed() && n_merged == 0)
+      break;
+  }
 
   Kernel::FT excavated = 0;
   for (auto f = arrangement.faces_begin(); f != arrangement.faces_end(); ++f)
     if (f->data().block)
-      result.blocks.push_back(make_block(f));
+      result.blocks.push_back(make_block(f, rounding_tolerance(d)));
     else if (f->data().in_region)
       excavated += face_area(f);
   std::vector<ExactPoint> exact_region;
@@ -900,6 +1319,14 @@ RockMassResult generate_blocks(const RockMassDescription& d)
       stats.total_area += b.area;
     }
     stats.mean_area = stats.total_area / static_cast<double>(stats.n_blocks);
+    stats.shortest_edge = std::numeric_limits<double>::infinity();
+    for (const RockMassBlock& b : result.blocks)
+      for (std::size_t k = 0; k < b.vertices.size(); ++k)
+      {
+        const double l = (b.vertices[(k + 1) % b.vertices.size()] - b.vertices[k]).norm();
+        stats.shortest_edge = std::min(stats.shortest_edge, l);
+        stats.n_short_edges += l < stats.min_edge_length;
+      }
   }
   return result;
 }

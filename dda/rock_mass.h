@@ -6,6 +6,19 @@
 // inside the region and outside every opening. Joint traces that end inside a face (the tips of
 // non-persistent joints) are dangling edges of that face: they are left out of its polygon, so
 // the rock between collinear traces (the bridge) stays intact.
+//
+// Exact arithmetic on rounded input keeps coincidences that hold only in real numbers apart: a
+// joint through the centre of a circular opening passes a corner of its polygon at 1e-16 m
+// (both were rounded to double), and the exact arrangement keeps the 2e-16 m edge between the
+// corner and the crossing. Joints that cross close to each other, to a corner or to the region's
+// boundary leave short edges too, and merged slivers leave nearly straight vertices. DDA bounds
+// each step's displacement by a tenth of the shortest edge, so generate_blocks treats the
+// arrangement before it makes blocks (min_edge_length, straight_angle): it collapses every edge
+// shorter than min_edge_length by merging its two vertices into one (the vertex is shared by all
+// the faces around it, so neighbours move together: no gap, no overlap), keeping the region's
+// and the openings' boundaries in place (their corners stay, vertices on them slide along
+// them), and it removes vertices where only two blocks meet and both are straight within
+// straight_angle.
 #pragma once
 
 #include "dda/types.h"
@@ -115,6 +128,13 @@ struct RockMassDescription
   double chord_tolerance = 0.01;
   std::uint64_t seed = 0; ///< of the random perturbations
   SliverSettings slivers;
+  /// No block edge is shorter [m], >= 0 (see generate_blocks); none: 0.01 x the mean spacing of
+  /// the joint sets, or chord_tolerance without sets. Never below 1e-9 x the region's extent:
+  /// shorter edges are rounding artefacts.
+  std::optional<double> min_edge_length;
+  /// A vertex where only two blocks meet is removed when its angle is within this of 180
+  /// degrees [deg], in [0, 90): the contacts' angle tolerance treats it as straight anyway.
+  double straight_angle = 1.0;
 };
 
 /// One generated block.
@@ -156,6 +176,14 @@ struct RockMassStatistics
   /// Vertical cuts added so that no block encloses an opening or other blocks (a block must be
   /// a simple polygon): two per enclosed island, from its top and bottom to the block boundary.
   std::size_t n_island_cuts = 0;
+  double min_edge_length = 0.0;        ///< the short-edge threshold used [m]
+  double shortest_edge = 0.0;          ///< of all blocks, after rounding [m]
+  std::size_t n_collapsed_edges = 0;   ///< short edges collapsed (their ends made one vertex)
+  std::size_t n_straight_vertices = 0; ///< straight vertices between two blocks removed
+  /// Block edges still shorter than min_edge_length (one count per block that has it): only
+  /// where both ends are pinned to the region's or the openings' boundaries, e.g. a corner of an
+  /// opening closer than min_edge_length to the region's boundary.
+  std::size_t n_short_edges = 0;
 };
 
 struct RockMassResult
@@ -176,6 +204,22 @@ std::vector<Point> opening_polygon(const Opening& opening, double chord_toleranc
 /// The blocks of a rock mass (see the file comment). Throws InputError for a description that
 /// cannot be generated (non-positive spacing, a region or opening that is not a simple polygon,
 /// a block whose boundary touches itself, ...).
+///
+/// After the faces are classified and islands cut, rounds of (a) short-edge and straight-vertex
+/// treatment and (b) sliver merging repeat until neither changes anything (a collapse can fold
+/// a small face over, which the next round removes; a merge can leave a straight vertex):
+/// 1. Each edge shorter than min_edge_length with a block on one side, shortest first, joins its
+///    vertices into one cluster unless they are pinned apart: a corner of the region or an
+///    opening (or where two boundaries cross) cannot move; a vertex on one boundary line moves
+///    only along it. Each cluster moves to its member that satisfies its pin and is nearest to
+///    the others; only the edges that moved are taken out of the arrangement and put in again,
+///    exactly. The blocks' areas still add up to the region minus the openings.
+/// 2. A vertex off the boundaries where only two faces meet, straight within straight_angle on
+///    both sides, is removed: its two edges become one for both blocks.
+/// Edges left shorter than the threshold (both ends pinned, e.g. an opening's corner near the
+/// region's boundary) are counted in RockMassStatistics::n_short_edges. A vertex that a
+/// rounding-sized move left straight to rounding (within 1e-14 of the region's extent) in one
+/// block is dropped from that block only, as where a neighbour's vertex meets its edge.
 RockMassResult generate_blocks(const RockMassDescription& description);
 
 } // namespace ddafem::dda

@@ -1,4 +1,5 @@
-// Rock mass generation: areas, overlaps, joint spacing, persistence, openings, slivers, seeds.
+// Rock mass generation: areas, overlaps, joint spacing, persistence, openings, slivers, seeds,
+// short edges and straight vertices.
 #include "common/input_error.h"
 #include "dda/geometry.h"
 #include "dda/rock_mass.h"
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <random>
 
 using namespace ddafem::dda;
@@ -45,6 +47,14 @@ Opening circle(const Point& center, double radius)
   o.center = center;
   o.radius = radius;
   return o;
+}
+
+double mean_spacing(const RockMassDescription& d)
+{
+  double sum = 0.0;
+  for (const JointSet& set : d.joint_sets)
+    sum += set.spacing;
+  return sum / static_cast<double>(d.joint_sets.size());
 }
 
 double sum_of_areas(const RockMassResult& r)
@@ -87,6 +97,116 @@ RockMassDescription tunnel_scene()
   triangle.vertices = {{-15, 10}, {-9, 12}, {-14, 16}};
   d.openings = {circle({0, 0}, 4), horseshoe, triangle};
   return d;
+}
+
+/// Pairs of blocks whose bounding boxes overlap.
+std::vector<std::pair<std::size_t, std::size_t>> nearby_pairs(const RockMassResult& r)
+{
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < r.blocks.size(); ++i)
+    for (std::size_t j = i + 1; j < r.blocks.size(); ++j)
+    {
+      const std::vector<Point>&a = r.blocks[i].vertices, &b = r.blocks[j].vertices;
+      const auto [ax0, ax1] = extent(a, {1, 0});
+      const auto [bx0, bx1] = extent(b, {1, 0});
+      const auto [ay0, ay1] = extent(a, {0, 1});
+      const auto [by0, by1] = extent(b, {0, 1});
+      if (!(ax1 < bx0 || bx1 < ax0 || ay1 < by0 || by1 < ay0))
+        pairs.emplace_back(i, j);
+    }
+  return pairs;
+}
+
+/// The blocks tile the region without the openings along matching edges: every stretch of every
+/// block edge is shared (collinear, opposite direction, as dda::find_joints pairs them) with
+/// another block's edge, the region's boundary or an opening's. With the areas adding up this
+/// leaves no gap and no overlap.
+void expect_matching_edges(const RockMassResult& r, const std::vector<Point>& region)
+{
+  const double tol = 1e-9;
+  std::vector<Point> clockwise_region = region;
+  if (signed_area(clockwise_region) > 0.0)
+    std::reverse(clockwise_region.begin(), clockwise_region.end());
+  std::vector<std::vector<double>> covered(r.blocks.size());
+  for (std::size_t i = 0; i < r.blocks.size(); ++i)
+  {
+    covered[i].assign(r.blocks[i].vertices.size(), 0.0);
+    const auto cover = [&](const std::vector<Point>& other)
+    {
+      for (const SharedSegment& s : shared_segments(r.blocks[i].vertices, other, tol))
+        covered[i][s.a_edge] += (s.q - s.p).norm();
+    };
+    cover(clockwise_region);
+    for (const std::vector<Point>& o : r.openings)
+      cover(o);
+  }
+  for (const auto& [i, j] : nearby_pairs(r))
+    for (const SharedSegment& s : shared_segments(r.blocks[i].vertices, r.blocks[j].vertices, tol))
+    {
+      covered[i][s.a_edge] += (s.q - s.p).norm();
+      covered[j][s.b_edge] += (s.q - s.p).norm();
+    }
+  for (std::size_t i = 0; i < r.blocks.size(); ++i)
+  {
+    const std::vector<Point>& v = r.blocks[i].vertices;
+    for (std::size_t k = 0; k < v.size(); ++k)
+      EXPECT_NEAR(covered[i][k], (v[(k + 1) % v.size()] - v[k]).norm(), 1e-9)
+          << "block " << i << " edge " << k << " from " << v[k].transpose();
+  }
+}
+
+/// Shortest edge of any block [m].
+double shortest_edge(const RockMassResult& r)
+{
+  double shortest = std::numeric_limits<double>::infinity();
+  for (const RockMassBlock& b : r.blocks)
+    for (std::size_t k = 0; k < b.vertices.size(); ++k)
+      shortest =
+          std::min(shortest, (b.vertices[(k + 1) % b.vertices.size()] - b.vertices[k]).norm());
+  return shortest;
+}
+
+/// Largest overlap of two blocks, or of a block and an opening [m^2].
+double largest_overlap(const RockMassResult& r)
+{
+  double largest = 0.0;
+  for (const auto& [i, j] : nearby_pairs(r))
+    largest = std::max(largest, overlap_area(r.blocks[i].vertices, r.blocks[j].vertices));
+  for (const RockMassBlock& b : r.blocks)
+    for (const std::vector<Point>& o : r.openings)
+      largest = std::max(largest, overlap_area(b.vertices, o));
+  return largest;
+}
+
+/// Vertices off the region's and the openings' boundaries where every block that has them is
+/// straight within `degrees` of 180 (both blocks at a vertex only two blocks share): tidy()
+/// removes them.
+std::size_t n_straight_vertices(const RockMassResult& r, const std::vector<Point>& region,
+                                double degrees)
+{
+  std::map<std::pair<double, double>, bool> all_straight; // by position
+  for (const RockMassBlock& b : r.blocks)
+  {
+    const std::vector<Point>& v = b.vertices;
+    for (std::size_t k = 0; k < v.size(); ++k)
+    {
+      const Vector2 in = v[k] - v[(k + v.size() - 1) % v.size()];
+      const Vector2 out = v[(k + 1) % v.size()] - v[k];
+      const double turn = std::atan2(in.x() * out.y() - in.y() * out.x(), in.dot(out));
+      const auto [it, inserted] = all_straight.try_emplace({v[k].x(), v[k].y()}, true);
+      it->second = it->second && std::abs(turn) <= degrees * M_PI / 180.0;
+    }
+  }
+  std::size_t n = 0;
+  for (const auto& [position, straight] : all_straight)
+  {
+    const Point p(position.first, position.second);
+    bool on_boundary = locate_point(region, p, 1e-9) == PointLocation::on_boundary;
+    for (const std::vector<Point>& o : r.openings)
+      on_boundary = on_boundary || locate_point(o, p, 1e-9) == PointLocation::on_boundary;
+    n += straight && !on_boundary;
+  }
+  return n;
 }
 
 /// Every block simple, anticlockwise and without a vertex between two collinear edges.
@@ -507,7 +627,9 @@ TEST(RockMass, RandomRockMassesGiveValidBlocks)
   std::mt19937_64 random(12345);
   const auto uniform = [&](double lo, double hi)
   { return std::uniform_real_distribution<double>(lo, hi)(random); };
-  std::size_t n_blocks = 0, n_cuts = 0, n_merged = 0;
+  std::size_t n_blocks = 0, n_cuts = 0, n_merged = 0, n_collapsed = 0, n_straight = 0;
+  double seconds = 0.0, largest = 0.0;
+  double shortest_ratio = std::numeric_limits<double>::infinity();
   for (int trial = 0; trial < 40; ++trial)
   {
     SCOPED_TRACE("trial " + std::to_string(trial));
@@ -551,17 +673,123 @@ TEST(RockMass, RandomRockMassesGiveValidBlocks)
     d.slivers.action = trial % 2 ? SliverAction::merge : SliverAction::report;
     d.seed = static_cast<std::uint64_t>(trial);
 
+    const auto start = std::chrono::steady_clock::now();
     const RockMassResult r = generate_blocks(d);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     // Openings may reach out of a star-shaped region: only what lies inside is excavated.
     double expected = std::abs(signed_area(d.region));
     for (const std::vector<Point>& o : r.openings)
       expected -= overlap_area(o, d.region);
     EXPECT_NEAR(sum_of_areas(r), expected, 1e-9 * expected);
     expect_valid_polygons(r);
+    expect_matching_edges(r, d.region);
+    // Rounding only: a vertex moves by an ulp of 14 m across an edge at most 30 m long.
+    const double overlap = largest_overlap(r);
+    EXPECT_LT(overlap, 30.0 * 14.0 * std::numeric_limits<double>::epsilon());
+    const RockMassStatistics& s = r.statistics;
+    EXPECT_DOUBLE_EQ(s.min_edge_length, 0.01 * mean_spacing(d));
+    EXPECT_GE(s.shortest_edge, s.min_edge_length);
+    EXPECT_EQ(s.shortest_edge, shortest_edge(r));
+    EXPECT_EQ(s.n_short_edges, 0u);
+    EXPECT_EQ(n_straight_vertices(r, d.region, d.straight_angle), 0u);
     n_blocks += r.blocks.size();
     n_cuts += r.statistics.n_island_cuts;
     n_merged += r.statistics.n_merged;
+    n_collapsed += s.n_collapsed_edges;
+    n_straight += s.n_straight_vertices;
+    shortest_ratio = std::min(shortest_ratio, s.shortest_edge / s.min_edge_length);
+    largest = std::max(largest, overlap);
   }
-  std::cout << "40 random rock masses: " << n_blocks << " blocks, " << n_merged << " merges, "
-            << n_cuts << " island cuts\n";
+  std::cout << "40 random rock masses in " << seconds << " s: " << n_blocks << " blocks, "
+            << n_merged << " merges, " << n_cuts << " island cuts, " << n_collapsed
+            << " short edges collapsed, " << n_straight
+            << " straight vertices removed; shortest edge / min_edge_length " << shortest_ratio
+            << "; largest overlap " << largest << " m^2\n";
+}
+
+TEST(RockMass, JointThroughAnOpeningsCornerLeavesNoRoundingEdge)
+{
+  // A set at dip 120 through the centre of an 18-gon (chord_tolerance 0.05 m, radius 3 m) passes
+  // its corners at 120 and 300 degrees in real numbers; rounded apart, the trace crossed a chord
+  // 2e-16 m from the corner (a 2.2e-16 m edge). The corner and the crossing are now one vertex,
+  // and no edge is shorter than 1% of the spacing.
+  RockMassDescription d;
+  d.region = rectangle(-12, -12, 12, 12);
+  d.joint_sets = {persistent_set(30, 3, 0.5), non_persistent_set(120, 3, 9, 2)};
+  d.openings = {circle({0, 0}, 3)};
+  d.chord_tolerance = 0.05;
+  const auto start = std::chrono::steady_clock::now();
+  const RockMassResult r = generate_blocks(d);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const RockMassStatistics& s = r.statistics;
+  std::cout << s.n_blocks << " blocks in " << seconds << " s; shortest edge " << s.shortest_edge
+            << " m (threshold " << s.min_edge_length << " m), " << s.n_collapsed_edges
+            << " short edges collapsed, " << s.n_straight_vertices << " straight vertices removed, "
+            << s.n_merged << " slivers merged\n";
+  ASSERT_EQ(r.openings[0].size(), 18u);
+  EXPECT_DOUBLE_EQ(s.min_edge_length, 0.03);
+  EXPECT_GE(s.shortest_edge, 0.03);
+  EXPECT_EQ(s.shortest_edge, shortest_edge(r));
+  EXPECT_EQ(s.n_short_edges, 0u);
+  EXPECT_GE(s.n_collapsed_edges, 2u);
+  const double expected = 24.0 * 24.0 - signed_area(r.openings[0]);
+  EXPECT_NEAR(sum_of_areas(r), expected, 1e-12 * expected);
+  EXPECT_NEAR(s.total_area, expected, 1e-12 * expected);
+  expect_valid_polygons(r);
+  expect_matching_edges(r, d.region);
+  EXPECT_LT(largest_overlap(r), 10.0 * 12.0 * std::numeric_limits<double>::epsilon());
+  // The opening's corners stay where they were: the trace was moved onto them.
+  for (const Point& corner : r.openings[0])
+    EXPECT_NEAR((corner - Point(0, 0)).norm(), 3.0, 1e-15);
+}
+
+TEST(RockMass, CloseCrossingsAndNearDuplicateTracesAreTidied)
+{
+  // Two sets 0.01 degrees apart from one line 0: their traces cross at the origin and stay
+  // within 4 mm of each other across the region, crossing every trace of the third set and
+  // the region's boundary up to 4 mm apart; merging the thin wedges between them leaves
+  // vertices within 0.01 degrees of straight. Explicit joints cross each other 2 mm apart and
+  // end 1 mm from a corner.
+  RockMassDescription d;
+  d.region = rectangle(-10, -10, 10, 10);
+  d.joint_sets = {persistent_set(30, 2.0), persistent_set(30.01, 2.0), persistent_set(100, 2.5)};
+  d.joints = {{{-10.001, -3}, {4, 10.001}}, {{-9.998, -3}, {4, 9.999}}, {{-10, 9.999}, {3, 0}}};
+  // Thresholds 0: only edges below 1e-9 of the region's extent (rounding) are collapsed.
+  const RockMassDescription untreated = [&]
+  {
+    RockMassDescription u = d;
+    u.min_edge_length = 0.0;
+    u.straight_angle = 0.0;
+    return u;
+  }();
+  const RockMassResult before = generate_blocks(untreated);
+  const RockMassResult r = generate_blocks(d);
+  const RockMassStatistics& s = r.statistics;
+  std::cout << "untreated: " << before.blocks.size() << " blocks, shortest edge "
+            << before.statistics.shortest_edge << " m, "
+            << n_straight_vertices(before, d.region, 1.0)
+            << " straight vertices; treated: " << r.blocks.size() << " blocks, shortest edge "
+            << s.shortest_edge << " m (threshold " << s.min_edge_length << " m), "
+            << s.n_collapsed_edges << " collapsed, " << s.n_straight_vertices
+            << " straight vertices removed\n";
+  EXPECT_LT(before.statistics.shortest_edge, 0.005);
+  EXPECT_GT(n_straight_vertices(before, d.region, 1.0), 0u);
+  EXPECT_NEAR(s.min_edge_length, 0.01 * (2.0 + 2.0 + 2.5) / 3.0, 1e-15);
+  EXPECT_GE(s.shortest_edge, s.min_edge_length);
+  EXPECT_EQ(n_straight_vertices(r, d.region, 1.0), 0u);
+  EXPECT_NEAR(sum_of_areas(r), 400.0, 1e-12 * 400.0);
+  expect_valid_polygons(r);
+  expect_matching_edges(r, d.region);
+  EXPECT_LT(largest_overlap(r), 30.0 * 10.0 * std::numeric_limits<double>::epsilon());
+
+  // An explicit threshold; without joint sets the default is the chord tolerance.
+  d.min_edge_length = 0.2;
+  EXPECT_GE(generate_blocks(d).statistics.shortest_edge, 0.2);
+  d.joint_sets.clear();
+  d.min_edge_length.reset();
+  d.chord_tolerance = 0.02;
+  EXPECT_DOUBLE_EQ(generate_blocks(d).statistics.min_edge_length, 0.02);
+  d.min_edge_length = -1.0;
+  EXPECT_THROW(generate_blocks(d), ddafem::InputError);
 }
