@@ -714,6 +714,10 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
       dda::TimeStepper stepper(system, pseudo_time, stage.dt);
       bool converged = false;
       double last_ratio = 0.0;
+      std::size_t last_block = 0;
+      std::vector<dda::Point> stage_centroids;
+      for (const dda::Block& b : system.get_blocks())
+        stage_centroids.push_back(b.moments.centroid);
       for (std::size_t k = 0; k < stage.max_steps && !converged; ++k)
       {
         const dda::StepStatus status = stepper.step();
@@ -723,6 +727,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
           break;
         }
         last_ratio = status.unbalanced_force_ratio;
+        last_block = status.unbalanced_block;
         converged = last_ratio <= stage.tolerance;
         smallest_dt = std::min(smallest_dt, stepper.last_dt());
         progress.update(system.n_steps(), system.time(), elapsed(wall_start));
@@ -742,9 +747,14 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
         failure.message = "static stage '" + stage.name + "' did not reach equilibrium in " +
                           std::to_string(stage.max_steps) + " steps: the out-of-balance force " +
                           "ratio is " + format(last_ratio) + ", above the tolerance " +
-                          format(stage.tolerance) +
-                          " (expected a larger `max_steps` or "
-                          "`tolerance`, or a model that can be in equilibrium)";
+                          format(stage.tolerance) + "; the largest acts on " +
+                          scene.model.blocks[last_block].origin + ", which moved " +
+                          format((system.get_blocks()[last_block].moments.centroid -
+                                  stage_centroids[last_block])
+                                     .norm()) +
+                          " m in the stage (a block that keeps moving is released: it falls or "
+                          "slides out; expected a model that can be in equilibrium, stronger "
+                          "joints or support, or a larger `max_steps` or `tolerance`)";
         break;
       }
       continue;

@@ -431,6 +431,8 @@ StepStatus System::advance(double dt)
     std::vector<double> applied_on(blocks.size(), 0.0);
     for (std::size_t i = 0; i < blocks.size(); ++i)
     {
+      if (rhs.segment<2>(6 * i).norm() > unbalanced)
+        status.unbalanced_block = i;
       unbalanced = std::max(unbalanced, rhs.segment<2>(6 * i).norm());
       applied_on[i] = block_mass(blocks[i]) * model.gravity.norm();
     }

@@ -75,6 +75,7 @@ struct StepStatus
   /// translational part of the step's right-hand side with zero velocity) over the largest
   /// applied force (gravity and point loads) on a block [-]; 0 in dynamic stages.
   double unbalanced_force_ratio = 0.0;
+  std::size_t unbalanced_block = 0; ///< static stages: the block with the largest of them
 };
 
 /// Wall time spent in each phase of the step since construction [s], and work counters.
