@@ -744,17 +744,16 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
       if (!converged)
       {
         failure.outcome = dda::StepOutcome::not_converged;
-        failure.message = "static stage '" + stage.name + "' did not reach equilibrium in " +
-                          std::to_string(stage.max_steps) + " steps: the out-of-balance force " +
-                          "ratio is " + format(last_ratio) + ", above the tolerance " +
-                          format(stage.tolerance) + "; the largest acts on " +
-                          scene.model.blocks[last_block].origin + ", which moved " +
-                          format((system.get_blocks()[last_block].moments.centroid -
-                                  stage_centroids[last_block])
-                                     .norm()) +
-                          " m in the stage (a block that keeps moving is released: it falls or "
-                          "slides out; expected a model that can be in equilibrium, stronger "
-                          "joints or support, or a larger `max_steps` or `tolerance`)";
+        failure.message =
+            "static stage '" + stage.name + "' did not reach equilibrium in " +
+            std::to_string(stage.max_steps) + " steps: the out-of-balance force " + "ratio is " +
+            format(last_ratio) + ", above the tolerance " + format(stage.tolerance) +
+            "; the largest acts on " + scene.model.blocks[last_block].origin + ", which moved " +
+            format((system.get_blocks()[last_block].moments.centroid - stage_centroids[last_block])
+                       .norm()) +
+            " m in the stage (a block that keeps moving is released: it falls or "
+            "slides out; expected a model that can be in equilibrium, stronger "
+            "joints or support, or a larger `max_steps` or `tolerance`)";
         break;
       }
       continue;
