@@ -91,6 +91,8 @@ public:
                const InterfaceDescription& description);
 
   void begin_stage(dda::StageMode mode) override;
+  /// Held (static stage): H = K, one 2 x 2 spring per tie.
+  bool stiffness_is_block_diagonal() const override { return held; }
   std::string begin_step(double dt, const Eigen::VectorXd& displacements) override;
   const Eigen::MatrixXd& stiffness() const override { return h; }
   const Eigen::VectorXd& force() const override { return g; }

@@ -848,6 +848,19 @@ void System::add_tie_terms()
   const Eigen::MatrixXd& h = tied_body->stiffness();
   const Eigen::VectorXd& g = tied_body->force();
   const auto m = static_cast<Eigen::Index>(tie_points.size());
+  if (tied_body->stiffness_is_block_diagonal())
+  {
+    // Each tie point on its own: T_k^T H_kk T_k on its block's diagonal, O(m).
+    for (Eigen::Index k = 0; k < m; ++k)
+    {
+      const std::size_t bk = tie_points[k].block;
+      const Matrix26& tk = tie_matrices[k];
+      rhs.segment<6>(6 * bk).noalias() += tk.transpose() * g.segment<2>(2 * k);
+      matrix.diagonal(bk).noalias() += tk.transpose() * h.block<2, 2>(2 * k, 2 * k) * tk;
+    }
+    timings.tie_terms += seconds_since(start);
+    return;
+  }
   // (A + T^T H T) d = b + T^T g, grouped by block: Y = H T (2m rows, 6 columns per tie block),
   // the columns of slot s summing H(:, l) T_l over the tie points l on tie_blocks[s]; then
   // block (i, j) gains the sum over the tie points k on i of T_k^T Y(k, slot of j). The matrix

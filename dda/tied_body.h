@@ -37,6 +37,9 @@ public:
   virtual std::string begin_step(double dt, const Eigen::VectorXd& displacements) = 0;
   /// H of the ties' trial states [N/m].
   virtual const Eigen::MatrixXd& stiffness() const = 0;
+  /// Whether H couples no two tie points (its only non-zero entries are the 2 x 2 blocks on its
+  /// diagonal, e.g. ties to a held body): the System then adds the tie terms point by point.
+  virtual bool stiffness_is_block_diagonal() const { return false; }
   /// g of the ties' trial states [N].
   virtual const Eigen::VectorXd& force() const = 0;
   /// Sets the ties' trial states from the trial increments `delta` (2m) [m]; returns the number
