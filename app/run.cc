@@ -250,11 +250,10 @@ struct InterfaceImpedance
   double reflection = 0.0;        ///< of a normally incident plane wave [-]
 };
 
-/// E_eff = 1 / (1/E + 1/(k_n d)) per tied block, averaged over the tied length: k_n = 2 p / L
-/// the normal springs per unit area of the joint behind a block (p at each end of an edge of
-/// length L, the tied edge's), d = area / L the block's depth behind the edge. Densities are
-/// equal, so the impedance ratio is sqrt(E_eff / E_far) and the reflection
-/// |1 - ratio| / (1 + ratio). Needs `joints.default` (else nothing is estimated).
+/// E_eff (jointed_block_modulus) per tied block, averaged over the tied length: L the tied
+/// length, p at each end of the joint behind it, d = area / L the block's depth behind it.
+/// Densities are equal, so the impedance ratio is sqrt(E_eff / E_far) and the reflection |1 -
+/// ratio| / (1 + ratio). Needs `joints.default` (else nothing is estimated).
 std::optional<InterfaceImpedance> interface_impedance(const Scene& scene, const dda::System& system,
                                                       const coupling::FarFieldTies& ties)
 {
@@ -270,9 +269,8 @@ std::optional<InterfaceImpedance> interface_impedance(const Scene& scene, const 
   for (const auto& [block, length] : tied_length)
   {
     const dda::Block& b = system.get_blocks()[block];
-    const double e = m.materials[b.material].youngs_modulus;
-    const double depth = b.moments.area / length;
-    sum += length / (1.0 / e + length / (2.0 * p * depth));
+    sum += length *
+           jointed_block_modulus(m.materials[b.material].youngs_modulus, p, b.moments.area, length);
     weight += length;
   }
   InterfaceImpedance z;

@@ -1,24 +1,19 @@
 #include "app/tunnel_scene.h"
 
+#include "app/run_support.h"
+
 #include "common/input_error.h"
 #include "dda/geometry.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 namespace ddafem
 {
 namespace
 {
-std::string str(double v, int digits = 4)
-{
-  std::ostringstream s;
-  s.precision(digits);
-  s << v;
-  return s.str();
-}
+using run_support::format;
 
 YAML::Node pair(double x, double y)
 {
@@ -126,8 +121,8 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
   {
     plan.near_lower = (*t.near_field)[0];
     plan.near_upper = (*t.near_field)[1];
-    why.push_back("near field: " + str(plan.near_upper.x() - plan.near_lower.x()) + " x " +
-                  str(plan.near_upper.y() - plan.near_lower.y()) +
+    why.push_back("near field: " + format(plan.near_upper.x() - plan.near_lower.x()) + " x " +
+                  format(plan.near_upper.y() - plan.near_lower.y()) +
                   " m of blocks, as given (tunnel.near_field.lower/upper)");
   }
   else
@@ -135,8 +130,9 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
     const double side = t.size_factor * size.maxCoeff();
     plan.near_lower = center - Point(0.5 * side, 0.5 * side);
     plan.near_upper = center + Point(0.5 * side, 0.5 * side);
-    why.push_back("near field: " + str(side) + " x " + str(side) + " m of blocks around the " +
-                  str(size.x()) + " x " + str(size.y()) + " m opening, " + str(t.size_factor) +
+    why.push_back("near field: " + format(side) + " x " + format(side) +
+                  " m of blocks around the " + format(size.x()) + " x " + format(size.y()) +
+                  " m opening, " + format(t.size_factor) +
                   " x its size (tunnel.near_field.size_factor): the joints matter where the "
                   "opening concentrates stress, about a diameter around it");
   }
@@ -144,15 +140,15 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
         plan.opening_lower.y() > plan.near_lower.y() &&
         plan.opening_upper.x() < plan.near_upper.x() &&
         plan.opening_upper.y() < plan.near_upper.y()))
-    throw InputError("the opening (" + str(plan.opening_lower.x()) + ", " +
-                     str(plan.opening_lower.y()) + ") to (" + str(plan.opening_upper.x()) + ", " +
-                     str(plan.opening_upper.y()) +
+    throw InputError("the opening (" + format(plan.opening_lower.x()) + ", " +
+                     format(plan.opening_lower.y()) + ") to (" + format(plan.opening_upper.x()) +
+                     ", " + format(plan.opening_upper.y()) +
                      ") does not lie inside the near field: expected a larger near field");
   plan.surface_y = center.y() + t.depth;
   if (plan.near_upper.y() >= plan.surface_y)
-    throw InputError("the near field reaches y = " + str(plan.near_upper.y()) +
-                     " m, above the ground surface at y = " + str(plan.surface_y) +
-                     " m (the opening's centre " + str(t.depth) +
+    throw InputError("the near field reaches y = " + format(plan.near_upper.y()) +
+                     " m, above the ground surface at y = " + format(plan.surface_y) +
+                     " m (the opening's centre " + format(t.depth) +
                      " m deep): expected a deeper tunnel or a smaller near field");
 
   // The blocks, once, to measure them.
@@ -190,14 +186,14 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
   plan.vs = std::sqrt(e / (2.0 * rho * (1.0 + nu)));
   plan.wave_speed = t.wave_type == "p" ? plan.vp : plan.vs;
   why.push_back("blocks: " + std::to_string(plan.n_blocks) + ", mean size " +
-                str(plan.mean_block_size) + " m, shortest edge " +
-                str(blocks.statistics.shortest_edge) + " m; rock mass E_eff " +
-                str(plan.rock_mass_modulus) + " Pa (intact " + str(t.youngs_modulus) +
-                " Pa with the joints behind the near field's edge): VP " + str(plan.vp) +
-                " m/s, VS " + str(plan.vs) + " m/s");
+                format(plan.mean_block_size) + " m, shortest edge " +
+                format(blocks.statistics.shortest_edge) + " m; rock mass E_eff " +
+                format(plan.rock_mass_modulus) + " Pa (intact " + format(t.youngs_modulus) +
+                " Pa with the joints behind the near field's edge): VP " + format(plan.vp) +
+                " m/s, VS " + format(plan.vs) + " m/s");
   const double wavelength = plan.vs / t.max_frequency;
-  why.push_back("shortest S wavelength " + str(wavelength) + " m at " + str(t.max_frequency) +
-                " Hz: " + str(wavelength / plan.mean_block_size) + " blocks per wavelength");
+  why.push_back("shortest S wavelength " + format(wavelength) + " m at " + format(t.max_frequency) +
+                " Hz: " + format(wavelength / plan.mean_block_size) + " blocks per wavelength");
 
   // The far field.
   const double half_height = 0.5 * (plan.near_upper.y() - plan.near_lower.y());
@@ -212,10 +208,10 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
     if (t.truncation == TunnelTruncation::hybrid)
     {
       plan.margin = t.margin > 0.0 ? t.margin : dominant_wavelength;
-      why.push_back("far field: " + str(plan.margin) + " m beyond the blocks" +
+      why.push_back("far field: " + format(plan.margin) + " m beyond the blocks" +
                     (t.margin > 0.0
                          ? std::string(" (tunnel.margin)")
-                         : ", one wavelength of the incident wave at " + str(t.wave_frequency) +
+                         : ", one wavelength of the incident wave at " + format(t.wave_frequency) +
                                " Hz: what the opening scatters meets the dashpots "
                                "nearly normally (tunnel.margin overrides)"));
     }
@@ -224,11 +220,11 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
       // Nothing reflected at the truncation may return to the opening before the end: a P
       // wave from the near field's edge there and back takes 2 margin / VP.
       plan.margin = t.reference_margin > 0.0 ? t.reference_margin : 0.5 * plan.vp * window;
-      why.push_back("far field (reference): " + str(plan.margin) + " m beyond the blocks" +
+      why.push_back("far field (reference): " + format(plan.margin) + " m beyond the blocks" +
                     (t.reference_margin > 0.0
                          ? std::string(" (tunnel.reference_margin)")
                          : ": a P wave reflected at the truncation needs more than the " +
-                               str(window) + " s window to come back"));
+                               format(window) + " s window to come back"));
     }
     plan.far_lower = plan.near_lower - Point(plan.margin, plan.margin);
     plan.far_upper = plan.near_upper + Point(plan.margin, plan.margin);
@@ -236,21 +232,21 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
     {
       plan.far_upper.y() = plan.surface_y;
       plan.top_is_surface = true;
-      why.push_back("the far field reaches the ground surface at y = " + str(plan.surface_y) +
+      why.push_back("the far field reaches the ground surface at y = " + format(plan.surface_y) +
                     " m: its top is traction free");
     }
     else
-      why.push_back("the ground surface (y = " + str(plan.surface_y) +
+      why.push_back("the ground surface (y = " + format(plan.surface_y) +
                     " m) lies beyond the far field: its top absorbs (Lysmer), its base takes the "
                     "incident wave (Lysmer with the input traction), its sides are free-field "
                     "columns");
     plan.far_element_size = 2.0 * wavelength / t.points_per_wavelength;
     plan.near_element_size = std::min(plan.mean_block_size, plan.far_element_size);
     plan.elements_per_wavelength = wavelength / plan.far_element_size;
-    why.push_back("far elements FE_Q2 of " + str(plan.far_element_size) + " m (" +
-                  str(t.points_per_wavelength) + " nodes per S wavelength at " +
-                  str(t.max_frequency) + " Hz), " + str(plan.near_element_size) +
-                  " m at the blocks (their mean size), growing by " + str(t.growth_ratio));
+    why.push_back("far elements FE_Q2 of " + format(plan.far_element_size) + " m (" +
+                  format(t.points_per_wavelength) + " nodes per S wavelength at " +
+                  format(t.max_frequency) + " Hz), " + format(plan.near_element_size) +
+                  " m at the blocks (their mean size), growing by " + format(t.growth_ratio));
     plan.arrival_time = (plan.near_lower.y() - plan.far_lower.y()) / plan.wave_speed;
   }
   else
@@ -259,8 +255,8 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
                   " boundaries and the wave enters at their base");
 
   plan.end_time = plan.arrival_time + window;
-  why.push_back("dynamic stage: " + str(plan.end_time) + " s = " + str(plan.arrival_time) +
-                " s for the wave to reach the blocks + " + str(window) +
+  why.push_back("dynamic stage: " + format(plan.end_time) + " s = " + format(plan.arrival_time) +
+                " s for the wave to reach the blocks + " + format(window) +
                 " s to cross them, the pulse and two periods after it" +
                 (t.window > 0.0 ? std::string(" (tunnel.window)") : std::string()));
   if (t.dt > 0.0)
@@ -268,13 +264,14 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
   else
   {
     plan.dt = 1.0 / (20.0 * t.max_frequency);
-    std::string reason = "20 steps per period at " + str(t.max_frequency) + " Hz";
+    std::string reason = "20 steps per period at " + format(t.max_frequency) + " Hz";
     if (t.truncation == TunnelTruncation::vb1 && 0.9 * vb1_limit < plan.dt)
     {
       plan.dt = 0.9 * vb1_limit;
-      reason = "0.9 x VB I's limit m / cn = " + str(vb1_limit) + " s of the worst boundary block";
+      reason =
+          "0.9 x VB I's limit m / cn = " + format(vb1_limit) + " s of the worst boundary block";
     }
-    why.push_back("dt " + str(plan.dt) + " s: " + reason);
+    why.push_back("dt " + format(plan.dt) + " s: " + reason);
   }
   return plan;
 }

@@ -227,6 +227,8 @@ void FarFieldTies::begin_stage(const dda::StageMode mode)
                        "and does not follow a frictional interface: expected no "
                        "`interface.joint_material`");
     held = true;
+    h = k_bonded; // H = K for the whole stage
+    bonded_terms_valid = false;
     return;
   }
   if (!held)
@@ -247,6 +249,14 @@ void FarFieldTies::begin_stage(const dda::StageMode mode)
   work_blocks = work_preloads = 0.0;
 }
 
+Eigen::VectorXd FarFieldTies::bonded_springs(const Eigen::VectorXd& x) const
+{
+  Eigen::VectorXd f(x.size());
+  for (std::size_t k = 0; k < ties.size(); ++k)
+    f.segment<2>(2 * k) = k_bonded.block<2, 2>(2 * k, 2 * k) * x.segment<2>(2 * k);
+  return f;
+}
+
 std::string FarFieldTies::begin_step(const double dt, const Eigen::VectorXd& displacements)
 {
   if (held)
@@ -254,9 +264,7 @@ std::string FarFieldTies::begin_step(const double dt, const Eigen::VectorXd& dis
     // The far field held: H = K, g = P - K c; nothing of the far field is solved.
     const auto t0 = Clock::now();
     start = displacements;
-    h = k_bonded;
-    bonded_terms_valid = false;
-    g = preload - k_bonded * start;
+    g = preload - bonded_springs(start);
     time_ties += seconds_since(t0);
     return {};
   }
@@ -398,7 +406,7 @@ std::string FarFieldTies::end_step(const Eigen::VectorXd& delta)
   if (held)
   {
     // Springs to fixed ground: F = K z on the "far field", P - F on the blocks.
-    const Eigen::VectorXd f = k_bonded * z;
+    const Eigen::VectorXd f = bonded_springs(z);
     work_blocks -= 0.5 * (previous_force + f).dot(delta);
     previous_force = f;
     for (std::size_t k = 0; k < ties.size(); ++k)

@@ -131,6 +131,8 @@ private:
   /// [N].
   void set_accepted_forces(std::size_t k, const dda::Vector2& stretch,
                            const dda::Vector2& spring_force);
+  /// K x [N], tie by tie (K is block diagonal).
+  Eigen::VectorXd bonded_springs(const Eigen::VectorXd& x) const;
   /// w = R w0 + M (K' z + F0).
   Eigen::VectorXd far_field_displacements(const Eigen::VectorXd& z) const;
 
