@@ -131,7 +131,7 @@ int run_far_field(const Scene& scene, const RunOptions& options, std::ostream& l
     history.append(model.time(), far_field_row(model, d.monitors.size()));
     if (snapshot)
     {
-      model.write_snapshot(dir.string(), "far_field");
+      model.write_snapshot(dir.string(), "far_field", scene.output.vtu_compression);
       ++n_snapshots;
     }
     output_time += elapsed(start);

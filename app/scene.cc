@@ -2022,6 +2022,11 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
     throw output.error("directory", "expected a non-empty directory name");
   scene.output.interval = output.number("interval");
   scene.output.history_every = static_cast<std::size_t>(output.integer("history_every"));
+  const std::string compression = output.choice("vtu_compression");
+  scene.output.vtu_compression = compression == "none" ? fem::VtuCompression::none
+                                 : compression == "best_compression"
+                                     ? fem::VtuCompression::best_compression
+                                     : fem::VtuCompression::best_speed;
   return scene;
 }
 

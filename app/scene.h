@@ -20,6 +20,7 @@ struct OutputSettings
   std::string directory = "results"; ///< relative to the working directory; `-o DIR` overrides
   double interval = 0.0; ///< simulated time between VTU snapshots [s]; 0: first and last only
   std::size_t history_every = 1; ///< steps between rows of the HDF5 histories, >= 1
+  fem::VtuCompression vtu_compression = fem::VtuCompression::best_speed; ///< far-field VTU zlib
 };
 
 /// What the `rock_mass` section generated (for `check` and the run's warnings).

@@ -1280,7 +1280,13 @@ SceneSchema::SceneSchema()
         key("history_every", T::integer)
             .default_yaml("1")
             .at_least(1)
-            .meaning("time steps between rows of the monitor histories")}});
+            .meaning("time steps between rows of the monitor histories"),
+        key("vtu_compression", T::choice)
+            .default_yaml("best_speed")
+            .choices({"best_speed", "best_compression", "none"})
+            .meaning("zlib level of the far field's VTU files (deal.II DataOut): best_compression "
+                     "writes files a few percent smaller in about four times the time "
+                     "(docs/performance.md, profile); the blocks' files are plain text")}});
 
   all_sections.push_back({time_function_section("constant"),
                           "f(t) = value.",

@@ -165,7 +165,8 @@ public:
   StepStatus prepare_step(double dt);
   StepStatus finish_step(const std::vector<double>& point_loads);
   MonitorSample sample_monitor(std::size_t monitor) const;
-  std::string write_snapshot(const std::string& directory, const std::string& basename);
+  std::string write_snapshot(const std::string& directory, const std::string& basename,
+                             VtuCompression compression);
   void set_initial_state(const ElasticWaveModel::VectorField& displacement,
                          const ElasticWaveModel::VectorField& velocity);
 
@@ -1251,7 +1252,8 @@ MonitorSample ElasticWaveModel::Impl::sample_monitor(const std::size_t monitor) 
 }
 
 std::string ElasticWaveModel::Impl::write_snapshot(const std::string& directory,
-                                                   const std::string& basename)
+                                                   const std::string& basename,
+                                                   const VtuCompression compression)
 {
   std::filesystem::create_directories(directory);
   std::ostringstream name;
@@ -1272,6 +1274,10 @@ std::string ElasticWaveModel::Impl::write_snapshot(const std::string& directory,
   data_out.build_patches(fe.degree);
   DataOutBase::VtkFlags flags;
   flags.time = t;
+  flags.compression_level =
+      compression == VtuCompression::none         ? DataOutBase::VtkFlags::no_compression
+      : compression == VtuCompression::best_speed ? DataOutBase::VtkFlags::best_speed
+                                                  : DataOutBase::VtkFlags::best_compression;
   data_out.set_flags(flags);
   {
     std::ofstream out(std::filesystem::path(directory) / name.str());
@@ -1585,9 +1591,10 @@ EnergyBalance ElasticWaveModel::energy() const
 }
 
 std::string ElasticWaveModel::write_snapshot(const std::string& directory,
-                                             const std::string& basename)
+                                             const std::string& basename,
+                                             const VtuCompression compression)
 {
-  return impl->write_snapshot(directory, basename);
+  return impl->write_snapshot(directory, basename, compression);
 }
 
 } // namespace ddafem::fem

@@ -147,9 +147,11 @@ public:
   std::vector<double> spring_forces() const;
 
   /// Writes DIRECTORY/BASENAME_NNNNN.vtu (deal.II DataOut: displacement, velocity, stress
-  /// components, von Mises) and rewrites DIRECTORY/BASENAME.pvd with all snapshots so far;
-  /// returns the VTU's file name (without the directory).
-  std::string write_snapshot(const std::string& directory, const std::string& basename);
+  /// components, von Mises), zlib-compressed at `compression`, and rewrites
+  /// DIRECTORY/BASENAME.pvd with all snapshots so far; returns the VTU's file name (without the
+  /// directory).
+  std::string write_snapshot(const std::string& directory, const std::string& basename,
+                             VtuCompression compression = VtuCompression::best_speed);
 
 private:
   class Impl;

@@ -212,4 +212,14 @@ struct FarFieldDescription
   RayleighDamping rayleigh;
 };
 
+/// zlib level of the far field's VTU files. best_compression (deal.II's default) spends about
+/// four times the writing time of best_speed for files 4% smaller (the default tunnel scene:
+/// 41 snapshots, 5.3 s against 1.3 s of a 8.3 s run; docs/performance.md, profile).
+enum class VtuCompression
+{
+  none,
+  best_speed,
+  best_compression
+};
+
 } // namespace ddafem::fem

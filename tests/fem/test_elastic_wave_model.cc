@@ -279,4 +279,24 @@ TEST(ElasticWaveModel, SnapshotsWriteVtuAndPvd)
     EXPECT_NE(body.find(name), std::string::npos) << name;
 }
 
+// output.vtu_compression: the same state written at each zlib level (none is zlib's level 0,
+// stored blocks): a higher level gives a smaller file, none a much larger one (4x here).
+TEST(ElasticWaveModel, SnapshotCompressionLevels)
+{
+  ElasticWaveModel model(column(IncidentWave::Type::p, BoundaryKind::free));
+  for (int s = 0; s < 50; ++s)
+    ASSERT_EQ(model.advance(dt).outcome, StepOutcome::success);
+  const auto dir = std::filesystem::path(DDAFEM_BINARY_DIR) / "tests" / "fem" / "compression";
+  std::filesystem::remove_all(dir);
+  std::vector<std::uintmax_t> sizes;
+  for (const VtuCompression level :
+       {VtuCompression::none, VtuCompression::best_speed, VtuCompression::best_compression})
+  {
+    const std::string name = model.write_snapshot(dir.string(), "field", level);
+    sizes.push_back(std::filesystem::file_size(dir / name));
+  }
+  EXPECT_GT(sizes[0], 2 * sizes[1]);
+  EXPECT_GT(sizes[1], sizes[2]);
+}
+
 } // namespace
