@@ -257,10 +257,18 @@ def figure_histories(histories, case, monitors, component, scale, unit, what, pa
     plt.close(fig)
 
 
-def figure_stability(rows, path):
+def boundary_limits():
+    """The bar's end block (1 m x 1 m): dt of VB I's source limit x0 m / cn, of the paper's
+    bound m / cn (eq. 44) and of its warning 2 m / ct [s]."""
     vp = math.sqrt(E * (1 - NU) / (RHO * (1 + NU) * (1 - 2 * NU)))
     vs = math.sqrt(E / (2 * RHO * (1 + NU)))
-    mass, cn, ct = RHO * 1.0, RHO * 1.0 * vp, RHO * 1.0 * vs  # the 1 m x 1 m end block
+    mass, cn, ct = RHO * 1.0, RHO * 1.0 * vp, RHO * 1.0 * vs
+    return {"vb1_source": VB1_THRESHOLD * mass / cn, "m_over_cn": mass / cn,
+            "two_m_over_ct": 2 * mass / ct}
+
+
+def figure_stability(rows, path):
+    limits = boundary_limits()
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
     for key in BOUNDARIES:
         sub = [r for r in rows if (r["boundary"], r["impedance"]) == key]
@@ -271,11 +279,11 @@ def figure_stability(rows, path):
         a2.loglog([r["dt"] for r in grown], [max(r["final_stored_over_input"], 1e-6) for r in grown],
                   "o-", label=LABEL[key])
     for ax in (a1, a2):
-        ax.axvline(VB1_THRESHOLD * mass / cn, color="k", ls="--", lw=1)
-        ax.axvline(mass / cn, color="gray", ls=":", lw=1)
-        ax.axvline(2 * mass / ct, color="gray", ls="-.", lw=1)
+        ax.axvline(limits["vb1_source"], color="k", ls="--", lw=1)
+        ax.axvline(limits["m_over_cn"], color="gray", ls=":", lw=1)
+        ax.axvline(limits["two_m_over_ct"], color="gray", ls="-.", lw=1)
         ax.grid(alpha=0.3, which="both")
-    a1.text(VB1_THRESHOLD * mass / cn, 5, " VB I source limit\n x0 m / cn", fontsize=8)
+    a1.text(limits["vb1_source"], 5, " VB I source limit\n x0 m / cn", fontsize=8)
     a1.set_ylabel("boundary-only efficiency [%]")
     a1.set_ylim(-60, 101)
     a1.legend(fontsize=7, loc="lower left")
