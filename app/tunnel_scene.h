@@ -67,7 +67,7 @@ struct TunnelDescription
   std::optional<std::array<Point, 2>> near_field;
   TunnelTruncation truncation = TunnelTruncation::hybrid;
   double margin = 0.0;           ///< far field beyond the near field [m]; 0: chosen
-  double reference_margin = 0.0; ///< the same for `reference` [m]; 0: chosen
+  double reference_margin = 0.0; ///< the same for `reference` and `blocks` [m]; 0: chosen
   double points_per_wavelength = 10.0;
   double growth_ratio = 1.3;
   double window = 0.0;    ///< dynamic stage after the wave reaches the near field [s]; 0: chosen
@@ -101,7 +101,7 @@ struct TunnelPlan
   /// A deal.II far field (hybrid, reference); the extents below also bound the outer blocks.
   bool far_field = false;
   /// The model's outer rectangle [m]: the far field's (hybrid, reference) or the outer blocks'
-  /// (blocks); the near field's for vb1 and dashpot.
+  /// (blocks); zero for vb1 and dashpot.
   Point far_lower = Point::Zero(), far_upper = Point::Zero();
   double margin = 0.0;                  ///< beyond the near field [m]
   double far_element_size = 0.0;        ///< [m], FE_Q2
