@@ -1035,6 +1035,7 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
   t.truncation = truncation == "vb1"         ? TunnelTruncation::vb1
                  : truncation == "dashpot"   ? TunnelTruncation::dashpot
                  : truncation == "reference" ? TunnelTruncation::reference
+                 : truncation == "blocks"    ? TunnelTruncation::blocks
                                              : TunnelTruncation::hybrid;
   if (r.has("margin"))
     t.margin = r.number("margin");
@@ -1047,7 +1048,8 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
   if (r.has("dt"))
     t.dt = r.number("dt");
   const MapReader stage = r.section_reader("static");
-  t.static_dt = stage.number("dt");
+  if (stage.has("dt"))
+    t.static_dt = stage.number("dt");
   t.static_tolerance = stage.number("tolerance");
   t.static_max_steps = stage.integer("max_steps");
 

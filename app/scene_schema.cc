@@ -528,8 +528,10 @@ SceneSchema::SceneSchema()
        "them outward, places the truncation, and writes the sections `rock_mass`, `far_field`, "
        "`interface` (or the blocks' `boundaries`), `in_situ_stress` (lithostatic, k0), "
        "`stages` (static excavation, then the wave), `monitors` (crown, invert, walls, near-field "
-       "base) and `time` (keys given in `time` win). `check` prints each choice and why. The "
-       "scene must not give those sections itself; joint materials come from `joints` as usual.",
+       "base) and `time` (keys given in `time` win); truncation blocks writes `blocks` (the outer "
+       "grids) and adds the material `outer_rock`, the joint material `outer_bond` and their "
+       "`joints.pairs`. `check` prints each choice and why. The scene must not give those "
+       "sections itself; joint materials come from `joints` as usual.",
        {key("rock", T::string).required().meaning("name of the intact rock's material"),
         key("opening", T::section)
             .section("rock_mass.openings[i]")
@@ -570,12 +572,18 @@ SceneSchema::SceneSchema()
             .default_note("a square of 4 x the opening's size")
             .meaning("the region that is blocks"),
         key("truncation", T::choice)
-            .choices({"hybrid", "vb1", "dashpot", "reference"})
+            .choices({"hybrid", "vb1", "dashpot", "reference", "blocks"})
             .default_yaml("hybrid")
             .meaning("hybrid: blocks in a graded FE far field with Lysmer dashpots and "
                      "free-field sides; vb1 / dashpot: blocks only, VB I or the dashpot on the "
                      "near field's edges, the wave entering at its base; reference: the hybrid "
-                     "with a far field so large that no reflection returns within the run"),
+                     "with a far field so large that no reflection returns within the run; "
+                     "blocks: blocks only out to the reference's extent, the near field in a "
+                     "ring of bonded rectangular blocks of shortest S wavelength / "
+                     "points_per_wavelength with the rock mass's E_eff (material `outer_rock`, "
+                     "joint material `outer_bond`, joints that never break), dashpots on its "
+                     "sides and base (the wave entering there), its top free at the ground "
+                     "surface"),
         key("margin", T::number)
             .unit("m")
             .at_least(0)
@@ -585,11 +593,13 @@ SceneSchema::SceneSchema()
             .unit("m")
             .at_least(0)
             .default_note("VP x window / 2")
-            .meaning("reference: far field beyond the near field on each side"),
+            .meaning("reference and blocks: far field (outer blocks) beyond the near field on "
+                     "each side"),
         key("points_per_wavelength", T::number)
             .default_yaml("10")
             .greater_than(0)
-            .meaning("FE nodes per shortest S wavelength (at wave.max_frequency)"),
+            .meaning("FE nodes (blocks: outer blocks) per shortest S wavelength (at "
+                     "wave.max_frequency)"),
         key("growth_ratio", T::number)
             .default_yaml("1.3")
             .greater_than(1)
@@ -602,7 +612,8 @@ SceneSchema::SceneSchema()
         key("dt", T::number)
             .unit("s")
             .at_least(0)
-            .default_note("1 / (20 max_frequency), within VB I's limit for vb1")
+            .default_note("1 / (20 max_frequency), within VB I's limit for vb1 (the dashpots of "
+                          "dashpot and blocks set no limit)")
             .meaning("time step of the dynamic stage (time.dt, if given, wins)"),
         key("static", T::section)
             .section("tunnel.static")
@@ -612,8 +623,8 @@ SceneSchema::SceneSchema()
   all_sections.push_back(
       {"tunnel.wave",
        "A vertically incident plane wave: particle velocity v_in(t), horizontal for SV, "
-       "vertical for P. It enters through the far field's base (hybrid, reference) or the "
-       "near field's base (vb1, dashpot).",
+       "vertical for P. It enters through the far field's base (hybrid, reference), the "
+       "near field's base (vb1, dashpot) or the outer blocks' base (blocks).",
        {key("type", T::choice).choices({"p", "sv"}).required().meaning("wave type"),
         key("velocity", T::time_function).required().meaning("v_in(t) [m/s] of the incident wave"),
         key("frequency", T::number)
@@ -650,9 +661,9 @@ SceneSchema::SceneSchema()
        "The static stage (stages[i] with mode static).",
        {key("dt", T::number)
             .unit("s")
-            .default_yaml("1e-3")
+            .default_note("1e-3; blocks: 1e-3 x the model's half size over the near field's")
             .greater_than(0)
-            .meaning("pseudo time step"),
+            .meaning("pseudo time step (a larger one relaxes a larger model in as few steps)"),
         key("tolerance", T::number)
             .default_yaml("1e-3")
             .greater_than(0)

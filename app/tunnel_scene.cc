@@ -67,6 +67,25 @@ YAML::Node line_boundary(const std::string& type, const Point& a, const Point& b
   return n;
 }
 
+/// Adds a material `name` of the rock's density and Poisson's ratio and `youngs_modulus` [Pa]
+/// to the scene's `materials`; throws InputError if the scene has one of that name (`what` it
+/// is, for the message).
+void add_material(const TunnelDescription& t, const std::string& name, double youngs_modulus,
+                  const std::string& what, YAML::Node& root)
+{
+  const YAML::Node& given = root;
+  if (given["materials"][name])
+    throw InputError("the material name `" + name + "` is taken: the tunnel names " + what +
+                     " so; expected another name for yours");
+  YAML::Node m;
+  m["density"] = t.density;
+  m["youngs_modulus"] = youngs_modulus;
+  m["poisson_ratio"] = t.poisson_ratio;
+  YAML::Node materials = YAML::Clone(given["materials"]);
+  materials[name] = m;
+  root["materials"] = materials;
+}
+
 YAML::Node monitor(const std::string& name, double x, double y)
 {
   YAML::Node n;
@@ -89,6 +108,8 @@ const char* name_of(TunnelTruncation truncation)
     return "dashpot";
   case TunnelTruncation::reference:
     return "reference";
+  case TunnelTruncation::blocks:
+    return "blocks";
   }
   return "hybrid";
 }
@@ -99,6 +120,96 @@ double jointed_block_modulus(double youngs_modulus, double normal_stiffness, dou
   const double depth = area / length;
   return 1.0 / (1.0 / youngs_modulus + length / (2.0 * normal_stiffness * depth));
 }
+
+double outer_block_modulus(double grid_modulus, double normal_stiffness)
+{
+  // A square block of side s [m] (1 m thick) under a stress sigma [Pa] across two opposite
+  // edges shortens by sigma s / E_o; the edge's force sigma s (1 m) [N] on its two springs p
+  // [N/m] closes the joint behind it by sigma s (1 m) / (2 p). Over the cell's s:
+  // 1 / E_grid = 1 / E_o + (1 m) / (2 p), whatever s is: jointed_block_modulus(E_o, p, s^2, s).
+  const double compliance = 1.0 / grid_modulus - 1.0 / (2.0 * normal_stiffness);
+  if (!(compliance > 0.0))
+    throw InputError("outer blocks with joints of p = " + format(normal_stiffness) +
+                     " N/m cannot be as stiff as the rock mass (E_eff " + format(grid_modulus) +
+                     " Pa): their two springs per edge alone give at most 2 p = " +
+                     format(2.0 * normal_stiffness) +
+                     " Pa; expected a stiffer `joints.default` (2 p > E_eff)");
+  return 1.0 / compliance;
+}
+
+namespace
+{
+/// The blocks truncation's ring of outer blocks from the near field out to plan.far_lower /
+/// far_upper, their material and their joints (plan.outer_*), and why (plan.reasons).
+void plan_outer_blocks(const TunnelDescription& t, double wavelength, TunnelPlan& plan)
+{
+  std::vector<std::string>& why = plan.reasons;
+  if (!(t.joint_normal_stiffness > 0.0))
+    throw InputError("truncation blocks bonds its outer blocks with the springs of "
+                     "`joints.default`: expected a `joints.default` joint material");
+  // Each block is one point of a linear displacement field (like a Q1 element): the far
+  // field's rule of points_per_wavelength points per shortest S wavelength gives its side. Not
+  // graded: the FE far field grows from the blocks' size up to its wavelength rule, but here
+  // the rule is already the coarsest size allowed, and the near field's blocks are not much
+  // smaller (mean_block_size), so a grading would only add rows.
+  plan.outer_block_size = wavelength / t.points_per_wavelength;
+  // The 3 x 3 tensor grid: margin, near field, margin in x and in y, each split into cells as
+  // close to outer_block_size as divide it exactly; its 8 outer rectangles are the grids.
+  const auto split = [&](double lo, double hi)
+  {
+    const double length = hi - lo;
+    const std::size_t n = std::max<std::size_t>(
+        1, static_cast<std::size_t>(std::llround(length / plan.outer_block_size)));
+    return std::make_pair(n, length / static_cast<double>(n));
+  };
+  const std::array<double, 4> xs = {plan.far_lower.x(), plan.near_lower.x(), plan.near_upper.x(),
+                                    plan.far_upper.x()};
+  const std::array<double, 4> ys = {plan.far_lower.y(), plan.near_lower.y(), plan.near_upper.y(),
+                                    plan.far_upper.y()};
+  double aspect = 1.0; // largest ratio of a cell's long to short side
+  plan.outer_grids.clear();
+  plan.n_outer_blocks = 0;
+  for (std::size_t j = 0; j < 3; ++j)
+    for (std::size_t i = 0; i < 3; ++i)
+    {
+      if (i == 1 && j == 1)
+        continue; // the near field
+      const auto [nx, wx] = split(xs[i], xs[i + 1]);
+      const auto [ny, wy] = split(ys[j], ys[j + 1]);
+      plan.outer_grids.push_back({Point(xs[i], ys[j]), Point(wx, wy), {nx, ny}});
+      plan.n_outer_blocks += nx * ny;
+      aspect = std::max(aspect, std::max(wx, wy) / std::min(wx, wy));
+    }
+  why.push_back("outer blocks: " + std::to_string(plan.n_outer_blocks) + " rectangles of about " +
+                format(plan.outer_block_size) + " m (" + format(t.points_per_wavelength) +
+                " per shortest S wavelength, the far field's rule with one point per block), in 8 "
+                "grids that tile the ring exactly (cells up to " +
+                format(aspect, 3) +
+                " times longer than wide); not graded: that size is already the coarsest allowed");
+
+  // Material and joints. Square cells of E_o with two springs p per edge have the rock mass's
+  // E_eff (outer_block_modulus, whatever their size); shear springs p / (1 + nu) give them its
+  // G_eff = E_eff / (2 (1 + nu)) too: in a grid under a shear stress tau both joint sets slip by
+  // tau s (1 m) / (2 p_s) per cell, so 1 / G_grid = 1 / G_o + (1 m) / p_s, and
+  // 1 / G_eff - 1 / G_o = 2 (1 + nu) (1 / E_eff - 1 / E_o) = (1 + nu) / p (per metre).
+  plan.outer_joint_stiffness = t.joint_normal_stiffness;
+  plan.outer_youngs_modulus = outer_block_modulus(plan.rock_mass_modulus, t.joint_normal_stiffness);
+  plan.outer_shear_ratio = 1.0 / (1.0 + t.poisson_ratio);
+  // Never breaks: a stress of E_eff would need a strain of 1.
+  plan.outer_strength = plan.rock_mass_modulus;
+  why.push_back("outer material: E_o " + format(plan.outer_youngs_modulus) +
+                " Pa = 1 / (1 / E_eff - 1 / (2 p)) with the springs p " +
+                format(plan.outer_joint_stiffness) +
+                " N/m of joints.default: square blocks bonded by them have the rock mass's E_eff " +
+                format(plan.rock_mass_modulus) +
+                " Pa (the far field's), so the near field's edge "
+                "reflects nothing; shear springs p / (1 + nu) for its G_eff; density and nu of the "
+                "rock; joints that never break (cohesion and tensile strength E_eff)");
+  why.push_back("outer edges: dashpots (rho VP and rho VS of E_eff) on the sides and base" +
+                std::string(plan.top_is_surface ? "" : " and top") +
+                ", the incident wave entering at the base");
+}
+} // namespace
 
 TunnelPlan plan_tunnel(const TunnelDescription& t)
 {
@@ -195,14 +306,16 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
   why.push_back("shortest S wavelength " + format(wavelength) + " m at " + format(t.max_frequency) +
                 " Hz: " + format(wavelength / plan.mean_block_size) + " blocks per wavelength");
 
-  // The far field.
+  // The far field, or the outer blocks out to the same extent.
   const double half_height = 0.5 * (plan.near_upper.y() - plan.near_lower.y());
   const double window = t.window > 0.0 ? t.window
                                        : 2.0 * half_height / plan.wave_speed + t.wave_duration +
                                              2.0 / t.wave_frequency;
   plan.far_field =
       t.truncation == TunnelTruncation::hybrid || t.truncation == TunnelTruncation::reference;
-  if (plan.far_field)
+  const bool outer_blocks = t.truncation == TunnelTruncation::blocks;
+  const char* const outer = outer_blocks ? "outer blocks" : "far field";
+  if (plan.far_field || outer_blocks)
   {
     const double dominant_wavelength = plan.wave_speed / t.wave_frequency;
     if (t.truncation == TunnelTruncation::hybrid)
@@ -220,7 +333,8 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
       // Nothing reflected at the truncation may return to the opening before the end: a P
       // wave from the near field's edge there and back takes 2 margin / VP.
       plan.margin = t.reference_margin > 0.0 ? t.reference_margin : 0.5 * plan.vp * window;
-      why.push_back("far field (reference): " + format(plan.margin) + " m beyond the blocks" +
+      why.push_back(std::string(outer) + " (" + name_of(t.truncation) +
+                    "): " + format(plan.margin) + " m beyond the near field" +
                     (t.reference_margin > 0.0
                          ? std::string(" (tunnel.reference_margin)")
                          : ": a P wave reflected at the truncation needs more than the " +
@@ -232,14 +346,24 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
     {
       plan.far_upper.y() = plan.surface_y;
       plan.top_is_surface = true;
-      why.push_back("the far field reaches the ground surface at y = " + format(plan.surface_y) +
+      why.push_back("the " + std::string(outer) + (outer_blocks ? " reach" : " reaches") +
+                    " the ground surface at y = " + format(plan.surface_y) +
                     " m: its top is traction free");
     }
+    else if (outer_blocks)
+      why.push_back("the ground surface (y = " + format(plan.surface_y) +
+                    " m) lies beyond the outer blocks: their top absorbs (dashpot)");
     else
       why.push_back("the ground surface (y = " + format(plan.surface_y) +
                     " m) lies beyond the far field: its top absorbs (Lysmer), its base takes the "
                     "incident wave (Lysmer with the input traction), its sides are free-field "
                     "columns");
+    plan.arrival_time = (plan.near_lower.y() - plan.far_lower.y()) / plan.wave_speed;
+  }
+  if (outer_blocks)
+    plan_outer_blocks(t, wavelength, plan);
+  else if (plan.far_field)
+  {
     plan.far_element_size = 2.0 * wavelength / t.points_per_wavelength;
     plan.near_element_size = std::min(plan.mean_block_size, plan.far_element_size);
     plan.elements_per_wavelength = wavelength / plan.far_element_size;
@@ -247,7 +371,6 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
                   format(t.points_per_wavelength) + " nodes per S wavelength at " +
                   format(t.max_frequency) + " Hz), " + format(plan.near_element_size) +
                   " m at the blocks (their mean size), growing by " + format(t.growth_ratio));
-    plan.arrival_time = (plan.near_lower.y() - plan.far_lower.y()) / plan.wave_speed;
   }
   else
     why.push_back("no far field: the blocks' outer edges carry " +
@@ -271,8 +394,25 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
       reason =
           "0.9 x VB I's limit m / cn = " + format(vb1_limit) + " s of the worst boundary block";
     }
+    if (outer_blocks)
+      reason += " (the consistent dashpot dissipates at any dt: no limit)";
     why.push_back("dt " + format(plan.dt) + " s: " + reason);
   }
+  // The static stage relaxes the model from the excavation outward; each pseudo step carries
+  // that about a P wave's c dt, so a model k times the near field's size wants k times the
+  // near field's 1 ms to settle in as many steps.
+  const double scale = outer_blocks ? (plan.far_upper - plan.far_lower).maxCoeff() /
+                                          (plan.near_upper - plan.near_lower).maxCoeff()
+                                    : 1.0;
+  plan.static_dt = t.static_dt > 0.0 ? t.static_dt : 1e-3 * scale;
+  std::string static_reason;
+  if (t.static_dt > 0.0)
+    static_reason = " (tunnel.static.dt)";
+  else if (outer_blocks)
+    static_reason = " = 1 ms x " + format(scale) +
+                    ", the model's size over the near field's: it settles in about as many "
+                    "steps as the near field alone";
+  why.push_back("static stage: pseudo time step " + format(plan.static_dt) + " s" + static_reason);
   return plan;
 }
 
@@ -321,16 +461,8 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
   input["velocity"] = nodes.velocity;
   if (plan.far_field)
   {
-    if (given["materials"][std::string("rock_mass_equivalent")])
-      throw InputError("the material name `rock_mass_equivalent` is taken: the tunnel names the "
-                       "far field's material so; expected another name for yours");
-    YAML::Node m;
-    m["density"] = t.density;
-    m["youngs_modulus"] = plan.rock_mass_modulus;
-    m["poisson_ratio"] = t.poisson_ratio;
-    YAML::Node materials = YAML::Clone(given["materials"]);
-    materials["rock_mass_equivalent"] = m;
-    root["materials"] = materials;
+    add_material(t, "rock_mass_equivalent", plan.rock_mass_modulus, "the far field's material",
+                 root);
 
     YAML::Node f;
     f["material"] = "rock_mass_equivalent";
@@ -363,6 +495,75 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
     interface["part"] = "hole";
     root["interface"] = interface;
   }
+  else if (t.truncation == TunnelTruncation::blocks)
+  {
+    add_material(t, "outer_rock", plan.outer_youngs_modulus, "the outer blocks' material", root);
+    if (given["joint_materials"]["outer_bond"])
+      throw InputError("the joint material name `outer_bond` is taken: the tunnel names the outer "
+                       "blocks' joints so; expected another name for yours");
+    YAML::Node j;
+    j["normal_stiffness"] = plan.outer_joint_stiffness;
+    j["shear_ratio"] = plan.outer_shear_ratio;
+    j["cohesion"] = plan.outer_strength;
+    j["tensile_strength"] = plan.outer_strength;
+    j["bonded"] = true;
+    YAML::Node joint_materials = given["joint_materials"] ? YAML::Clone(given["joint_materials"])
+                                                          : YAML::Node(YAML::NodeType::Map);
+    joint_materials["outer_bond"] = j;
+    root["joint_materials"] = joint_materials;
+    YAML::Node joints =
+        given["joints"] ? YAML::Clone(given["joints"]) : YAML::Node(YAML::NodeType::Map);
+    for (const std::string& other : {t.rock, std::string("outer_rock")})
+    {
+      YAML::Node entry;
+      entry["materials"].push_back("outer_rock");
+      entry["materials"].push_back(other);
+      entry["materials"].SetStyle(YAML::EmitterStyle::Flow);
+      entry["joint"] = "outer_bond";
+      entry.SetStyle(YAML::EmitterStyle::Flow);
+      joints["pairs"].push_back(entry);
+    }
+    root["joints"] = joints;
+
+    YAML::Node blocks(YAML::NodeType::Sequence);
+    for (const BlockGrid& g : plan.outer_grids)
+    {
+      YAML::Node b;
+      b["material"] = "outer_rock";
+      b["grid"]["origin"] = pair(g.origin.x(), g.origin.y());
+      b["grid"]["cell_size"] = pair(g.cell_size.x(), g.cell_size.y());
+      YAML::Node count(YAML::NodeType::Sequence);
+      count.push_back(static_cast<long long>(g.count[0]));
+      count.push_back(static_cast<long long>(g.count[1]));
+      count.SetStyle(YAML::EmitterStyle::Flow);
+      b["grid"]["count"] = count;
+      blocks.push_back(b);
+    }
+    root["blocks"] = blocks;
+
+    // Textbook impedance of E_o scaled to E_eff's (VP and VS go with sqrt(E) at a fixed nu): the
+    // dashpots rho VP and rho VS of the rock mass, as the far field's Lysmer base.
+    const double a = std::sqrt(plan.rock_mass_modulus / plan.outer_youngs_modulus);
+    const auto dashpot = [&](const Point& from, const Point& to)
+    {
+      YAML::Node b = line_boundary("dashpot", from, to);
+      b["impedance"] = "textbook";
+      b["a_n"] = a;
+      b["a_t"] = a;
+      return b;
+    };
+    const Point& lo = plan.far_lower;
+    const Point& hi = plan.far_upper;
+    YAML::Node base = dashpot(lo, Point(hi.x(), lo.y()));
+    base["input"] = input;
+    YAML::Node boundaries(YAML::NodeType::Sequence);
+    boundaries.push_back(base);
+    boundaries.push_back(dashpot(Point(hi.x(), lo.y()), hi));
+    if (!plan.top_is_surface)
+      boundaries.push_back(dashpot(hi, Point(lo.x(), hi.y())));
+    boundaries.push_back(dashpot(Point(lo.x(), hi.y()), lo));
+    root["boundaries"] = boundaries;
+  }
   else
   {
     const Point& lo = plan.near_lower;
@@ -393,7 +594,7 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
   YAML::Node stage_static, stage_dynamic;
   stage_static["name"] = "excavate";
   stage_static["mode"] = "static";
-  stage_static["dt"] = t.static_dt;
+  stage_static["dt"] = plan.static_dt;
   stage_static["tolerance"] = t.static_tolerance;
   stage_static["max_steps"] = t.static_max_steps;
   stage_dynamic["name"] = "shake";

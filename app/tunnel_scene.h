@@ -31,10 +31,14 @@ enum class TunnelTruncation
   dashpot,
   /// (c) the hybrid with a far field so large that nothing it reflects comes back to the
   /// opening within the run
-  reference
+  reference,
+  /// (c') blocks only out to the reference's extent: the near field inside a ring of bonded
+  /// rectangular blocks with the rock mass's modulus, dashpots on the ring's outer edges, the
+  /// wave input at its base
+  blocks
 };
 
-/// Scene name of a truncation: "hybrid", "vb1", "dashpot", "reference".
+/// Scene name of a truncation: "hybrid", "vb1", "dashpot", "reference", "blocks".
 const char* name_of(TunnelTruncation truncation);
 
 /// The `tunnel` section as read and validated by the scene reader, with the numbers it needs
@@ -63,14 +67,22 @@ struct TunnelDescription
   std::optional<std::array<Point, 2>> near_field;
   TunnelTruncation truncation = TunnelTruncation::hybrid;
   double margin = 0.0;           ///< far field beyond the near field [m]; 0: chosen
-  double reference_margin = 0.0; ///< the same for `reference` [m]; 0: chosen
+  double reference_margin = 0.0; ///< the same for `reference` and `blocks` [m]; 0: chosen
   double points_per_wavelength = 10.0;
   double growth_ratio = 1.3;
-  double window = 0.0; ///< dynamic stage after the wave reaches the near field [s]; 0: chosen
-  double dt = 0.0;     ///< [s]; 0: chosen
-  double static_dt = 1e-3;
+  double window = 0.0;    ///< dynamic stage after the wave reaches the near field [s]; 0: chosen
+  double dt = 0.0;        ///< [s]; 0: chosen
+  double static_dt = 0.0; ///< [s]; 0: chosen
   double static_tolerance = 1e-3;
   long long static_max_steps = 5000;
+};
+
+/// A grid of equal rectangular blocks (a `blocks` entry with a `grid`).
+struct BlockGrid
+{
+  Point origin = Point::Zero();              ///< lower-left corner [m]
+  Point cell_size = Point::Zero();           ///< [width, height] of each rectangle [m]
+  std::array<std::size_t, 2> count = {0, 0}; ///< [nx, ny]
 };
 
 /// What the program chose for a tunnel, and why (printed by `check`).
@@ -86,18 +98,32 @@ struct TunnelPlan
   double rock_mass_modulus = 0.0;
   double vp = 0.0, vs = 0.0; ///< of the rock mass [m/s] (plane strain)
   double wave_speed = 0.0;   ///< of the incident wave [m/s]
+  /// A deal.II far field (hybrid, reference); the extents below also bound the outer blocks.
   bool far_field = false;
-  Point far_lower = Point::Zero(), far_upper = Point::Zero(); ///< [m]
-  double margin = 0.0;                                        ///< [m]
-  double far_element_size = 0.0;                              ///< [m], FE_Q2
-  double near_element_size = 0.0;                             ///< at the near field [m]
+  /// The model's outer rectangle [m]: the far field's (hybrid, reference) or the outer blocks'
+  /// (blocks); zero for vb1 and dashpot.
+  Point far_lower = Point::Zero(), far_upper = Point::Zero();
+  double margin = 0.0;                  ///< beyond the near field [m]
+  double far_element_size = 0.0;        ///< [m], FE_Q2
+  double near_element_size = 0.0;       ///< at the near field [m]
   double elements_per_wavelength = 0.0; ///< far elements per S wavelength at max_frequency
-  bool top_is_surface = false;          ///< the model reaches the ground surface (traction free)
-  double surface_y = 0.0;               ///< [m]
-  double arrival_time = 0.0;            ///< the incident wave reaches the near field's base [s]
-  double end_time = 0.0;                ///< [s]
-  double dt = 0.0;                      ///< [s]
-  std::vector<std::string> reasons;     ///< one line per choice, for `check`
+  /// blocks: the ring from the near field to far_lower/far_upper as 8 grids (the 3 x 3 tensor
+  /// grid of the margins and the near field, without its centre); the outer blocks come before
+  /// the near field's in the scene's block list.
+  std::vector<BlockGrid> outer_grids;
+  std::size_t n_outer_blocks = 0;
+  double outer_block_size = 0.0;      ///< target side: shortest S wavelength / points [m]
+  double outer_youngs_modulus = 0.0;  ///< E_o of the outer blocks [Pa]
+  double outer_joint_stiffness = 0.0; ///< normal spring p of their bonded joints [N/m]
+  double outer_shear_ratio = 0.0;     ///< shear spring / p of their bonded joints [-]
+  double outer_strength = 0.0;        ///< cohesion and tensile strength of their joints [Pa]
+  bool top_is_surface = false;        ///< the model reaches the ground surface (traction free)
+  double surface_y = 0.0;             ///< [m]
+  double arrival_time = 0.0;          ///< the incident wave reaches the near field's base [s]
+  double end_time = 0.0;              ///< [s]
+  double dt = 0.0;                    ///< [s]
+  double static_dt = 0.0;             ///< pseudo time step of the static stage [s]
+  std::vector<std::string> reasons;   ///< one line per choice, for `check`
 };
 
 /// E_eff = 1 / (1/E + L / (2 p d)) [Pa] of a block of modulus E [Pa] and area [m^2] with a
@@ -106,6 +132,13 @@ struct TunnelPlan
 /// continuum normal to the line.
 double jointed_block_modulus(double youngs_modulus, double normal_stiffness, double area,
                              double length);
+
+/// Young's modulus E_o [Pa] of square blocks that, bonded to their neighbours by two springs
+/// `normal_stiffness` p [N/m] per shared edge, make a grid of modulus `grid_modulus` E_grid
+/// [Pa]: jointed_block_modulus(E_o, p, s^2, s) = E_grid for any side s, i.e.
+/// E_o = 1 / (1 / E_grid - 1 / (2 p)) (p per metre out of the plane, in Pa). Throws InputError
+/// if 2 p <= E_grid: the springs alone are softer than the grid must be.
+double outer_block_modulus(double grid_modulus, double normal_stiffness);
 
 /// Chooses the near field, far field, time step and duration. Generates the blocks once to
 /// measure them. Throws InputError (without a location; the caller adds it) when the tunnel
@@ -124,7 +157,9 @@ struct TunnelNodes
 /// Writes the generated sections into the scene's root: rock_mass, gravity, in_situ_stress,
 /// analysis.plane, stages, monitors, time (keys the user gave in `time` win), output (likewise),
 /// and for the hybrid and reference a far-field material `rock_mass_equivalent`, far_field and
-/// interface; for vb1 and dashpot the block boundaries. Throws InputError (without a location)
+/// interface; for vb1 and dashpot the block boundaries; for blocks the outer grids (`blocks`),
+/// their material `outer_rock` and joint material `outer_bond` (with `joints.pairs` entries)
+/// and the block boundaries. Throws InputError (without a location)
 /// if the scene already has a section the tunnel generates.
 void write_tunnel_sections(const TunnelDescription& tunnel, const TunnelPlan& plan,
                            const TunnelNodes& nodes, YAML::Node& root);

@@ -6,8 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 using namespace ddafem;
 
@@ -119,6 +122,109 @@ TEST(TunnelPlan, BlocksOnlyTakeTheWaveAtTheirBaseWithinVbOnesLimit)
   EXPECT_NEAR(plan.dt, std::min(1e-3, 0.9 * 1.5 / vp), 1e-15);
 }
 
+TEST(TunnelPlan, OuterBlocksReachTheReferencesExtent)
+{
+  TunnelDescription t = grid_tunnel();
+  t.truncation = TunnelTruncation::reference;
+  const TunnelPlan reference = plan_tunnel(t);
+  t.truncation = TunnelTruncation::blocks;
+  const TunnelPlan plan = plan_tunnel(t);
+  EXPECT_FALSE(plan.far_field);
+  EXPECT_DOUBLE_EQ(plan.margin, reference.margin);
+  EXPECT_DOUBLE_EQ(plan.far_lower.x(), reference.far_lower.x());
+  EXPECT_DOUBLE_EQ(plan.far_lower.y(), reference.far_lower.y());
+  EXPECT_DOUBLE_EQ(plan.far_upper.x(), reference.far_upper.x());
+  // 50 m deep: the ground surface lies within the margin, the top is free there.
+  EXPECT_TRUE(plan.top_is_surface);
+  EXPECT_DOUBLE_EQ(plan.far_upper.y(), 50.0);
+  EXPECT_DOUBLE_EQ(plan.arrival_time, reference.arrival_time);
+  EXPECT_DOUBLE_EQ(plan.end_time, reference.end_time);
+  EXPECT_DOUBLE_EQ(plan.dt, 1e-3);
+  // The static stage's pseudo step grows with the model: 1 ms x its width over the near field's.
+  EXPECT_DOUBLE_EQ(reference.static_dt, 1e-3);
+  EXPECT_NEAR(plan.static_dt, 1e-3 * (plan.far_upper.x() - plan.far_lower.x()) / 24.0, 1e-15);
+}
+
+TEST(TunnelPlan, OuterBlocksHaveTheShortestSWavelengthOverPointsPerWavelength)
+{
+  TunnelDescription t = grid_tunnel();
+  t.truncation = TunnelTruncation::blocks;
+  const TunnelPlan plan = plan_tunnel(t);
+  const double size = (plan.vs / 50.0) / 10.0;
+  EXPECT_NEAR(plan.outer_block_size, size, 1e-12);
+  ASSERT_EQ(plan.outer_grids.size(), 8u);
+  std::size_t n = 0;
+  for (const BlockGrid& g : plan.outer_grids)
+    for (int k = 0; k < 2; ++k)
+    {
+      // Each side of the ring's pieces is cut into the whole number of cells nearest to
+      // length / size.
+      const double length = g.cell_size[k] * static_cast<double>(g.count[k]);
+      EXPECT_EQ(g.count[k], std::max<std::size_t>(1, std::llround(length / size)));
+      EXPECT_LE(std::abs(g.cell_size[k] - size), 0.5 * size / static_cast<double>(g.count[k]));
+      if (k == 0)
+        n += g.count[0] * g.count[1];
+    }
+  EXPECT_EQ(plan.n_outer_blocks, n);
+}
+
+TEST(TunnelPlan, OuterBlocksWithTheirJointsHaveTheRockMassModulus)
+{
+  TunnelDescription t = grid_tunnel();
+  t.truncation = TunnelTruncation::blocks;
+  const TunnelPlan plan = plan_tunnel(t);
+  const double e_eff = plan.rock_mass_modulus, p = t.joint_normal_stiffness;
+  // By hand: a square cell of side s and E_o shortens by sigma s / E_o, its joint (two springs
+  // p, 1 m thick) by sigma s / (2 p): 1 / E_eff = 1 / E_o + 1 / (2 p).
+  const double e_o = 1.0 / (1.0 / e_eff - 1.0 / (2.0 * p));
+  EXPECT_NEAR(plan.outer_youngs_modulus, e_o, 1e-12 * e_o);
+  EXPECT_DOUBLE_EQ(plan.outer_joint_stiffness, p);
+  for (const double s : {plan.outer_block_size, 1.0, 7.5})
+    EXPECT_NEAR(jointed_block_modulus(plan.outer_youngs_modulus, p, s * s, s), e_eff,
+                1e-12 * e_eff);
+  // Shear: both joint sets slip, tau s / (2 p_s) each per cell: 1 / G = 1 / G_o + 1 / p_s.
+  const double nu = t.poisson_ratio;
+  const double g_grid =
+      1.0 / (2.0 * (1.0 + nu) / plan.outer_youngs_modulus + 1.0 / (plan.outer_shear_ratio * p));
+  EXPECT_NEAR(g_grid, e_eff / (2.0 * (1.0 + nu)), 1e-12 * e_eff);
+  EXPECT_GT(plan.outer_strength, 1e3 * t.density * t.gravity * (50.0 + plan.margin));
+  // Springs softer than the rock mass cannot make it.
+  EXPECT_THROW(outer_block_modulus(e_eff, 0.4 * e_eff), InputError);
+}
+
+TEST(TunnelPlan, OuterGridsTileTheRingAroundTheNearField)
+{
+  TunnelDescription t = grid_tunnel();
+  t.truncation = TunnelTruncation::blocks;
+  t.depth = 1000.0; // the top is a dashpot, the ring closed on four sides
+  const TunnelPlan plan = plan_tunnel(t);
+  EXPECT_FALSE(plan.top_is_surface);
+  using Box = std::array<Point, 2>;
+  const auto area = [](const Box& b)
+  { return std::max(0.0, b[1].x() - b[0].x()) * std::max(0.0, b[1].y() - b[0].y()); };
+  const auto overlap = [&](const Box& a, const Box& b) {
+    return area({a[0].cwiseMax(b[0]), a[1].cwiseMin(b[1])});
+  };
+  std::vector<Box> boxes;
+  for (const BlockGrid& g : plan.outer_grids)
+    boxes.push_back(
+        {g.origin, g.origin + Point(g.cell_size.x() * static_cast<double>(g.count[0]),
+                                    g.cell_size.y() * static_cast<double>(g.count[1]))});
+  const Box near = {plan.near_lower, plan.near_upper};
+  const Box far = {plan.far_lower, plan.far_upper};
+  const double tolerance = 1e-9 * area(far);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+  {
+    sum += area(boxes[i]);
+    EXPECT_NEAR(overlap(boxes[i], far), area(boxes[i]), tolerance) << "grid " << i;
+    EXPECT_NEAR(overlap(boxes[i], near), 0.0, tolerance) << "grid " << i;
+    for (std::size_t j = i + 1; j < boxes.size(); ++j)
+      EXPECT_NEAR(overlap(boxes[i], boxes[j]), 0.0, tolerance) << "grids " << i << ", " << j;
+  }
+  EXPECT_NEAR(sum, area(far) - area(near), tolerance);
+}
+
 TEST(TunnelPlan, NearFieldAboveTheSurfaceIsAnInputError)
 {
   TunnelDescription t = grid_tunnel();
@@ -150,6 +256,27 @@ TEST(TunnelScene, OneSettingSwitchesToBlocksOnlyWithVbOne)
   ASSERT_EQ(s.model.boundaries.size(), 4u);
   for (const dda::BoundaryDescription& b : s.model.boundaries)
     EXPECT_EQ(b.type, dda::BoundaryType::vb1);
+}
+
+TEST(TunnelScene, BlocksTruncationPutsTheNearFieldInBondedOuterGridsWithDashpots)
+{
+  // Coarse outer blocks (2 per wavelength) keep the test fast.
+  const Scene s = read_scene(
+      default_scene, {{"tunnel.truncation", "blocks"}, {"tunnel.points_per_wavelength", "2"}});
+  ASSERT_TRUE(s.tunnel.has_value());
+  EXPECT_FALSE(s.far_field.has_value());
+  const TunnelPlan& plan = *s.tunnel;
+  EXPECT_EQ(s.model.blocks.size(), plan.n_outer_blocks + plan.n_blocks);
+  // The default scene's top is the ground surface: dashpots on the base and the sides only.
+  ASSERT_TRUE(plan.top_is_surface);
+  ASSERT_EQ(s.model.boundaries.size(), 3u);
+  for (const dda::BoundaryDescription& b : s.model.boundaries)
+    EXPECT_EQ(b.type, dda::BoundaryType::dashpot);
+  const auto outer = std::find_if(s.model.materials.begin(), s.model.materials.end(),
+                                  [](const dda::Material& m) { return m.name == "outer_rock"; });
+  ASSERT_NE(outer, s.model.materials.end());
+  EXPECT_DOUBLE_EQ(outer->youngs_modulus, plan.outer_youngs_modulus);
+  EXPECT_NE(s.expanded_yaml.find("outer_bond"), std::string::npos);
 }
 
 } // namespace
