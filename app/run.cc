@@ -833,7 +833,9 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
                          {"near_field_upper_m", {plan.near_upper.x(), plan.near_upper.y()}},
                          {"far_field", plan.far_field},
                          {"margin_m", plan.margin},
+                         {"side_margin_m", plan.side_margin},
                          {"outer_blocks", plan.n_outer_blocks},
+                         {"outer_block_size_m", plan.outer_block_size},
                          {"rock_mass_modulus_pa", plan.rock_mass_modulus},
                          {"arrival_time_s", plan.arrival_time},
                          {"end_time_s", plan.end_time}};

@@ -340,8 +340,23 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
                          : ": a P wave reflected at the truncation needs more than the " +
                                format(window) + " s window to come back"));
     }
-    plan.far_lower = plan.near_lower - Point(plan.margin, plan.margin);
-    plan.far_upper = plan.near_upper + Point(plan.margin, plan.margin);
+    plan.side_margin = plan.margin;
+    if (outer_blocks && !(t.reference_margin > 0.0))
+    {
+      // The side dashpots resist the free-field motion itself (there are no free-field columns
+      // for blocks): they radiate from the moment the wave enters at the base corners, a margin
+      // below and side_margin beside the near field. Their P waves must not reach the near
+      // field before the end, margin / wave_speed + window after the entry.
+      const double reach = plan.vp * (plan.margin / plan.wave_speed + window);
+      plan.side_margin =
+          std::max(plan.margin, std::sqrt(reach * reach - plan.margin * plan.margin));
+      why.push_back("outer blocks: " + format(plan.side_margin) +
+                    " m beside the near field: the side dashpots resist the free-field motion and "
+                    "radiate from the base corners; their P waves reach the near field after the "
+                    "end");
+    }
+    plan.far_lower = plan.near_lower - Point(plan.side_margin, plan.margin);
+    plan.far_upper = plan.near_upper + Point(plan.side_margin, plan.margin);
     if (plan.far_upper.y() >= plan.surface_y)
     {
       plan.far_upper.y() = plan.surface_y;

@@ -104,6 +104,7 @@ struct TunnelPlan
   /// (blocks); zero for vb1 and dashpot.
   Point far_lower = Point::Zero(), far_upper = Point::Zero();
   double margin = 0.0;                  ///< beyond the near field [m]
+  double side_margin = 0.0;             ///< beside it [m]: margin, wider for blocks
   double far_element_size = 0.0;        ///< [m], FE_Q2
   double near_element_size = 0.0;       ///< at the near field [m]
   double elements_per_wavelength = 0.0; ///< far elements per S wavelength at max_frequency

@@ -131,9 +131,16 @@ TEST(TunnelPlan, OuterBlocksReachTheReferencesExtent)
   const TunnelPlan plan = plan_tunnel(t);
   EXPECT_FALSE(plan.far_field);
   EXPECT_DOUBLE_EQ(plan.margin, reference.margin);
-  EXPECT_DOUBLE_EQ(plan.far_lower.x(), reference.far_lower.x());
+  EXPECT_DOUBLE_EQ(reference.side_margin, reference.margin);
   EXPECT_DOUBLE_EQ(plan.far_lower.y(), reference.far_lower.y());
-  EXPECT_DOUBLE_EQ(plan.far_upper.x(), reference.far_upper.x());
+  // Wider at the sides: a P wave from a base corner, sqrt(side^2 + margin^2) from the near
+  // field, arrives when the window ends, margin / VS + window after the wave entered the base.
+  const double window = plan.end_time - plan.arrival_time;
+  const double reach = plan.vp * (plan.margin / plan.vs + window);
+  EXPECT_NEAR(std::hypot(plan.side_margin, plan.margin), reach, 1e-9 * reach);
+  EXPECT_GT(plan.side_margin, plan.margin);
+  EXPECT_DOUBLE_EQ(plan.far_lower.x(), plan.near_lower.x() - plan.side_margin);
+  EXPECT_DOUBLE_EQ(plan.far_upper.x(), plan.near_upper.x() + plan.side_margin);
   // 50 m deep: the ground surface lies within the margin, the top is free there.
   EXPECT_TRUE(plan.top_is_surface);
   EXPECT_DOUBLE_EQ(plan.far_upper.y(), 50.0);
