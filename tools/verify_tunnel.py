@@ -14,8 +14,9 @@ The same scene (default: the default tunnel scene examples/tunnel/circular_sv.ya
              of the incident wave beyond the blocks
   vb1        (a) blocks only, VB I (Bao et al. 2012) on the near field's edges
   dashpot    (a') blocks only, the consistent dashpot on the near field's edges
-  blocks     (c') blocks only out to the reference's extent: the near field in a ring of bonded
-             rectangular blocks with the rock mass's modulus, dashpots on its sides and base
+  blocks     (c') blocks only, big enough (the reference's margin below, wider beside): the near
+             field in a ring of bonded rectangular blocks with the rock mass's modulus, dashpots
+             on its sides and base
 Each run's keyblocks are the blocks along the opening (summary.json `keyblocks`);
 keyblock_peak_m is the largest peak centroid displacement among them in the dynamic stage
 (relative to the static equilibrium). error_vs_reference = |peak - peak_ref| / peak_ref.
@@ -49,7 +50,7 @@ LABELS = {
     "hybrid": "(b) hybrid: blocks + FE far field (Lysmer, free field)",
     "vb1": "(a) blocks only, VB I",
     "dashpot": "(a') blocks only, dashpot",
-    "blocks": "(c') blocks only, as large as (c)",
+    "blocks": "(c') blocks only, big enough: (c)'s margin below, wider beside",
 }
 
 
