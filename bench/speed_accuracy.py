@@ -591,7 +591,6 @@ def figure_speed_accuracy(rows, case, out):
 
 
 def figure_stability_map(rows, out):
-    limits = BAO.boundary_limits()
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
     sub = [r for r in rows if r["case"] == "bar_stability"]
     for i, method in enumerate(m for m in ("vb1", "vb2", "dashpot", "dashpot_effective", "hybrid")
@@ -606,14 +605,8 @@ def figure_stability_map(rows, out):
                   color=f"C{i}", mfc="none", label=METHOD_TEXT[method])
         bad = [r for r in grown if not r["stable"]]
         a2.loglog([r["dt"] for r in bad], [max(r["energy_growth"], 1e-6) for r in bad], "kx", ms=10)
-    for ax in (a1, a2):
-        ax.axvline(limits["vb1_source"], color="k", ls="--", lw=1)
-        ax.axvline(limits["m_over_cn"], color="gray", ls=":", lw=1)
-        ax.axvline(limits["two_m_over_ct"], color="gray", ls="-.", lw=1)
-        ax.grid(alpha=0.3, which="both")
-    a1.text(limits["vb1_source"], 5, " VB I source limit x0 m / cn", fontsize=8)
+    BAO.mark_limits(a1, a2)
     a1.set_ylabel("boundary-only efficiency eta_boundary [%]")
-    a1.set_ylim(-60, 101)
     a1.legend(fontsize=7, loc="lower left")
     a2.axhline(1.0, color="r", lw=0.8)
     a2.set_ylabel("energy growth: stored / put in at the end\n(floored at 1e-6; x: unstable)")

@@ -267,8 +267,20 @@ def boundary_limits():
             "two_m_over_ct": 2 * mass / ct}
 
 
-def figure_stability(rows, path):
+def mark_limits(efficiency_axis, growth_axis):
+    """The boundary limits of boundary_limits() as vertical lines on both axes of a stability
+    figure (dashed: VB I's source limit, labelled; dotted: m / cn; dash-dot: 2 m / ct)."""
     limits = boundary_limits()
+    for ax in (efficiency_axis, growth_axis):
+        ax.axvline(limits["vb1_source"], color="k", ls="--", lw=1)
+        ax.axvline(limits["m_over_cn"], color="gray", ls=":", lw=1)
+        ax.axvline(limits["two_m_over_ct"], color="gray", ls="-.", lw=1)
+        ax.grid(alpha=0.3, which="both")
+    efficiency_axis.text(limits["vb1_source"], 5, " VB I source limit\n x0 m / cn", fontsize=8)
+    efficiency_axis.set_ylim(-60, 101)
+
+
+def figure_stability(rows, path):
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
     for key in BOUNDARIES:
         sub = [r for r in rows if (r["boundary"], r["impedance"]) == key]
@@ -278,14 +290,8 @@ def figure_stability(rows, path):
         grown = [r for r in sub if r["final_stored_over_input"] is not None]
         a2.loglog([r["dt"] for r in grown], [max(r["final_stored_over_input"], 1e-6) for r in grown],
                   "o-", label=LABEL[key])
-    for ax in (a1, a2):
-        ax.axvline(limits["vb1_source"], color="k", ls="--", lw=1)
-        ax.axvline(limits["m_over_cn"], color="gray", ls=":", lw=1)
-        ax.axvline(limits["two_m_over_ct"], color="gray", ls="-.", lw=1)
-        ax.grid(alpha=0.3, which="both")
-    a1.text(limits["vb1_source"], 5, " VB I source limit\n x0 m / cn", fontsize=8)
+    mark_limits(a1, a2)
     a1.set_ylabel("boundary-only efficiency [%]")
-    a1.set_ylim(-60, 101)
     a1.legend(fontsize=7, loc="lower left")
     a2.set_ylabel("stored energy at the end / energy put in\n(0.05 s for dt < 1e-4 s, else 0.5 s)")
     a2.set_xlabel("dt [s] (dotted: m/cn, eq. 44; dash-dot: 2m/ct)")
