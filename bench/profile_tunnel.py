@@ -189,6 +189,12 @@ def profile(ddafem, out_dir, repeat):
     return records
 
 
+def write_markdown(records, out_dir):
+    """OUT_DIR/profile_tunnel.md: the section as a page of its own."""
+    with open(os.path.join(out_dir, "profile_tunnel.md"), "w") as f:
+        f.write(markdown_section(records, "#").replace("](performance/", "]("))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--build", default=os.path.join(TOP, "build"))
@@ -196,8 +202,7 @@ def main():
     parser.add_argument("--out", default=os.path.join(TOP, "docs", "performance"))
     args = parser.parse_args()
     records = profile(os.path.join(args.build, "ddafem"), args.out, args.repeat)
-    with open(os.path.join(args.out, "profile_tunnel.md"), "w") as f:
-        f.write(markdown_section(records, "#").replace("](performance/", "]("))
+    write_markdown(records, args.out)
     print(markdown_section(records))
 
 

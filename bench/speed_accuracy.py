@@ -46,7 +46,7 @@ failure), energy_growth > 1 or the boundary is a source (energy_absorbed < -SOUR
 Every run writes snapshots at its first and last step only (output.interval=1), so wall times
 are the computation's.
 Profile (not with --quick): bench/profile_tunnel.py's before/after of the default tunnel, run
-alone after the matrix, into OUT/profile_tunnel.{json,png} and a section of performance.md.
+alone after the matrix, into OUT/profile_tunnel.{json,md,png} and a section of performance.md.
 --quick (the ctest bench.speed_accuracy_quick): a few short runs of each case.
 
 usage: /usr/bin/python3 bench/speed_accuracy.py [--quick] [--jobs 2] [--build build]
@@ -913,6 +913,8 @@ def main():
         results = run_all(ddafem, jobs, root, args.jobs)
         # One run at a time, after the others: the profile's before and after in the same run.
         profile = None if args.quick else PROFILE.profile(ddafem, out, repeat=1)
+        if profile:
+            PROFILE.write_markdown(profile, out)
         rows = bar_rows([r for r in results if r["case"].startswith("bar")]) + \
             line_source_rows([r for r in results if r["case"] == "line_source"]) + \
             tunnel_rows([r for r in results if r["case"].startswith("tunnel")])
