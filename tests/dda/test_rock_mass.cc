@@ -262,22 +262,14 @@ TEST(RockMass, NoTwoBlocksOverlap)
   const RockMassResult r = generate_blocks(tunnel_scene());
   std::size_t n_checked = 0, n_touching = 0;
   double largest = 0.0;
-  for (std::size_t i = 0; i < r.blocks.size(); ++i)
-    for (std::size_t j = i + 1; j < r.blocks.size(); ++j)
-    {
-      const std::vector<Point>&a = r.blocks[i].vertices, &b = r.blocks[j].vertices;
-      const auto [ax0, ax1] = extent(a, {1, 0});
-      const auto [bx0, bx1] = extent(b, {1, 0});
-      const auto [ay0, ay1] = extent(a, {0, 1});
-      const auto [by0, by1] = extent(b, {0, 1});
-      if (ax1 < bx0 || bx1 < ax0 || ay1 < by0 || by1 < ay0)
-        continue; // bounding boxes apart
-      ++n_checked;
-      const double overlap = overlap_area(a, b);
-      n_touching += overlap > 0.0;
-      largest = std::max(largest, overlap);
-      EXPECT_LT(overlap, rounding) << "blocks " << i << " and " << j;
-    }
+  for (const auto& [i, j] : nearby_pairs(r))
+  {
+    ++n_checked;
+    const double overlap = overlap_area(r.blocks[i].vertices, r.blocks[j].vertices);
+    n_touching += overlap > 0.0;
+    largest = std::max(largest, overlap);
+    EXPECT_LT(overlap, rounding) << "blocks " << i << " and " << j;
+  }
   // Nor does any block reach into an opening.
   for (std::size_t i = 0; i < r.blocks.size(); ++i)
     for (const std::vector<Point>& o : r.openings)
