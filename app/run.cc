@@ -116,6 +116,7 @@ std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
   channels.push_back({"steps/dt", 1, "s", "time step of the last step"});
   channels.push_back(
       {"steps/open_close_iterations", 1, "", "open-close iterations of the last step"});
+  channels.push_back({"steps/cuts", 1, "", "dt cuts before the last step was accepted"});
   return channels;
 }
 
@@ -124,6 +125,7 @@ struct LastStep
 {
   double dt = 0.0;
   unsigned n_open_close_iterations = 0;
+  std::size_t n_cuts = 0;
 };
 
 std::vector<double> history_row(const dda::System& system, const LastStep& last)
@@ -142,7 +144,7 @@ std::vector<double> history_row(const dda::System& system, const LastStep& last)
   row.insert(row.end(),
              {static_cast<double>(n.open), static_cast<double>(n.slide),
               static_cast<double>(n.lock), static_cast<double>(system.get_joints().size()), last.dt,
-              static_cast<double>(last.n_open_close_iterations)});
+              static_cast<double>(last.n_open_close_iterations), static_cast<double>(last.n_cuts)});
   return row;
 }
 
@@ -287,11 +289,6 @@ std::string impedance_warning(const InterfaceImpedance& z)
          " Pa) and the tied blocks with their joints (E_eff = " + format(z.blocks_modulus) +
          " Pa) differ in impedance: the interface reflects about " + format(100 * z.reflection, 2) +
          "% of a normally incident wave; a far-field material of the rock mass (E_eff) avoids it";
-}
-
-const char* integrator_name(dda::Integrator i)
-{
-  return i == dda::Integrator::dda ? "dda" : "newmark_trapezoidal";
 }
 
 const char* boundary_type_name(dda::BoundaryType t)
@@ -524,7 +521,7 @@ std::string check_scene(const Scene& scene)
       << ", monitors: " << model.monitors.size() << "\n";
   const auto n_steps = static_cast<std::size_t>(std::llround(model.time.end_time / model.time.dt));
   out << "  time: dt " << format(model.time.dt) << " s, end " << format(model.time.end_time)
-      << " s, " << n_steps << " steps, integrator " << integrator_name(model.time.integrator)
+      << " s, " << n_steps << " steps, integrator " << dda::integrator_name(model.time.integrator)
       << "\n";
   out << "  time control: "
       << (model.time.control == dda::TimeControl::fixed ? "fixed" : "adaptive (dt is the largest)")
@@ -697,7 +694,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   dda::StepStatus failure;
   nlohmann::json stage_records = nlohmann::json::array();
   bool initial_written = false;
-  std::size_t n_cuts = 0, n_cut_steps = 0;
+  std::size_t n_cuts = 0, n_cut_steps = 0, n_penalty_raises = 0, n_flips_ignored = 0;
   double smallest_dt = time.dt;
   for (const dda::Stage& stage : stages)
   {
@@ -776,7 +773,8 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
         failure = status;
         break;
       }
-      last_step = {stepper.last_dt(), status.n_open_close_iterations};
+      last_step = {stepper.last_dt(), status.n_open_close_iterations, stepper.n_last_step_cuts()};
+      n_flips_ignored += status.n_flips_ignored;
       smallest_dt = std::min(smallest_dt, stepper.last_dt());
       const bool last = system.time() >= stage.end_time - 1e-9 * time.dt;
       const bool snapshot =
@@ -788,8 +786,10 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
     }
     n_cuts += stepper.n_cuts();
     n_cut_steps += stepper.n_cut_steps();
+    n_penalty_raises += stepper.n_penalty_raises();
     record["steps"] = system.n_steps() - first_step;
     record["end_time_s"] = stage.end_time;
+    record["time_reached_s"] = system.time();
     stage_records.push_back(record);
     if (failure.outcome != dda::StepOutcome::success)
       break;
@@ -823,7 +823,9 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
       {"smallest_dt_s", smallest_dt},
       {"attempts", system.get_timings().n_attempts},
       {"cuts", n_cuts},
-      {"steps_cut", n_cut_steps}};
+      {"steps_cut", n_cut_steps},
+      {"penalty_raises", n_penalty_raises},
+      {"flips_ignored", n_flips_ignored}};
   summary["stages"] = stage_records;
   if (scene.tunnel)
   {
@@ -840,7 +842,9 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
                          {"arrival_time_s", plan.arrival_time},
                          {"end_time_s", plan.end_time}};
   }
-  summary["integrator"] = integrator_name(time.integrator);
+  summary["integrator"] = dda::integrator_name(time.integrator);
+  if (time.integrator == dda::Integrator::generalized_alpha)
+    summary["spectral_radius"] = time.spectral_radius;
   summary["solver"] = {{"name", system.get_solver().name()},
                        {"factorizations", system.get_solver().n_factorizations()},
                        {"solves", system.get_solver().n_solves()},

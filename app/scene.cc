@@ -1918,9 +1918,11 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   if (model.time.end_time < model.time.dt)
     throw time.error("end_time",
                      "expected end_time >= dt = " + format_number(model.time.dt) + " s");
-  model.time.integrator = time.choice("integrator") == "newmark_trapezoidal"
-                              ? dda::Integrator::newmark_trapezoidal
-                              : dda::Integrator::dda;
+  for (const dda::Integrator i : {dda::Integrator::generalized_alpha, dda::Integrator::dda,
+                                  dda::Integrator::newmark_trapezoidal})
+    if (time.choice("integrator") == dda::integrator_name(i))
+      model.time.integrator = i;
+  model.time.spectral_radius = time.number("spectral_radius");
   model.time.control =
       time.choice("control") == "fixed" ? dda::TimeControl::fixed : dda::TimeControl::adaptive;
   if (time.has("dt_min"))
@@ -1941,6 +1943,8 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   model.contacts.max_open_close_iterations =
       static_cast<unsigned>(contacts.integer("max_open_close_iterations"));
   model.contacts.angle_tolerance_deg = contacts.number("angle_tolerance");
+  model.contacts.max_penalty_factor = contacts.number("max_penalty_factor");
+  model.contacts.flip_force_ratio = contacts.number("flip_force_ratio");
 
   for (const MapReader& r : top.section_list("stages"))
   {
@@ -1978,6 +1982,12 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
                               "`far_field.static_stage`)");
   if (scene.far_field)
   {
+    // Blocks tied to a far field take the far field's trapezoidal rule unless the scene says
+    // otherwise: the far field has no generalized-alpha, the interface's energy closes with one
+    // integrator on both sides, and with generalized-alpha the coupled tunnels' fixed dt stops on
+    // the open-close iteration (coupled runs cannot cut dt yet).
+    if (!time.has("integrator"))
+      model.time.integrator = dda::Integrator::newmark_trapezoidal;
     scene.far_field->dt = model.time.dt;
     scene.far_field->end_time = model.time.end_time;
     const MapReader f = top.section_reader("far_field");

@@ -55,6 +55,12 @@ public:
     k.range.max_inclusive = false;
     return *this;
   }
+  KeyBuilder& at_most(double v)
+  {
+    k.range.max = v;
+    k.range.max_inclusive = true;
+    return *this;
+  }
   KeyBuilder& choices(std::vector<std::string> c)
   {
     k.choices = std::move(c);
@@ -1172,10 +1178,19 @@ SceneSchema::SceneSchema()
             .greater_than(0)
             .meaning("simulated duration; must be >= dt"),
         key("integrator", T::choice)
-            .choices({"dda", "newmark_trapezoidal"})
-            .default_yaml("dda")
-            .meaning("dda: Shi's dissipative first-order scheme; newmark_trapezoidal: "
-                     "energy-conserving, second order"),
+            .choices({"generalized_alpha", "dda", "newmark_trapezoidal"})
+            .default_yaml("generalized_alpha")
+            .meaning("generalized_alpha (Chung & Hulbert 1993): second order, damps stiff "
+                     "contact modes to spectral_radius per step (right for frictional sliding "
+                     "and for waves, docs/verification/failure.md); dda: Shi's dissipative "
+                     "first-order scheme (damps waves); newmark_trapezoidal: energy-conserving, "
+                     "second order (penalty contacts ring: blocks bounce and slide too far)"),
+        key("spectral_radius", T::number)
+            .default_yaml("0.2")
+            .at_least(0)
+            .at_most(1)
+            .meaning("generalized_alpha: the spectral radius at infinite frequency rho_inf (1: "
+                     "no algorithmic damping; 0: stiff modes annihilated in one step)"),
         key("control", T::choice)
             .choices({"adaptive", "fixed"})
             .default_yaml("adaptive")
@@ -1224,6 +1239,20 @@ SceneSchema::SceneSchema()
             .default_yaml("6")
             .at_least(1)
             .meaning("open-close iterations before the step is cut (Shi: 6)"),
+        key("max_penalty_factor", T::number)
+            .default_yaml("100")
+            .at_least(1)
+            .meaning("a contact penetrating deeper than max_penetration has its springs raised "
+                     "x 10 and the step redone (ntdda), up to this multiple of its joint "
+                     "material's; then dt is cut"),
+        key("flip_force_ratio", T::number)
+            .default_yaml("1e-3")
+            .at_least(0)
+            .less_than(1)
+            .meaning("from the third open-close iteration on, a contact whose forces stay below "
+                     "this fraction of the step's largest contact normal force changes state "
+                     "without holding the iteration back (no flipping between slide and lock "
+                     "at almost no force); 0 counts every change"),
         key("angle_tolerance", T::number)
             .unit("deg")
             .default_yaml("1")

@@ -624,10 +624,10 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
     time["dt"] = plan.dt;
   if (!time["end_time"])
     time["end_time"] = plan.end_time;
-  if (!time["integrator"])
-    time["integrator"] = "newmark_trapezoidal";
+  // Blocks step adaptively (cut on a failed step, grow back); blocks tied to a far field step
+  // with one dt.
   if (!time["control"])
-    time["control"] = "fixed";
+    time["control"] = plan.far_field ? "fixed" : "adaptive";
   root["time"] = time;
   YAML::Node output =
       given["output"] ? YAML::Clone(given["output"]) : YAML::Node(YAML::NodeType::Map);

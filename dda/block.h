@@ -22,8 +22,11 @@ struct Block
   Point initial_centroid = Point::Zero(); ///< centroid at t = 0 [m]
   Vector6 velocity = Vector6::Zero();     ///< d/dt of the unknowns (m/s, rad/s, 1/s)
   Vector6 acceleration = Vector6::Zero(); ///< d2/dt2 of the unknowns (used by Newmark)
-  Voigt stress = Voigt::Zero();           ///< accumulated (sxx, syy, sxy) [Pa], tension positive
-  Voigt strain = Voigt::Zero();           ///< accumulated (exx, eyy, gxy) [-]
+  /// The non-inertial generalised force on the block at the end of the last step [N, N m]
+  /// (generalized-alpha's r_n, see dda/integrator.h)
+  Vector6 force = Vector6::Zero();
+  Voigt stress = Voigt::Zero(); ///< accumulated (sxx, syy, sxy) [Pa], tension positive
+  Voigt strain = Voigt::Zero(); ///< accumulated (exx, eyy, gxy) [-]
 
   Block(std::size_t material, std::vector<Point> vertices);
 

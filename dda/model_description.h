@@ -2,6 +2,7 @@
 #pragma once
 
 #include "common/time_function.h"
+#include "dda/integrator.h"
 #include "dda/types.h"
 
 #include <cstddef>
@@ -175,14 +176,6 @@ struct InSituStress
   }
 };
 
-/// The time integrator. Both are Newmark schemes: a1 = (d - dt v0 - dt^2 (1/2 - beta) a0) /
-/// (beta dt^2), v1 = v0 + dt ((1 - gamma) a0 + gamma a1).
-enum class Integrator
-{
-  dda,                ///< Shi's scheme, beta = 1/2, gamma = 1: first order, dissipative
-  newmark_trapezoidal ///< beta = 1/4, gamma = 1/2: second order, conserves energy
-};
-
 /// Sparse direct solver for the step's symmetric positive definite system.
 enum class SolverKind
 {
@@ -208,7 +201,10 @@ struct TimeSettings
 {
   double dt = 0.0;       ///< time step [s], > 0; the largest one with adaptive control
   double end_time = 0.0; ///< [s], >= dt
-  Integrator integrator = Integrator::dda;
+  Integrator integrator = Integrator::generalized_alpha;
+  /// generalized_alpha: the spectral radius at infinite frequency rho_inf [-] in [0, 1] (1: no
+  /// algorithmic damping; smaller damps stiff contact modes faster)
+  double spectral_radius = 0.2;
   TimeControl control = TimeControl::adaptive;
   double dt_min = 0.0;        ///< smallest dt before the run stops [s]; 0: dt * 1e-4
   double cut_factor = 0.3;    ///< dt multiplier after a failed step (Shi: 0.3)
@@ -227,6 +223,15 @@ struct ContactSettings
   /// Largest penetration a converged step may leave [m]; 0: g2 w0 (the step displacement bound).
   double max_penetration = 0.0;
   unsigned max_open_close_iterations = 6; ///< Shi: 6, then the step is cut
+  /// A contact that penetrates deeper than max_penetration has its penalty (normal and shear
+  /// springs) raised x 10 and the step redone (ntdda), up to this multiple of the joint
+  /// material's stiffness [-]; beyond it the step is cut.
+  double max_penalty_factor = 100.0;
+  /// From the third open-close iteration on, a contact whose forces before and after a state
+  /// change stay below this fraction of the largest contact normal force of the step [-]
+  /// changes without holding the iteration back (it carries almost nothing in either state, and
+  /// would flip between slide and lock without end).
+  double flip_force_ratio = 1e-3;
   double angle_tolerance_deg = 1.0; ///< parallel edges and straight vertices within this [deg]
 };
 

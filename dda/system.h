@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -52,7 +53,8 @@ enum class StepOutcome
   not_converged,
   /// a vertex moved more than the allowed step displacement (g2 w0)
   displacement_too_large,
-  /// a closed contact penetrates deeper than ContactSettings::max_penetration
+  /// a closed contact penetrates deeper than ContactSettings::max_penetration (its penalty has
+  /// been raised for the retry when StepStatus::penalty_raised)
   penetration_too_large,
   /// a bonded joint broke in a small-displacement analysis, which cannot follow contacts
   joint_broken,
@@ -71,6 +73,11 @@ struct StepStatus
   std::size_t n_state_changes = 0; ///< contact state changes over the iteration
   double max_displacement = 0.0;   ///< largest vertex displacement of the step [m]
   double max_penetration = 0.0;    ///< deepest closed contact at the end of the step [m]
+  /// penetration_too_large: the penetrating contacts' penalty was raised x 10 (within
+  /// ContactSettings::max_penalty_factor); retrying the same dt may cure it
+  bool penalty_raised = false;
+  /// Contacts whose state changes were let go as carrying almost nothing (flip_force_ratio)
+  std::size_t n_flips_ignored = 0;
   /// Static stages: the largest out-of-balance force on a block at the start of the step (the
   /// translational part of the step's right-hand side with zero velocity) over the largest
   /// applied force (gravity and point loads) on a block [-]; 0 in dynamic stages.
@@ -111,8 +118,8 @@ struct MonitorSample
 };
 
 /// A DDA model advancing in time with one implicit linear system per step:
-/// (K + M / (beta dt^2)) d = f + M (v0 / (beta dt) + (1 / (2 beta) - 1) a0),
-/// Newmark with (beta, gamma) = (1/2, 1) for DDA's scheme or (1/4, 1/2) for the trapezoidal rule.
+/// (K + c M) d = f + inertia_force (dda/integrator.h: generalized-alpha, or Newmark with
+/// (beta, gamma) = (1/2, 1) for DDA's scheme or (1/4, 1/2) for the trapezoidal rule).
 /// With GeometryMode::updated (Shi) every step is linearised about the current vertices, moments
 /// and material points; with small_displacement about the initial ones.
 class System
@@ -236,8 +243,13 @@ private:
   void add_tie_terms();
   /// The tie points' displacement increments T d (2m) of a solution.
   Eigen::VectorXd tie_increments(const Eigen::VectorXd& d) const;
-  /// Sets each trial from the solution; returns the number of state changes.
-  std::size_t update_trial_states();
+  /// Sets each trial from the solution; returns the number of state changes that hold the
+  /// iteration back (from `iteration` 3 on, not those of contacts carrying almost nothing,
+  /// which are counted in `n_ignored`).
+  std::size_t update_trial_states(unsigned iteration, std::size_t& n_ignored);
+  /// Raises the penalty of the contacts that penetrate deeper than allowed; false if every one
+  /// is at ContactSettings::max_penalty_factor already.
+  bool raise_penalties();
   double largest_vertex_displacement(const Eigen::VectorXd& d) const;
   void set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings);
   std::size_t coupling_of(std::size_t i, std::size_t j) const;
@@ -293,6 +305,8 @@ private:
   std::vector<Contact> trial_contacts; ///< of the step being tried
   std::vector<ContactFrame> frames;    ///< of trial_contacts
   std::size_t next_contact_id = 0;
+  /// Penalty factors raised by a failed step, by contact key, for the retry
+  std::map<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>, double> raised_penalties;
   std::size_t broken_joint_count = 0;
   /// Where a bonded joint ties a vertex to the other block: (vertex block, vertex, other block).
   std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> jointed_vertices;
@@ -307,13 +321,19 @@ private:
   bool contacts_enabled = true;         ///< false in a small-displacement analysis
   StageMode mode = StageMode::dynamic;
   double default_fixed_stiffness = 0.0;
-  double beta = 0.5, gamma = 1.0; ///< Newmark parameters of the integrator
+  IntegratorCoefficients integration; ///< of the scene's integrator
+  /// The blocks' acceleration and force are not known (at t = 0, or set at rest): the next step
+  /// of generalized-alpha takes DDA's scheme, in which neither enters and after which M a = r
+  /// holds (the Newmark schemes start from a = 0 as they always have).
+  bool motion_starts = true;
+  IntegratorCoefficients step_integration; ///< of the step being tried
 
   std::vector<std::pair<std::size_t, std::size_t>> coupling_pairs; ///< the matrix's, sorted
   BlockSparseMatrix matrix;
   BlockSparseMatrix base_matrix; ///< the step's matrix without contacts (when there are some)
   Eigen::VectorXd base_rhs;
-  double matrix_dt = 0.0; ///< dt the matrix was assembled for (small-displacement reuse)
+  double matrix_dt = 0.0;          ///< dt the matrix was assembled for (small-displacement reuse)
+  double matrix_mass_factor = 0.0; ///< and its factor of M [1/s^2]
   Eigen::VectorXd rhs;
   Eigen::VectorXd solution;
   FactorizationReusingSolver solver;

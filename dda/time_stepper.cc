@@ -1,6 +1,7 @@
 #include "dda/time_stepper.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace ddafem::dda
@@ -12,9 +13,19 @@ TimeStepper::TimeStepper(System& system_, const TimeSettings& settings, double d
 {
 }
 
+double TimeStepper::reduced_dt(const StepStatus& status, double trial) const
+{
+  if (status.outcome == StepOutcome::displacement_too_large && status.max_displacement > 0.0)
+  {
+    const double ratio = status.max_displacement / system.max_step_displacement();
+    return trial * std::min(0.9, 1.0 / std::sqrt(ratio));
+  }
+  return trial * cut_factor;
+}
+
 StepStatus TimeStepper::step(double dt_limit)
 {
-  bool was_cut = false;
+  last_cuts = 0;
   while (true)
   {
     const double trial = std::min(dt, dt_limit);
@@ -22,7 +33,7 @@ StepStatus TimeStepper::step(double dt_limit)
     if (status.outcome == StepOutcome::success)
     {
       accepted_dt = trial;
-      if (was_cut)
+      if (last_cuts > 0)
         ++cut_step_count;
       else if (control == TimeControl::adaptive)
         dt = std::min(dt_max, dt * growth_factor);
@@ -30,6 +41,11 @@ StepStatus TimeStepper::step(double dt_limit)
     }
     if (!can_retry_with_smaller_step(status.outcome))
       return status;
+    if (status.penalty_raised)
+    {
+      ++penalty_raise_count;
+      continue;
+    }
     std::ostringstream m;
     if (control == TimeControl::fixed)
     {
@@ -38,15 +54,16 @@ StepStatus TimeStepper::step(double dt_limit)
       status.message = m.str();
       return status;
     }
-    if (trial * cut_factor < dt_min * (1.0 - 1e-12))
+    const double next = reduced_dt(status, trial);
+    if (next < dt_min * (1.0 - 1e-12))
     {
       m << status.message << "; dt cannot be cut below `time.dt_min` = " << dt_min << " s";
       status.message = m.str();
       return status;
     }
-    dt = trial * cut_factor;
+    dt = next;
     ++cut_count;
-    was_cut = true;
+    ++last_cuts;
   }
 }
 

@@ -9,11 +9,14 @@
 
 namespace ddafem::dda
 {
-/// Takes accepted steps of a System with the scene's time control (Shi's scheme):
-/// - adaptive: try the current dt; on an outcome a smaller step can cure (open-close iteration
-///   not converged, a vertex moving beyond g2 w0, too deep a penetration) multiply dt by
-///   cut_factor and try again; after an accepted step multiply dt by growth_factor, up to the
-///   largest dt. Below dt_min the step fails with a message naming the cause.
+/// Takes accepted steps of a System with the scene's time control (Shi's and ntdda's guards):
+/// - adaptive: try the current dt; on an outcome a smaller step can cure, cut it and try again:
+///   the open-close iteration not converged: dt x cut_factor (Shi: 0.3); a vertex moving r times
+///   the allowed g2 w0: dt x min(0.9, 1 / sqrt(r)); too deep a penetration: the same dt again
+///   with the penetrating contacts' penalty raised x 10 (System::advance does it, up to
+///   ContactSettings::max_penalty_factor), then dt x cut_factor. After an accepted step dt grows
+///   by growth_factor, up to the largest dt. Below dt_min the step fails with a message naming
+///   the cause.
 /// - fixed: every step has the largest dt; any failure is final.
 class TimeStepper
 {
@@ -30,6 +33,9 @@ public:
   double smallest_dt() const { return dt_min; }
   std::size_t n_cuts() const { return cut_count; } ///< failed attempts retried with a smaller dt
   std::size_t n_cut_steps() const { return cut_step_count; } ///< steps that needed a cut
+  std::size_t n_last_step_cuts() const { return last_cuts; } ///< cuts of the last step
+  /// Retries of the same dt after a contact's penalty was raised
+  std::size_t n_penalty_raises() const { return penalty_raise_count; }
 
 private:
   System& system;
@@ -39,6 +45,11 @@ private:
   double accepted_dt = 0.0;
   std::size_t cut_count = 0;
   std::size_t cut_step_count = 0;
+  std::size_t last_cuts = 0;
+  std::size_t penalty_raise_count = 0;
+
+  /// The dt to retry after a failed step of `trial` [s] (adaptive control).
+  double reduced_dt(const StepStatus& status, double trial) const;
 };
 
 } // namespace ddafem::dda

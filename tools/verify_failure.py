@@ -695,6 +695,16 @@ def validate(out):
 
 # ---- main -------------------------------------------------------------------------------------
 
+def integrator_settings(name):
+    """The --set overrides of an integrator given as NAME or NAME:RHO (generalized_alpha's
+    spectral radius at infinite frequency)."""
+    integrator, _, rho = name.partition(":")
+    settings = {"time.integrator": integrator}
+    if rho:
+        settings["time.spectral_radius"] = float(rho)
+    return settings
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--build", default=os.path.join(TOP, "build"))
@@ -702,7 +712,8 @@ def main():
     parser.add_argument("--quick", action="store_true", help="fewer cases (CI)")
     parser.add_argument("--out", default=os.path.join(TOP, "docs", "verification"))
     parser.add_argument("--integrators", default=None,
-                        help="comma-separated; default: every one the binary accepts")
+                        help="comma-separated, NAME or NAME:RHO (generalized_alpha with "
+                             "time.spectral_radius RHO); default: every one the binary accepts")
     args = parser.parse_args()
     start = time.monotonic()
     out = os.path.abspath(args.out)
@@ -713,7 +724,7 @@ def main():
         accepted, default = integrators_accepted(ddafem)
         version = binary_version(ddafem)
         integrators = args.integrators.split(",") if args.integrators else accepted
-        unknown = sorted(set(integrators) - set(accepted))
+        unknown = sorted(set(i.split(":")[0] for i in integrators) - set(accepted))
         if unknown:
             sys.exit(f"the binary does not accept time.integrator {unknown}; it accepts "
                      f"{accepted}")
@@ -730,13 +741,13 @@ def main():
             scene = newmark_scene(case, scenes, end, NEWMARK_DT)
             for name in integrators:
                 jobs.append(SA.spec("newmark", name, case["name"], scene,
-                                    {"time.integrator": name}, case_name=case["name"],
+                                    integrator_settings(name), case_name=case["name"],
                                     integrator=name, dt=NEWMARK_DT, est_s=end))
         for case in ROOF_CASES:
             scene = roof_scene(case, scenes, ROOF_DT)
             for name in integrators:
                 jobs.append(SA.spec("roof", name, case["name"], scene,
-                                    {"time.integrator": name}, case_name=case["name"],
+                                    integrator_settings(name), case_name=case["name"],
                                     integrator=name, dt=ROOF_DT, est_s=case["end_time"]))
         bar_dts = [1e-4] if args.quick else BAR_DTS
         reference_dt = 1e-5 if args.quick else BAR_REFERENCE_DT
@@ -749,7 +760,8 @@ def main():
         for dt in bar_dts:
             for name in integrators:
                 jobs.append(SA.spec("bar", name, f"dt {dt:g}", BAO.BAR,
-                                    {"time.integrator": name, "time.dt": dt}, integrator=name,
+                                    dict(integrator_settings(name), **{"time.dt": dt}),
+                                    integrator=name,
                                     dt=dt, est_s=0.05 / dt * 1e-3))
         results = SA.run_all(ddafem, jobs, root, args.jobs)
 

@@ -34,7 +34,10 @@ struct Contact
   /// relative to the edge [m] (of the last trial).
   double end_gap = 0.0;
   double step_slip = 0.0;
-  double total_slip = 0.0;  ///< accumulated sliding since the contact formed [m], along t
+  double total_slip = 0.0; ///< accumulated sliding since the contact formed [m], along t
+  /// Multiple of the joint material's springs this contact's penalty has been raised to after
+  /// too deep a penetration [-]
+  double penalty_factor = 1.0;
   std::size_t coupling = 0; ///< the block pair's coupling in the system matrix
 
   auto key() const { return std::make_tuple(vertex_block, vertex, edge_block, edge); }

@@ -175,7 +175,8 @@ TEST(SceneExamples, PWaveBarIsReadAsSpecified)
 
   EXPECT_EQ(m.time.dt, 1e-5);
   EXPECT_EQ(m.time.end_time, 0.05);
-  EXPECT_EQ(m.time.integrator, dda::Integrator::dda);
+  EXPECT_EQ(m.time.integrator, dda::Integrator::generalized_alpha);
+  EXPECT_EQ(m.time.spectral_radius, 0.2);
   EXPECT_EQ(m.gravity, dda::Vector2::Zero());
   EXPECT_TRUE(m.fixed_points.empty());
   EXPECT_EQ(scene.output.directory, "results/p_wave_bar");
@@ -271,7 +272,8 @@ TEST(SceneExamples, SWaveColumnIsReadAsSpecified)
   EXPECT_EQ(m.monitors[2].point, dda::Point(25.0, 49.5));
   EXPECT_EQ(m.time.dt, 1e-5);
   EXPECT_EQ(m.time.end_time, 0.06);
-  EXPECT_EQ(m.time.integrator, dda::Integrator::dda);
+  EXPECT_EQ(m.time.integrator, dda::Integrator::generalized_alpha);
+  EXPECT_EQ(m.time.spectral_radius, 0.2);
   EXPECT_EQ(scene.output.directory, "results/s_wave_column");
   EXPECT_EQ(scene.output.interval, 0.002);
 
@@ -364,7 +366,8 @@ TEST_F(SceneTest, DefaultsAreApplied)
   EXPECT_TRUE(m.joint_materials.empty());
   EXPECT_EQ(m.default_joint_material, static_cast<std::size_t>(-1));
   EXPECT_EQ(m.gravity, dda::Vector2::Zero());
-  EXPECT_EQ(m.time.integrator, dda::Integrator::dda);
+  EXPECT_EQ(m.time.integrator, dda::Integrator::generalized_alpha);
+  EXPECT_EQ(m.time.spectral_radius, 0.2);
   EXPECT_EQ(m.solver, dda::SolverKind::block_ldlt);
   EXPECT_EQ(m.blocks[0].initial_velocity, dda::Vector2::Zero());
   EXPECT_EQ(m.blocks[0].initial_stress, dda::Voigt::Zero());
@@ -1154,7 +1157,8 @@ TEST_F(SceneTest, ProblemsWithOverriddenValuesNameTheCommandLine)
   EXPECT_EQ(
       message("time.dtt=1e-4"),
       "command line --set time.dtt=1e-4: key 'time.dtt': unknown key; did you mean 'dt'? "
-      "Allowed keys here: dt, end_time, integrator, control, dt_min, cut_factor, growth_factor");
+      "Allowed keys here: dt, end_time, integrator, spectral_radius, control, dt_min, cut_factor, "
+      "growth_factor");
   EXPECT_NE(message("blocks.0.vertices=[[0, 0], [1, 1]]")
                 .find("command line --set blocks.0.vertices=[[0, 0], [1, 1]]: key "
                       "'blocks[0].vertices'"),

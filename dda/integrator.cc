@@ -1,0 +1,68 @@
+#include "dda/integrator.h"
+
+#include <algorithm>
+
+namespace ddafem::dda
+{
+const char* integrator_name(Integrator integrator)
+{
+  switch (integrator)
+  {
+  case Integrator::generalized_alpha:
+    return "generalized_alpha";
+  case Integrator::dda:
+    return "dda";
+  case Integrator::newmark_trapezoidal:
+    return "newmark_trapezoidal";
+  }
+  return "";
+}
+
+IntegratorCoefficients integrator_coefficients(Integrator integrator, double spectral_radius)
+{
+  IntegratorCoefficients c;
+  switch (integrator)
+  {
+  case Integrator::dda:
+    break;
+  case Integrator::newmark_trapezoidal:
+    c.beta = 0.25;
+    c.gamma = 0.5;
+    break;
+  case Integrator::generalized_alpha:
+  {
+    const double rho = std::clamp(spectral_radius, 0.0, 1.0);
+    c.alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
+    c.alpha_f = rho / (rho + 1.0);
+    c.gamma = 0.5 - c.alpha_m + c.alpha_f;
+    c.beta = 0.25 * (1.0 - c.alpha_m + c.alpha_f) * (1.0 - c.alpha_m + c.alpha_f);
+    break;
+  }
+  }
+  return c;
+}
+
+Vector6 inertia_force(const IntegratorCoefficients& c, const Matrix6& mass,
+                      const KinematicState& start, double dt)
+{
+  const Vector6 predictor = (1.0 - c.alpha_m) * (start.velocity / (c.beta * dt) +
+                                                 (0.5 / c.beta - 1.0) * start.acceleration) -
+                            c.alpha_m * start.acceleration;
+  return (mass * predictor + c.alpha_f * start.force) / (1.0 - c.alpha_f);
+}
+
+KinematicState advance_state(const IntegratorCoefficients& c, const Matrix6& mass,
+                             const KinematicState& start, const Vector6& d, double dt)
+{
+  KinematicState end;
+  end.acceleration = (d - dt * start.velocity - dt * dt * (0.5 - c.beta) * start.acceleration) /
+                     (c.beta * dt * dt);
+  end.velocity =
+      start.velocity + dt * ((1.0 - c.gamma) * start.acceleration + c.gamma * end.acceleration);
+  const Vector6 inertia =
+      mass * ((1.0 - c.alpha_m) * end.acceleration + c.alpha_m * start.acceleration);
+  end.force = (inertia - c.alpha_f * start.force) / (1.0 - c.alpha_f);
+  return end;
+}
+
+} // namespace ddafem::dda

@@ -1,0 +1,136 @@
+// Time integrators of the DDA step (dda/integrator.h) on a linear oscillator, whose exact
+// motion is known: order of accuracy, algorithmic damping at high frequency, constant force.
+#include "dda/integrator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <tuple>
+#include <utility>
+
+namespace ddafem::dda
+{
+namespace
+{
+/// The free vibration u'' + omega^2 u = 0 from u(0) = 1, v(0) = 0 with the DDA step's
+/// algebra on one unknown (mass 1, stiffness omega^2; the force at the step's start is
+/// -k u_n, its end -k (u_n + d)): (u, v / omega) after n_steps of dt.
+std::pair<double, double> oscillate_state(const IntegratorCoefficients& c, double omega, double dt,
+                                          int n_steps)
+{
+  const Matrix6 mass = Matrix6::Identity();
+  const double k = omega * omega;
+  double u = 1.0;
+  KinematicState state;
+  state.force.setConstant(-k * u); // consistent start: r0 = -k u0 = M a0
+  state.acceleration = state.force;
+  for (int n = 0; n < n_steps; ++n)
+  {
+    const Vector6 rhs = Vector6::Constant(-k * u) + inertia_force(c, mass, state, dt);
+    const Vector6 d = rhs / (k + c.mass_factor(dt));
+    state = advance_state(c, mass, state, d, dt);
+    u += d[0];
+  }
+  return {u, state.velocity[0] / omega};
+}
+
+double oscillate(const IntegratorCoefficients& c, double omega, double dt, int n_steps)
+{
+  return oscillate_state(c, omega, dt, n_steps).first;
+}
+
+/// Distance in the phase plane from the exact state after one period, (1, 0), at n steps per
+/// period: amplitude and phase errors alike.
+double period_error(const IntegratorCoefficients& c, int n)
+{
+  const double omega = 2.0 * M_PI;
+  const auto [u, w] = oscillate_state(c, omega, 1.0 / n, n);
+  return std::hypot(u - 1.0, w);
+}
+
+TEST(Integrator, ChungHulbertParameters)
+{
+  // rho_inf = 1 is the trapezoidal rule in the alpha form (alpha_m = alpha_f = 1/2).
+  const IntegratorCoefficients one = integrator_coefficients(Integrator::generalized_alpha, 1.0);
+  EXPECT_DOUBLE_EQ(one.beta, 0.25);
+  EXPECT_DOUBLE_EQ(one.gamma, 0.5);
+  EXPECT_DOUBLE_EQ(one.alpha_m, 0.5);
+  EXPECT_DOUBLE_EQ(one.alpha_f, 0.5);
+  // rho_inf = 0.5: alpha_m = 0, alpha_f = 1/3, gamma = 5/6, beta = 4/9.
+  const IntegratorCoefficients half = integrator_coefficients(Integrator::generalized_alpha, 0.5);
+  EXPECT_NEAR(half.alpha_m, 0.0, 1e-15);
+  EXPECT_NEAR(half.alpha_f, 1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(half.gamma, 5.0 / 6.0, 1e-15);
+  EXPECT_NEAR(half.beta, 4.0 / 9.0, 1e-15);
+  const IntegratorCoefficients shi = integrator_coefficients(Integrator::dda, 0.5);
+  EXPECT_EQ(shi.beta, 0.5);
+  EXPECT_EQ(shi.gamma, 1.0);
+  EXPECT_EQ(shi.alpha_f, 0.0);
+}
+
+TEST(Integrator, SecondOrderExceptShisScheme)
+{
+  // Error after one period at 40 and 80 steps per period: the ratio is 2^order.
+  for (const auto& [integrator, rho, order] :
+       {std::tuple{Integrator::generalized_alpha, 0.5, 2.0},
+        std::tuple{Integrator::generalized_alpha, 0.0, 2.0},
+        std::tuple{Integrator::newmark_trapezoidal, 1.0, 2.0},
+        std::tuple{Integrator::dda, 1.0, 1.0}})
+  {
+    const IntegratorCoefficients c = integrator_coefficients(integrator, rho);
+    EXPECT_NEAR(std::log2(period_error(c, 40) / period_error(c, 80)), order, 0.1)
+        << integrator_name(integrator) << " rho " << rho;
+  }
+}
+
+TEST(Integrator, HighFrequenciesDecayAtTheSpectralRadius)
+{
+  // omega dt = 1e4 (a stiff contact spring): the amplification's eigenvalues tend to -rho_inf
+  // (a double root), so |u_n| ~ n rho^n; the ratio over 10 steps from step 100 is
+  // (110 / 100) rho^10.
+  for (const double rho : {0.0, 0.3, 0.5, 0.8})
+  {
+    const IntegratorCoefficients c = integrator_coefficients(Integrator::generalized_alpha, rho);
+    const double u100 = oscillate(c, 1e4, 1.0, 100);
+    const double u110 = oscillate(c, 1e4, 1.0, 110);
+    if (rho == 0.0)
+      EXPECT_LT(std::abs(u110), 1e-12);
+    else
+      EXPECT_NEAR(std::pow(std::abs(u110 / u100) / 1.1, 0.1), rho, 0.02 * rho) << rho;
+  }
+  // The trapezoidal rule keeps them: the amplitude in the phase plane stays 1 (its energy
+  // u^2 + (v / omega)^2 is conserved to the rounding of k d at omega^2 = 1e8).
+  const IntegratorCoefficients trapezoidal =
+      integrator_coefficients(Integrator::newmark_trapezoidal, 1.0);
+  const auto [u, w] = oscillate_state(trapezoidal, 1e4, 1.0, 101);
+  EXPECT_NEAR(std::hypot(u, w), 1.0, 1e-6);
+}
+
+TEST(Integrator, ConstantForceIsExact)
+{
+  // A block under gravity alone from rest (r0 = M g, a0 = g): u = g t^2 / 2 at every step, for
+  // every scheme.
+  const double g = -9.81, dt = 0.01;
+  for (const Integrator integrator :
+       {Integrator::generalized_alpha, Integrator::dda, Integrator::newmark_trapezoidal})
+  {
+    const IntegratorCoefficients c = integrator_coefficients(integrator, 0.5);
+    const Matrix6 mass = 2.0 * Matrix6::Identity();
+    KinematicState state;
+    state.force.setConstant(2.0 * g);
+    state.acceleration.setConstant(g);
+    double u = 0.0;
+    for (int n = 1; n <= 50; ++n)
+    {
+      const Vector6 rhs = Vector6::Constant(2.0 * g) + inertia_force(c, mass, state, dt);
+      const Vector6 d = rhs / (2.0 * c.mass_factor(dt));
+      state = advance_state(c, mass, state, d, dt);
+      u += d[0];
+      EXPECT_NEAR(u, 0.5 * g * (n * dt) * (n * dt), 1e-12) << integrator_name(integrator);
+    }
+    EXPECT_NEAR(state.force[0], 2.0 * g, 1e-9);
+  }
+}
+
+} // namespace
+} // namespace ddafem::dda
