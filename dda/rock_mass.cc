@@ -1016,6 +1016,58 @@ std::vector<ExactPoint> without_collinear_vertices(std::vector<ExactPoint> point
   return points;
 }
 
+/// The joint a piece of a block's boundary lies on (explicit joints before sets, lower index
+/// first, where joints overlap); none on the region's or an opening's boundary.
+EdgeJoint piece_joint(Halfedge h)
+{
+  if (on_boundary(h))
+    return {};
+  // (0 for an explicit joint, 1 for a set; index): the smallest wins.
+  std::optional<std::pair<int, std::size_t>> best;
+  for (const CurveSource& s : h->curve().data())
+    if (s.kind == CurveSource::Kind::explicit_joint || s.kind == CurveSource::Kind::joint_set)
+    {
+      const std::pair<int, std::size_t> rank(s.kind == CurveSource::Kind::joint_set, s.index);
+      best = best ? std::min(*best, rank) : rank;
+    }
+  if (!best)
+    return {};
+  return {best->first == 0 ? EdgeJoint::Kind::explicit_joint : EdgeJoint::Kind::joint_set,
+          best->second};
+}
+
+/// The joints of a block's edges (RockMassBlock::edge_joints): `boundary` is its loop of
+/// halfedges, `kept` its vertices after the straight ones were dropped, in the loop's order.
+std::vector<EdgeJoint> edge_joints(const std::vector<Halfedge>& boundary,
+                                   const std::vector<ExactPoint>& kept)
+{
+  // The length [m] of each edge's pieces on each joint.
+  std::vector<std::vector<std::pair<EdgeJoint, double>>> pieces(kept.size());
+  const auto first = std::find_if(boundary.begin(), boundary.end(),
+                                  [&](Halfedge h) { return h->source()->point() == kept.front(); });
+  std::size_t edge = 0;
+  for (std::size_t i = 0; i < boundary.size(); ++i)
+  {
+    const Halfedge h =
+        boundary[(static_cast<std::size_t>(first - boundary.begin()) + i) % boundary.size()];
+    if (edge + 1 < kept.size() && h->source()->point() == kept[edge + 1])
+      ++edge;
+    const EdgeJoint joint = piece_joint(h);
+    auto it = std::find_if(pieces[edge].begin(), pieces[edge].end(),
+                           [&](const auto& p) { return p.first == joint; });
+    if (it == pieces[edge].end())
+      it = pieces[edge].insert(it, {joint, 0.0});
+    it->second += length(h);
+  }
+  std::vector<EdgeJoint> joints;
+  for (const auto& on_joints : pieces)
+    joints.push_back(std::max_element(on_joints.begin(), on_joints.end(),
+                                      [](const auto& a, const auto& b)
+                                      { return a.second < b.second; })
+                         ->first);
+  return joints;
+}
+
 /// The block of a block face whose boundary is one simple loop (as settle() leaves them).
 RockMassBlock make_block(Face f, double straight_tolerance)
 {
@@ -1064,6 +1116,7 @@ RockMassBlock make_block(Face f, double straight_tolerance)
                                [](const ExactPoint& a, const ExactPoint& b)
                                { return CGAL::compare_yx(a, b) == CGAL::SMALLER; }),
               points.end());
+  block.edge_joints = edge_joints(boundary, points);
   block.area = CGAL::to_double(CGAL::polygon_area_2(points.begin(), points.end(), Kernel()));
   for (const ExactPoint& p : points)
     block.vertices.push_back(rounded(p));
