@@ -1,5 +1,6 @@
 #include "app/scene.h"
 
+#include "app/rock_mass_scene.h"
 #include "app/scene_schema.h"
 #include "app/tunnel_scene.h"
 #include "common/input_error.h"
@@ -877,21 +878,36 @@ dda::Opening read_opening(const MapReader& r, const std::vector<Point>& region,
   return o;
 }
 
+/// The `joint_material` of a joint set or explicit joint (an index into joint_names), if given.
+std::optional<std::size_t> read_joint_material(const MapReader& r,
+                                               const std::vector<std::string>& joint_names)
+{
+  if (!r.has("joint_material"))
+    return std::nullopt;
+  return find_name(r, "joint_material", r.string("joint_material"), joint_names, "joint material");
+}
+
 /// The `rock_mass` section: generates its blocks and appends them to the model.
 RockMassReport read_rock_mass(const MapReader& r, const std::vector<std::string>& material_names,
+                              const std::vector<std::string>& joint_names,
                               dda::ModelDescription& model, std::vector<BlockSource>& sources)
 {
   dda::RockMassDescription d;
+  RockMassReport report;
   const std::size_t material =
       find_name(r, "material", r.string("material"), material_names, "material");
   d.region = read_region(r.section_reader("region"));
   d.chord_tolerance = r.number("chord_tolerance");
   d.seed = static_cast<std::uint64_t>(r.integer("seed"));
   for (const MapReader& j : r.section_list("joint_sets"))
+  {
     d.joint_sets.push_back(read_joint_set(j));
+    report.joint_set_materials.push_back(read_joint_material(j, joint_names));
+  }
   for (const MapReader& j : r.section_list("joints"))
   {
     d.joints.push_back({j.vector2("from"), j.vector2("to")});
+    report.joint_materials.push_back(read_joint_material(j, joint_names));
     if (d.joints.back().from == d.joints.back().to)
       throw j.error("to", "the joint ends where it starts: expected a point other than `from`");
   }
@@ -915,13 +931,15 @@ RockMassReport read_rock_mass(const MapReader& r, const std::vector<std::string>
   if (result.blocks.empty())
     throw r.ctx().locator.error(r.yaml(), r.key_path(), "",
                                 "the openings cover the whole region: expected rock left");
-  RockMassReport report;
   report.first_block = model.blocks.size();
   report.statistics = result.statistics;
+  report.joint_sets = d.joint_sets;
+  report.joints = d.joints;
   for (std::size_t i = 0; i < result.blocks.size(); ++i)
   {
     dda::BlockDescription block;
     block.vertices = std::move(result.blocks[i].vertices);
+    block.edge_joint_materials = edge_joint_materials(result.blocks[i], report);
     block.material = material;
     block.origin = "rock_mass block " + std::to_string(i);
     model.blocks.push_back(std::move(block));
@@ -949,6 +967,25 @@ YAML::Node nested(const YAML::Node& node, const std::vector<std::string>& keys)
     n.reset(next);
   }
   return n;
+}
+
+/// The `tunnel` section's joint sets and explicit joints. Their joint material names (passed on
+/// to `rock_mass` with them) are checked here, so that errors name the tunnel's keys.
+void read_tunnel_joints(const MapReader& r, const YAML::Node& root, dda::RockMassDescription& d)
+{
+  std::vector<std::string> joint_names;
+  for (const auto& named : nested(root, {"joint_materials"}))
+    joint_names.push_back(named.first.Scalar());
+  for (const MapReader& j : r.section_list("joint_sets"))
+  {
+    d.joint_sets.push_back(read_joint_set(j));
+    read_joint_material(j, joint_names);
+  }
+  for (const MapReader& j : r.section_list("joints"))
+  {
+    d.joints.push_back({j.vector2("from"), j.vector2("to")});
+    read_joint_material(j, joint_names);
+  }
 }
 
 /// The `tunnel` section: reads it, plans the model (app/tunnel_scene.h) and writes the sections
@@ -993,10 +1030,7 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
 
   t.rock_mass.chord_tolerance = r.number("chord_tolerance");
   t.rock_mass.seed = static_cast<std::uint64_t>(r.integer("seed"));
-  for (const MapReader& j : r.section_list("joint_sets"))
-    t.rock_mass.joint_sets.push_back(read_joint_set(j));
-  for (const MapReader& j : r.section_list("joints"))
-    t.rock_mass.joints.push_back({j.vector2("from"), j.vector2("to")});
+  read_tunnel_joints(r, root, t.rock_mass);
   const double far = 1e12;
   t.rock_mass.openings.push_back(
       read_opening(r.section_reader("opening"),
@@ -1069,8 +1103,8 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
 }
 
 void read_blocks(const MapReader& top, const std::vector<std::string>& material_names,
-                 dda::ModelDescription& model, std::vector<BlockSource>& sources,
-                 std::optional<RockMassReport>& rock_mass)
+                 const std::vector<std::string>& joint_names, dda::ModelDescription& model,
+                 std::vector<BlockSource>& sources, std::optional<RockMassReport>& rock_mass)
 {
   const std::vector<MapReader> items = top.section_list("blocks");
   const bool has_blocks = !items.empty() || top.has("rock_mass");
@@ -1128,7 +1162,8 @@ void read_blocks(const MapReader& top, const std::vector<std::string>& material_
       }
   }
   if (top.has("rock_mass"))
-    rock_mass = read_rock_mass(top.section_reader("rock_mass"), material_names, model, sources);
+    rock_mass = read_rock_mass(top.section_reader("rock_mass"), material_names, joint_names, model,
+                               sources);
 }
 
 /// Axis-aligned bounding box [m].
@@ -1826,7 +1861,7 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
     scene.far_field = read_far_field(top.section_reader("far_field"), model, material_names);
 
   std::vector<BlockSource> sources;
-  read_blocks(top, material_names, model, sources, scene.rock_mass);
+  read_blocks(top, material_names, joint_names, model, sources, scene.rock_mass);
   check_overlaps(model, sources, context.locator);
   if (top.has("in_situ_stress"))
   {

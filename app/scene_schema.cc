@@ -108,6 +108,18 @@ Key in_situ_gradient_key()
                "with reference_y at the surface");
 }
 
+/// `joint_material` of a joint set or an explicit joint of `rock_mass` (`along`: what it cuts).
+Key joint_material_key(const std::string& along)
+{
+  return key("joint_material", ValueType::string)
+      .default_note("`joints.default` (or a `joints.pairs` entry)")
+      .meaning("name of the joint material of the joints (bonded) or contacts (`bonded: false`) "
+               "along " +
+               along +
+               ": where blocks were cut by it; edges on the region's or an opening's boundary, "
+               "and edges on no joint (vertical cuts around islands), take `joints`");
+}
+
 /// The `type` key of one time-function variant.
 Key time_function_type(const std::string& type_name)
 {
@@ -456,7 +468,7 @@ SceneSchema::SceneSchema()
        "neighbour they share the longest boundary with, or kept and listed by `check`. The "
        "blocks follow those of `blocks`, numbered by centroid (bottom first, then by x), named "
        "`rock_mass block N` in messages; joints between them come from `joints` like any "
-       "other.",
+       "other, except along a joint set or explicit joint with its own `joint_material`.",
        {key("region", T::section)
             .section("rock_mass.region")
             .required()
@@ -531,7 +543,8 @@ SceneSchema::SceneSchema()
        "base) and `time` (keys given in `time` win); truncation blocks writes `blocks` (the outer "
        "grids) and adds the material `outer_rock`, the joint material `outer_bond` and their "
        "`joints.pairs`. `check` prints each choice and why. The scene must not give those "
-       "sections itself; joint materials come from `joints` as usual.",
+       "sections itself; joint materials come from `joints` as usual, and from the joint sets' "
+       "`joint_material` along them.",
        {key("rock", T::string).required().meaning("name of the intact rock's material"),
         key("opening", T::section)
             .section("rock_mass.openings[i]")
@@ -706,7 +719,8 @@ SceneSchema::SceneSchema()
         key("perturbation", T::section)
             .section("rock_mass.joint_sets[i].perturbation")
             .default_note("none")
-            .meaning("random perturbation of the spacing and of the traces' positions")}});
+            .meaning("random perturbation of the spacing and of the traces' positions"),
+        joint_material_key("the set's traces")}});
 
   all_sections.push_back(
       {"rock_mass.joint_sets[i].perturbation",
@@ -731,7 +745,8 @@ SceneSchema::SceneSchema()
   all_sections.push_back({"rock_mass.joints[i]",
                           "A single joint: the segment from `from` to `to` (cut at the region).",
                           {key("from", T::vector2).unit("m").required().meaning("one end"),
-                           key("to", T::vector2).unit("m").required().meaning("the other end")}});
+                           key("to", T::vector2).unit("m").required().meaning("the other end"),
+                           joint_material_key("the joint")}});
 
   all_sections.push_back(
       {"rock_mass.openings[i]",
