@@ -1,6 +1,7 @@
 #include "app/run.h"
 
 #include "app/keyblocks.h"
+#include "app/rock_mass_scene.h"
 #include "app/run_support.h"
 
 #include "common/history_writer.h"
@@ -66,29 +67,6 @@ SmallestBlock smallest_block(const Scene& scene)
       s.shortest_edge = std::min(s.shortest_edge, (v[(k + 1) % v.size()] - v[k]).norm());
   }
   return s;
-}
-
-/// The `rock_mass` section's blocks: counts, areas, merges, cuts and the slivers kept.
-void describe_rock_mass(const Scene& scene, std::ostream& out)
-{
-  const RockMassReport& r = *scene.rock_mass;
-  const dda::RockMassStatistics& s = r.statistics;
-  out << "  rock mass: " << s.n_blocks << " blocks from block " << r.first_block << ", smallest "
-      << format(s.smallest_area) << " m^2, mean " << format(s.mean_area) << " m^2; total "
-      << format(s.total_area, 6) << " m^2 = region " << format(s.region_area, 6) << " - excavated "
-      << format(s.excavated_area, 6) << " m^2\n";
-  out << "  rock mass: " << s.n_traces << " joint traces, sliver threshold " << format(s.min_area)
-      << " m^2, " << s.n_merged << " slivers merged, " << s.n_reported << " kept, "
-      << s.n_island_cuts << " vertical cuts around enclosed islands\n";
-  out << "  rock mass: shortest edge " << format(s.shortest_edge) << " m (edges below "
-      << format(s.min_edge_length) << " m collapsed: " << s.n_collapsed_edges
-      << ", left: " << s.n_short_edges << "), " << s.n_straight_vertices
-      << " straight vertices removed\n";
-  for (const dda::Sliver& sliver : r.slivers)
-    out << "  sliver kept: " << scene.model.blocks[sliver.block].origin << " at ("
-        << format(sliver.centroid.x()) << ", " << format(sliver.centroid.y()) << ") m, area "
-        << format(sliver.area) << " m^2, 2 area / perimeter " << format(sliver.inscribed_radius)
-        << " m\n";
 }
 
 std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)

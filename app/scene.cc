@@ -1,5 +1,6 @@
 #include "app/scene.h"
 
+#include "app/rock_mass_scene.h"
 #include "app/scene_schema.h"
 #include "app/tunnel_scene.h"
 #include "common/input_error.h"
@@ -877,21 +878,36 @@ dda::Opening read_opening(const MapReader& r, const std::vector<Point>& region,
   return o;
 }
 
+/// The `joint_material` of a joint set or explicit joint (an index into joint_names), if given.
+std::optional<std::size_t> read_joint_material(const MapReader& r,
+                                               const std::vector<std::string>& joint_names)
+{
+  if (!r.has("joint_material"))
+    return std::nullopt;
+  return find_name(r, "joint_material", r.string("joint_material"), joint_names, "joint material");
+}
+
 /// The `rock_mass` section: generates its blocks and appends them to the model.
 RockMassReport read_rock_mass(const MapReader& r, const std::vector<std::string>& material_names,
+                              const std::vector<std::string>& joint_names,
                               dda::ModelDescription& model, std::vector<BlockSource>& sources)
 {
   dda::RockMassDescription d;
+  RockMassReport report;
   const std::size_t material =
       find_name(r, "material", r.string("material"), material_names, "material");
   d.region = read_region(r.section_reader("region"));
   d.chord_tolerance = r.number("chord_tolerance");
   d.seed = static_cast<std::uint64_t>(r.integer("seed"));
   for (const MapReader& j : r.section_list("joint_sets"))
+  {
     d.joint_sets.push_back(read_joint_set(j));
+    report.joint_set_materials.push_back(read_joint_material(j, joint_names));
+  }
   for (const MapReader& j : r.section_list("joints"))
   {
     d.joints.push_back({j.vector2("from"), j.vector2("to")});
+    report.joint_materials.push_back(read_joint_material(j, joint_names));
     if (d.joints.back().from == d.joints.back().to)
       throw j.error("to", "the joint ends where it starts: expected a point other than `from`");
   }
@@ -915,13 +931,15 @@ RockMassReport read_rock_mass(const MapReader& r, const std::vector<std::string>
   if (result.blocks.empty())
     throw r.ctx().locator.error(r.yaml(), r.key_path(), "",
                                 "the openings cover the whole region: expected rock left");
-  RockMassReport report;
   report.first_block = model.blocks.size();
   report.statistics = result.statistics;
+  report.joint_sets = d.joint_sets;
+  report.joints = d.joints;
   for (std::size_t i = 0; i < result.blocks.size(); ++i)
   {
     dda::BlockDescription block;
     block.vertices = std::move(result.blocks[i].vertices);
+    block.edge_joint_materials = edge_joint_materials(result.blocks[i], report);
     block.material = material;
     block.origin = "rock_mass block " + std::to_string(i);
     model.blocks.push_back(std::move(block));
@@ -949,6 +967,25 @@ YAML::Node nested(const YAML::Node& node, const std::vector<std::string>& keys)
     n.reset(next);
   }
   return n;
+}
+
+/// The `tunnel` section's joint sets and explicit joints. Their joint material names (passed on
+/// to `rock_mass` with them) are checked here, so that errors name the tunnel's keys.
+void read_tunnel_joints(const MapReader& r, const YAML::Node& root, dda::RockMassDescription& d)
+{
+  std::vector<std::string> joint_names;
+  for (const auto& named : nested(root, {"joint_materials"}))
+    joint_names.push_back(named.first.Scalar());
+  for (const MapReader& j : r.section_list("joint_sets"))
+  {
+    d.joint_sets.push_back(read_joint_set(j));
+    read_joint_material(j, joint_names);
+  }
+  for (const MapReader& j : r.section_list("joints"))
+  {
+    d.joints.push_back({j.vector2("from"), j.vector2("to")});
+    read_joint_material(j, joint_names);
+  }
 }
 
 /// The `tunnel` section: reads it, plans the model (app/tunnel_scene.h) and writes the sections
@@ -993,10 +1030,7 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
 
   t.rock_mass.chord_tolerance = r.number("chord_tolerance");
   t.rock_mass.seed = static_cast<std::uint64_t>(r.integer("seed"));
-  for (const MapReader& j : r.section_list("joint_sets"))
-    t.rock_mass.joint_sets.push_back(read_joint_set(j));
-  for (const MapReader& j : r.section_list("joints"))
-    t.rock_mass.joints.push_back({j.vector2("from"), j.vector2("to")});
+  read_tunnel_joints(r, root, t.rock_mass);
   const double far = 1e12;
   t.rock_mass.openings.push_back(
       read_opening(r.section_reader("opening"),
@@ -1069,8 +1103,8 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
 }
 
 void read_blocks(const MapReader& top, const std::vector<std::string>& material_names,
-                 dda::ModelDescription& model, std::vector<BlockSource>& sources,
-                 std::optional<RockMassReport>& rock_mass)
+                 const std::vector<std::string>& joint_names, dda::ModelDescription& model,
+                 std::vector<BlockSource>& sources, std::optional<RockMassReport>& rock_mass)
 {
   const std::vector<MapReader> items = top.section_list("blocks");
   const bool has_blocks = !items.empty() || top.has("rock_mass");
@@ -1128,7 +1162,8 @@ void read_blocks(const MapReader& top, const std::vector<std::string>& material_
       }
   }
   if (top.has("rock_mass"))
-    rock_mass = read_rock_mass(top.section_reader("rock_mass"), material_names, model, sources);
+    rock_mass = read_rock_mass(top.section_reader("rock_mass"), material_names, joint_names, model,
+                               sources);
 }
 
 /// Axis-aligned bounding box [m].
@@ -1826,7 +1861,7 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
     scene.far_field = read_far_field(top.section_reader("far_field"), model, material_names);
 
   std::vector<BlockSource> sources;
-  read_blocks(top, material_names, model, sources, scene.rock_mass);
+  read_blocks(top, material_names, joint_names, model, sources, scene.rock_mass);
   check_overlaps(model, sources, context.locator);
   if (top.has("in_situ_stress"))
   {
@@ -2044,60 +2079,6 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
 
 // ---- Reference ------------------------------------------------------------------------------
 
-std::string table_cell(std::string text)
-{
-  std::string escaped;
-  for (const char c : text)
-    escaped += c == '|' ? std::string("\\|") : std::string(1, c);
-  return escaped;
-}
-
-std::string section_heading(const Section& s)
-{
-  if (s.id == SceneSchema::top_level)
-    return "Top level";
-  return "`" + s.id + "`";
-}
-
-std::string type_cell(const Key& k)
-{
-  switch (k.type)
-  {
-  case ValueType::section:
-  case ValueType::section_map:
-  case ValueType::section_list:
-    return schema::describe(k.type) + ", see `" + k.section + "`";
-  case ValueType::time_function:
-    return "time function, see below";
-  default:
-    return schema::describe(k.type);
-  }
-}
-
-std::string default_cell(const Key& k)
-{
-  if (k.required)
-    return "**required**";
-  if (!k.default_yaml.empty())
-    return "`" + (k.default_yaml == "''" ? std::string("\"\"") : k.default_yaml) + "`";
-  return k.default_note;
-}
-
-std::string allowed_cell(const Key& k)
-{
-  if (k.type == ValueType::choice)
-  {
-    std::vector<std::string> q;
-    for (const std::string& c : k.choices)
-      q.push_back("`" + c + "`");
-    return join(q, ", ");
-  }
-  const std::string r = k.range.describe();
-  const bool vector = k.type == ValueType::vector2 || k.type == ValueType::integer_pair ||
-                      k.type == ValueType::integer_pair_list || k.type == ValueType::voigt;
-  return r.empty() ? "" : (vector ? "each " : "") + r;
-}
-
 } // namespace
 
 Override parse_override(const std::string& argument)
@@ -2135,70 +2116,6 @@ Scene read_scene(const std::string& file, const std::vector<Override>& overrides
     throw InputError::at(file, e.mark.is_null() ? 0 : e.mark.line + 1, "", "",
                          "cannot read the YAML tree: " + e.msg);
   }
-}
-
-std::string scene_reference_markdown()
-{
-  const SceneSchema schema;
-  // A small scene using most sections; a test reads it, so it stays valid.
-  const char* const example = R"(name: two_blocks
-materials:
-  rock: {density: 2650, youngs_modulus: 50e9, poisson_ratio: 0.25}
-joint_materials:
-  glued: {normal_stiffness: 5e10, friction_angle: 30}
-joints: {default: glued}
-blocks:
-  - material: rock
-    vertices: [[0, 0], [2, 0], [2, 1], [0, 1]]
-  - material: rock
-    grid: {origin: [0, 1], cell_size: [1, 1], count: [2, 1]}
-fixed_points:
-  - {point: [1, 0]}
-point_loads:
-  - point: [0.5, 2]
-    force: [0, -1e6]
-    time_function: {type: sine_pulse, frequency: 100}
-gravity: [0, -9.81]
-monitors:
-  - {name: top, point: [1.5, 1.5]}
-boundaries:
-  - {type: vb1, on_line: {point: [2, 0], direction: [0, 1]}}
-time: {dt: 1e-4, end_time: 0.05}
-output: {directory: results/two_blocks, interval: 0.001}
-)";
-  std::ostringstream md;
-  md << "# Scene file reference\n\n"
-     << "This file is generated from the schema that the scene reader validates against "
-        "(`app/scene_schema.cc`).\nDo not edit it; regenerate it with\n\n"
-     << "    build/ddafem scene-reference > docs/scene_reference.md\n\n"
-     << "## Conventions\n\n"
-     << "- A scene is a YAML file. Units are SI: m, s, kg, N, Pa; angles in degrees.\n"
-     << "- Every map rejects keys that are not listed here, and suggests the closest allowed "
-        "key.\n"
-     << "- `blocks[i]` is item `i` (from 0) of the list `blocks`; `materials.<name>` is an entry "
-        "of the map `materials` under a name you choose.\n"
-     << "- Points of point loads, fixed points and monitors must lie inside or on the boundary "
-        "of a block.\n"
-     << "- Every key can be overridden on the command line without editing the file: "
-        "`--set time.dt=1e-4`, `--set gravity=[0,-9.81]`, `--set blocks.0.material=granite`. "
-        "Path components are separated by `.`, list items are addressed by their index, and "
-        "the value is read as YAML.\n"
-     << "- A time function is a map whose `type` selects one of the kinds at the end of this "
-        "page.\n\n"
-     << "## Example\n\n```yaml\n"
-     << example << "```\n";
-  for (const Section& s : schema.sections())
-  {
-    md << "\n## " << section_heading(s) << "\n\n"
-       << s.meaning << "\n\n"
-       << "| key | type | unit | default | allowed | meaning |\n"
-       << "|---|---|---|---|---|---|\n";
-    for (const Key& k : s.keys)
-      md << "| `" << k.name << "` | " << table_cell(type_cell(k)) << " | "
-         << table_cell(k.unit.empty() ? "-" : k.unit) << " | " << table_cell(default_cell(k))
-         << " | " << table_cell(allowed_cell(k)) << " | " << table_cell(k.meaning) << " |\n";
-  }
-  return md.str();
 }
 
 } // namespace ddafem

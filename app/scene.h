@@ -29,6 +29,12 @@ struct RockMassReport
   std::size_t first_block = 0; ///< index of its first block in the model's blocks
   dda::RockMassStatistics statistics;
   std::vector<dda::Sliver> slivers; ///< kept slivers; `block` indexes the model's blocks
+  std::vector<dda::JointSet> joint_sets;
+  std::vector<dda::ExplicitJoint> joints;
+  /// The `joint_material` of each joint set and each explicit joint, in their order: an index
+  /// into the model's joint materials; none: `joints.default` (or `joints.pairs`).
+  std::vector<std::optional<std::size_t>> joint_set_materials;
+  std::vector<std::optional<std::size_t>> joint_materials;
 };
 
 /// A scene file, read and validated.

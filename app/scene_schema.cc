@@ -1,5 +1,7 @@
 #include "app/scene_schema.h"
 
+#include "app/schema_key_builder.h"
+
 #include <cassert>
 #include <sstream>
 #include <utility>
@@ -8,85 +10,6 @@ namespace ddafem::schema
 {
 namespace
 {
-/// Chained construction of a Key, so that the schema below reads like a table.
-class KeyBuilder
-{
-public:
-  KeyBuilder(std::string name, ValueType type)
-  {
-    k.name = std::move(name);
-    k.type = type;
-  }
-  KeyBuilder& unit(std::string u)
-  {
-    k.unit = std::move(u);
-    return *this;
-  }
-  KeyBuilder& required()
-  {
-    k.required = true;
-    return *this;
-  }
-  KeyBuilder& default_yaml(std::string yaml)
-  {
-    k.default_yaml = std::move(yaml);
-    return *this;
-  }
-  KeyBuilder& default_note(std::string note)
-  {
-    k.default_note = std::move(note);
-    return *this;
-  }
-  KeyBuilder& greater_than(double v)
-  {
-    k.range.min = v;
-    k.range.min_inclusive = false;
-    return *this;
-  }
-  KeyBuilder& at_least(double v)
-  {
-    k.range.min = v;
-    k.range.min_inclusive = true;
-    return *this;
-  }
-  KeyBuilder& less_than(double v)
-  {
-    k.range.max = v;
-    k.range.max_inclusive = false;
-    return *this;
-  }
-  KeyBuilder& at_most(double v)
-  {
-    k.range.max = v;
-    k.range.max_inclusive = true;
-    return *this;
-  }
-  KeyBuilder& choices(std::vector<std::string> c)
-  {
-    k.choices = std::move(c);
-    return *this;
-  }
-  KeyBuilder& section(std::string id)
-  {
-    k.section = std::move(id);
-    return *this;
-  }
-  KeyBuilder& meaning(std::string m)
-  {
-    k.meaning = std::move(m);
-    return *this;
-  }
-  operator Key() const { return k; }
-
-private:
-  Key k;
-};
-
-KeyBuilder key(std::string name, ValueType type)
-{
-  return KeyBuilder(std::move(name), type);
-}
-
 std::string format_number(double v)
 {
   std::ostringstream s;
@@ -112,6 +35,18 @@ Key in_situ_gradient_key()
       .default_yaml("[0, 0, 0]")
       .meaning("d/dy of the in-situ stress, e.g. [K0 rho g, rho g, 0] for lithostatic stress "
                "with reference_y at the surface");
+}
+
+/// `joint_material` of a joint set or an explicit joint of `rock_mass` (`along`: what it cuts).
+Key joint_material_key(const std::string& along)
+{
+  return key("joint_material", ValueType::string)
+      .default_note("`joints.default` (or a `joints.pairs` entry)")
+      .meaning("name of the joint material of the joints (bonded) or contacts (`bonded: false`) "
+               "along " +
+               along +
+               ": where blocks were cut by it; edges on the region's or an opening's boundary, "
+               "and edges on no joint (vertical cuts around islands), take `joints`");
 }
 
 /// The `type` key of one time-function variant.
@@ -462,7 +397,7 @@ SceneSchema::SceneSchema()
        "neighbour they share the longest boundary with, or kept and listed by `check`. The "
        "blocks follow those of `blocks`, numbered by centroid (bottom first, then by x), named "
        "`rock_mass block N` in messages; joints between them come from `joints` like any "
-       "other.",
+       "other, except along a joint set or explicit joint with its own `joint_material`.",
        {key("region", T::section)
             .section("rock_mass.region")
             .required()
@@ -537,7 +472,8 @@ SceneSchema::SceneSchema()
        "base) and `time` (keys given in `time` win); truncation blocks writes `blocks` (the outer "
        "grids) and adds the material `outer_rock`, the joint material `outer_bond` and their "
        "`joints.pairs`. `check` prints each choice and why. The scene must not give those "
-       "sections itself; joint materials come from `joints` as usual.",
+       "sections itself; joint materials come from `joints` as usual, and from the joint sets' "
+       "`joint_material` along them.",
        {key("rock", T::string).required().meaning("name of the intact rock's material"),
         key("opening", T::section)
             .section("rock_mass.openings[i]")
@@ -712,7 +648,8 @@ SceneSchema::SceneSchema()
         key("perturbation", T::section)
             .section("rock_mass.joint_sets[i].perturbation")
             .default_note("none")
-            .meaning("random perturbation of the spacing and of the traces' positions")}});
+            .meaning("random perturbation of the spacing and of the traces' positions"),
+        joint_material_key("the set's traces")}});
 
   all_sections.push_back(
       {"rock_mass.joint_sets[i].perturbation",
@@ -737,7 +674,8 @@ SceneSchema::SceneSchema()
   all_sections.push_back({"rock_mass.joints[i]",
                           "A single joint: the segment from `from` to `to` (cut at the region).",
                           {key("from", T::vector2).unit("m").required().meaning("one end"),
-                           key("to", T::vector2).unit("m").required().meaning("the other end")}});
+                           key("to", T::vector2).unit("m").required().meaning("the other end"),
+                           joint_material_key("the joint")}});
 
   all_sections.push_back(
       {"rock_mass.openings[i]",

@@ -49,6 +49,15 @@ double signed_area(const std::vector<Point>& vertices)
   return 0.5 * twice_area;
 }
 
+std::vector<Point> anticlockwise(std::vector<Point> polygon)
+{
+  if (polygon.size() > 1 && polygon.front() == polygon.back())
+    polygon.pop_back();
+  if (signed_area(polygon) < 0.0)
+    std::reverse(polygon.begin(), polygon.end());
+  return polygon;
+}
+
 PolygonMoments polygon_moments(const std::vector<Point>& vertices)
 {
   // Green's theorem over the edges, with coordinates relative to the first vertex to limit

@@ -20,6 +20,9 @@ struct PolygonMoments
 /// Signed area [m^2]: positive for anticlockwise vertex order.
 double signed_area(const std::vector<Point>& vertices);
 
+/// The polygon in anticlockwise order, without a repeated closing vertex.
+std::vector<Point> anticlockwise(std::vector<Point> polygon);
+
 /// Area, centroid and central second moments by Green's theorem over the edges (exact).
 /// Requires a simple polygon with non-zero area in anticlockwise order.
 PolygonMoments polygon_moments(const std::vector<Point>& vertices);

@@ -27,6 +27,44 @@ std::size_t joint_material_for(const ModelDescription& model, std::size_t materi
   return model.default_joint_material;
 }
 
+namespace
+{
+/// The edge's own joint material (BlockDescription::edge_joint_materials), if it has one.
+std::optional<std::size_t> own_joint_material(const ModelDescription& model, std::size_t block,
+                                              std::size_t edge)
+{
+  const std::vector<std::optional<std::size_t>>& own = model.blocks[block].edge_joint_materials;
+  return edge < own.size() ? own[edge] : std::nullopt;
+}
+
+double edge_length(const Block& b, std::size_t edge)
+{
+  return (b.vertices[(edge + 1) % b.vertices.size()] - b.vertices[edge]).norm();
+}
+
+/// The joint material of the stretch s shared by blocks a and b: the shared edges' own (the
+/// shorter edge's where both have one), else by the blocks' materials.
+std::size_t shared_joint_material(const std::vector<Block>& blocks, const ModelDescription& model,
+                                  std::size_t a, std::size_t b, const SharedSegment& s)
+{
+  const std::optional<std::size_t> own_a = own_joint_material(model, a, s.a_edge);
+  const std::optional<std::size_t> own_b = own_joint_material(model, b, s.b_edge);
+  if (own_a && own_b)
+    return edge_length(blocks[b], s.b_edge) < edge_length(blocks[a], s.a_edge) ? *own_b : *own_a;
+  if (own_a || own_b)
+    return own_a ? *own_a : *own_b;
+  return joint_material_for(model, blocks[a].material, blocks[b].material);
+}
+} // namespace
+
+std::size_t joint_material_at_edge(const ModelDescription& model, std::size_t block,
+                                   std::size_t edge, std::size_t other)
+{
+  return own_joint_material(model, block, edge)
+      .value_or(
+          joint_material_for(model, model.blocks[block].material, model.blocks[other].material));
+}
+
 std::vector<Joint> find_joints(const std::vector<Block>& blocks, const ModelDescription& model,
                                const std::vector<std::string>& block_names, double tol)
 {
@@ -42,17 +80,15 @@ std::vector<Joint> find_joints(const std::vector<Block>& blocks, const ModelDesc
   {
     const std::vector<SharedSegment> shared =
         shared_segments(blocks[a].vertices, blocks[b].vertices, tol);
-    if (shared.empty())
-      continue;
-    const std::size_t jm = joint_material_for(model, blocks[a].material, blocks[b].material);
-    if (jm >= model.joint_materials.size())
-      throw InputError("blocks " + block_names[a] + " and " + block_names[b] +
-                       " share an edge but no joint material applies to materials '" +
-                       model.materials[blocks[a].material].name + "' and '" +
-                       model.materials[blocks[b].material].name +
-                       "': expected `joints: {default: NAME}` or a `joints.pairs` entry");
     for (const SharedSegment& s : shared)
     {
+      const std::size_t jm = shared_joint_material(blocks, model, a, b, s);
+      if (jm >= model.joint_materials.size())
+        throw InputError("blocks " + block_names[a] + " and " + block_names[b] +
+                         " share an edge but no joint material applies to materials '" +
+                         model.materials[blocks[a].material].name + "' and '" +
+                         model.materials[blocks[b].material].name +
+                         "': expected `joints: {default: NAME}` or a `joints.pairs` entry");
       Joint joint;
       joint.id = joints.size();
       joint.block_a = a;

@@ -51,8 +51,16 @@ struct Joint
 std::size_t joint_material_for(const ModelDescription& model, std::size_t material_a,
                                std::size_t material_b);
 
+/// Joint material of a joint or contact along edge `edge` of block `block` (index into
+/// model.blocks) against block `other`: the edge's own (BlockDescription::edge_joint_materials),
+/// else joint_material_for the two blocks' materials (npos if there is none).
+std::size_t joint_material_at_edge(const ModelDescription& model, std::size_t block,
+                                   std::size_t edge, std::size_t other);
+
 /// Finds every pair of blocks that share an edge stretch and makes a bonded joint there, with the
-/// joint material assigned to the pair's materials. Blocks are paired by a sweep over their
+/// joint material of the shared edges (joint_material_at_edge; where both edges have their own
+/// and they differ, the shorter edge's, which the shared stretch covers more of), else the one
+/// assigned to the pair's materials. Blocks are paired by a sweep over their
 /// bounding boxes (not all pairs). Throws InputError (naming the blocks) where two blocks share
 /// an edge and no joint material applies. `tol` [m] is the collinearity tolerance.
 std::vector<Joint> find_joints(const std::vector<Block>& blocks, const ModelDescription& model,

@@ -6,6 +6,7 @@
 #include "dda/types.h"
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,6 +73,11 @@ struct BlockDescription
   Vector2 initial_velocity = Vector2::Zero(); ///< translational velocity at t = 0 [m/s]
   Voigt initial_stress = Voigt::Zero();       ///< (sxx, syy, sxy) [Pa], tension positive
   std::string origin;                         ///< where it came from, for messages ("blocks[3]")
+  /// Empty, or one entry per edge (edge k runs from vertex k to vertex k + 1): the joint
+  /// material of the joints and contacts along that edge (an index into
+  /// ModelDescription::joint_materials), e.g. that of the joint set whose trace cut it; none:
+  /// the one that applies to the two blocks' materials (joint_material_for).
+  std::vector<std::optional<std::size_t>> edge_joint_materials;
 };
 
 /// A force applied at a material point of the block that contains it: F(t) = force * f(t).

@@ -1016,6 +1016,58 @@ std::vector<ExactPoint> without_collinear_vertices(std::vector<ExactPoint> point
   return points;
 }
 
+/// The joint a piece of a block's boundary lies on (explicit joints before sets, lower index
+/// first, where joints overlap); none on the region's or an opening's boundary.
+EdgeJoint piece_joint(Halfedge h)
+{
+  if (on_boundary(h))
+    return {};
+  // (0 for an explicit joint, 1 for a set; index): the smallest wins.
+  std::optional<std::pair<int, std::size_t>> best;
+  for (const CurveSource& s : h->curve().data())
+    if (s.kind == CurveSource::Kind::explicit_joint || s.kind == CurveSource::Kind::joint_set)
+    {
+      const std::pair<int, std::size_t> rank(s.kind == CurveSource::Kind::joint_set, s.index);
+      best = best ? std::min(*best, rank) : rank;
+    }
+  if (!best)
+    return {};
+  return {best->first == 0 ? EdgeJoint::Kind::explicit_joint : EdgeJoint::Kind::joint_set,
+          best->second};
+}
+
+/// The joints of a block's edges (RockMassBlock::edge_joints): `boundary` is its loop of
+/// halfedges, `kept` its vertices after the straight ones were dropped, in the loop's order.
+std::vector<EdgeJoint> edge_joints(const std::vector<Halfedge>& boundary,
+                                   const std::vector<ExactPoint>& kept)
+{
+  // The length [m] of each edge's pieces on each joint.
+  std::vector<std::vector<std::pair<EdgeJoint, double>>> pieces(kept.size());
+  const auto first = std::find_if(boundary.begin(), boundary.end(),
+                                  [&](Halfedge h) { return h->source()->point() == kept.front(); });
+  std::size_t edge = 0;
+  for (std::size_t i = 0; i < boundary.size(); ++i)
+  {
+    const Halfedge h =
+        boundary[(static_cast<std::size_t>(first - boundary.begin()) + i) % boundary.size()];
+    if (edge + 1 < kept.size() && h->source()->point() == kept[edge + 1])
+      ++edge;
+    const EdgeJoint joint = piece_joint(h);
+    auto it = std::find_if(pieces[edge].begin(), pieces[edge].end(),
+                           [&](const auto& p) { return p.first == joint; });
+    if (it == pieces[edge].end())
+      it = pieces[edge].insert(it, {joint, 0.0});
+    it->second += length(h);
+  }
+  std::vector<EdgeJoint> joints;
+  for (const auto& on_joints : pieces)
+    joints.push_back(std::max_element(on_joints.begin(), on_joints.end(),
+                                      [](const auto& a, const auto& b)
+                                      { return a.second < b.second; })
+                         ->first);
+  return joints;
+}
+
 /// The block of a block face whose boundary is one simple loop (as settle() leaves them).
 RockMassBlock make_block(Face f, double straight_tolerance)
 {
@@ -1064,6 +1116,7 @@ RockMassBlock make_block(Face f, double straight_tolerance)
                                [](const ExactPoint& a, const ExactPoint& b)
                                { return CGAL::compare_yx(a, b) == CGAL::SMALLER; }),
               points.end());
+  block.edge_joints = edge_joints(boundary, points);
   block.area = CGAL::to_double(CGAL::polygon_area_2(points.begin(), points.end(), Kernel()));
   for (const ExactPoint& p : points)
     block.vertices.push_back(rounded(p));
@@ -1076,16 +1129,6 @@ double perimeter(const std::vector<Point>& vertices)
   for (std::size_t i = 0; i < vertices.size(); ++i)
     p += (vertices[(i + 1) % vertices.size()] - vertices[i]).norm();
   return p;
-}
-
-/// Anticlockwise copy without a repeated closing vertex.
-std::vector<Point> anticlockwise(std::vector<Point> polygon)
-{
-  if (polygon.size() > 1 && polygon.front() == polygon.back())
-    polygon.pop_back();
-  if (signed_area(polygon) < 0.0)
-    std::reverse(polygon.begin(), polygon.end());
-  return polygon;
 }
 
 /// Input problems the generator cannot work around.
@@ -1177,54 +1220,7 @@ double min_edge_length(const RockMassDescription& d, double mean_spacing)
   return std::max(wanted, 1e-9 * extent(d.region));
 }
 
-/// Fewest chords for `angle` [rad] of arc of radius r such that each stays within `tolerance`
-/// of the arc: a chord over the angle a deviates by r (1 - cos(a / 2)).
-std::size_t n_chords(double angle, double r, double tolerance, std::size_t at_least)
-{
-  const double max_angle = 2.0 * std::acos(std::max(-1.0, 1.0 - tolerance / r));
-  return std::max(at_least, static_cast<std::size_t>(std::ceil(angle / max_angle)));
-}
 } // namespace
-
-std::vector<Point> opening_polygon(const Opening& opening, double chord_tolerance)
-{
-  std::vector<Point> polygon;
-  switch (opening.shape)
-  {
-  case Opening::Shape::circle:
-  {
-    const std::size_t n = n_chords(2.0 * M_PI, opening.radius, chord_tolerance, 8);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const double a = 2.0 * M_PI * static_cast<double>(i) / static_cast<double>(n);
-      polygon.push_back(opening.center + opening.radius * Vector2(std::cos(a), std::sin(a)));
-    }
-    return polygon;
-  }
-  case Opening::Shape::horseshoe:
-  {
-    // Floor from left to right, right wall up, roof arc from right to left, left wall down.
-    const double r = 0.5 * opening.width;
-    const Point springline = opening.center + Vector2(0.0, opening.wall_height);
-    polygon.push_back(opening.center + Vector2(-r, 0.0));
-    polygon.push_back(opening.center + Vector2(r, 0.0));
-    if (opening.wall_height > 0.0)
-      polygon.push_back(springline + Vector2(r, 0.0));
-    const std::size_t n = n_chords(M_PI, r, chord_tolerance, 4);
-    for (std::size_t i = 1; i < n; ++i)
-    {
-      const double a = M_PI * static_cast<double>(i) / static_cast<double>(n);
-      polygon.push_back(springline + r * Vector2(std::cos(a), std::sin(a)));
-    }
-    if (opening.wall_height > 0.0)
-      polygon.push_back(springline + Vector2(-r, 0.0));
-    return polygon;
-  }
-  case Opening::Shape::polygon:
-    return anticlockwise(opening.vertices);
-  }
-  return polygon;
-}
 
 RockMassResult generate_blocks(const RockMassDescription& d)
 {

@@ -137,6 +137,26 @@ struct RockMassDescription
   double straight_angle = 1.0;
 };
 
+/// The joint an edge of a generated block lies on.
+struct EdgeJoint
+{
+  enum class Kind
+  {
+    /// on no joint: the region's or an opening's boundary (even where a joint runs along it),
+    /// or an edge that is no trace (a vertical cut around an island)
+    none,
+    joint_set,     ///< a trace of RockMassDescription::joint_sets[index]
+    explicit_joint ///< RockMassDescription::joints[index]
+  };
+  Kind kind = Kind::none;
+  std::size_t index = 0;
+
+  bool operator==(const EdgeJoint& other) const
+  {
+    return kind == other.kind && (kind == Kind::none || index == other.index);
+  }
+};
+
 /// One generated block.
 struct RockMassBlock
 {
@@ -150,6 +170,14 @@ struct RockMassBlock
   bool region_boundary = false; ///< some edge on the region's boundary
   /// Indices of the openings whose boundary runs along some edge, ascending.
   std::vector<std::size_t> openings;
+  /// One per edge (edge k from vertex k to vertex k + 1): the joint it lies on. An edge is one
+  /// or more pieces of the arrangement (where a neighbour's vertex meets it, or a dropped
+  /// vertex was straight to rounding), each on one joint (where joints overlap: explicit joints
+  /// before sets, lower index first) or on none (on the region's or an opening's boundary, or
+  /// no joint); the edge is on the one its pieces cover most of. Edges moved by the short-edge
+  /// collapse or joined at a removed straight vertex keep the joints of the edges they came
+  /// from.
+  std::vector<EdgeJoint> edge_joints;
 };
 
 /// A block below the size threshold that was kept: reported, or could not be merged.

@@ -666,7 +666,7 @@ void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_
       c.kind = f.kind;
       c.ratio = f.ratio;
       c.gap = f.distance;
-      c.joint_material = joint_material_for(model, blocks[a].material, blocks[b].material);
+      c.joint_material = joint_material_at_edge(model, c.edge_block, c.edge, c.vertex_block);
       const std::vector<Point>& ev = blocks[c.edge_block].vertices;
       c.length = carried_length(blocks[c.vertex_block].vertices, c.vertex, ev[c.edge],
                                 ev[(c.edge + 1) % ev.size()], angle_tolerance);

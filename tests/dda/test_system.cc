@@ -71,8 +71,10 @@ TEST(System, BondedJointCarriesShear)
   m.materials.push_back({"rock", rho, young, nu});
   m.joint_materials.push_back({"bond", p, 0.4, 30.0, 1e6, 1e6, true});
   m.default_joint_material = 0;
-  m.blocks.push_back({{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0, Vector2::Zero(), Voigt::Zero(), "base"});
-  m.blocks.push_back({{{0, 1}, {1, 1}, {1, 2}, {0, 2}}, 0, Vector2::Zero(), Voigt::Zero(), "top"});
+  m.blocks.push_back(
+      {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0, Vector2::Zero(), Voigt::Zero(), "base", {}});
+  m.blocks.push_back(
+      {{{0, 1}, {1, 1}, {1, 2}, {0, 2}}, 0, Vector2::Zero(), Voigt::Zero(), "top", {}});
   for (const Point& x : {Point(0.1, 0.1), Point(0.9, 0.1), Point(0.5, 0.9)})
     m.fixed_points.push_back({x, 0.0, TimeFunction::constant(0), TimeFunction::constant(0), ""});
   m.point_loads.push_back({{0.5, 2.0}, {force, 0}, TimeFunction::constant(1.0), ""});
