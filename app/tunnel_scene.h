@@ -75,6 +75,7 @@ struct TunnelDescription
   double static_dt = 0.0; ///< [s]; 0: chosen
   double static_tolerance = 1e-3;
   long long static_max_steps = 5000;
+  std::string static_release = "fall"; ///< stages[i].release of the static stage
 };
 
 /// A grid of equal rectangular blocks (a `blocks` entry with a `grid`).
