@@ -626,21 +626,26 @@ std::vector<std::pair<std::size_t, std::size_t>> System::find_contact_candidates
 
 void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs)
 {
-  // Vertices tied by an intact bonded joint to the other block do not make contacts there. Which
-  // vertices those are is decided in the initial configuration: in the current one the joint's
-  // shear displacement (forces / springs, 1e-5 m under MN in-situ forces) can carry an end
-  // vertex in and out of the tolerance from step to step, and the contact it then makes with
-  // the other block came and went every other step (a 2-cycle that never reached equilibrium).
+  // Vertices tied by an intact bonded joint to the other block do not make contacts there. In a
+  // static stage which vertices those are is decided in the initial configuration: in the
+  // current one the joint's shear displacement (forces / springs, 1e-5 m under MN in-situ
+  // forces) can carry an end vertex in and out of the tolerance from step to step, and the
+  // contact it then makes came and went every other step (a 2-cycle that never reached
+  // equilibrium). A dynamic stage follows the current configuration: a vertex that has left the
+  // joint's end meets the other block through a contact.
   jointed_vertices.clear();
   const double tol = 1e-6 * w0;
   for (const Joint& j : joints)
   {
-    const Point& p = j.points[0].on_a.initial;
-    const Vector2 t = j.tangent(true);
-    const double length = (j.points[1].on_a.initial - p).norm();
+    const bool initial = mode == StageMode::static_equilibrium;
+    const Point& p = initial ? j.points[0].on_a.initial : j.points[0].on_a.position;
+    const Vector2 t = j.tangent(initial);
+    const double length =
+        ((initial ? j.points[1].on_a.initial : j.points[1].on_a.position) - p).norm();
     const auto mark = [&](std::size_t block, std::size_t edge, std::size_t other)
     {
-      const std::vector<Point>& v = blocks[block].initial_vertices;
+      const std::vector<Point>& v =
+          initial ? blocks[block].initial_vertices : blocks[block].vertices;
       for (const std::size_t k : {edge, (edge + 1) % v.size()})
       {
         const double s = t.dot(v[k] - p);
