@@ -228,6 +228,29 @@ KeyblockRecorder::KeyblockRecorder(const dda::ModelDescription& model, FallCrite
   for (std::size_t k = 0; k < geometry.blocks.size(); ++k)
     slot[geometry.blocks[k]] = k;
   tracks.resize(geometry.blocks.size());
+  released.assign(geometry.blocks.size(), false);
+}
+
+std::size_t KeyblockRecorder::opening_next_to(std::size_t block, const Point& centroid) const
+{
+  if (block < slot.size() && slot[block] != npos)
+    return geometry.opening_of[slot[block]];
+  std::size_t nearest = no_opening;
+  double distance = std::numeric_limits<double>::infinity();
+  for (std::size_t o = 0; o < geometry.openings.size(); ++o)
+    for (const auto& [from, to] : geometry.openings[o].segments)
+      if (const double d = distance_to_segment(centroid, from, to); d < distance)
+      {
+        distance = d;
+        nearest = o;
+      }
+  return nearest;
+}
+
+void KeyblockRecorder::mark_released(std::size_t block)
+{
+  if (block < slot.size() && slot[block] != npos)
+    released[slot[block]] = true;
 }
 
 void KeyblockRecorder::add_channels(std::vector<HistoryChannel>& channels) const
@@ -328,7 +351,7 @@ nlohmann::json KeyblockRecorder::summary(const dda::System& system) const
                         {"fall_speed_m_s", std::sqrt(2.0 * gravity * threshold)}});
   }
   nlohmann::json blocks = nlohmann::json::array();
-  std::size_t n_detached = 0, n_fell = 0, peak_block = geometry.blocks.front();
+  std::size_t n_detached = 0, n_fell = 0, n_released = 0, peak_block = geometry.blocks.front();
   double peak = -1.0;
   for (std::size_t k = 0; k < tracks.size(); ++k)
   {
@@ -342,6 +365,7 @@ nlohmann::json KeyblockRecorder::summary(const dda::System& system) const
                       (detached && v.dot(down) > std::sqrt(2.0 * gravity * threshold));
     n_detached += detached ? 1 : 0;
     n_fell += fell ? 1 : 0;
+    n_released += released[k] ? 1 : 0;
     if (t.peak > peak)
     {
       peak = t.peak;
@@ -358,12 +382,14 @@ nlohmann::json KeyblockRecorder::summary(const dda::System& system) const
                       {"max_slip_m", t.max_slip},
                       {"max_opening_m", t.max_opening},
                       {"detached", detached},
-                      {"fell", fell}});
+                      {"fell", fell},
+                      {"released", static_cast<bool>(released[k])}});
   }
   return {{"count", tracks.size()},  {"fall_fraction_of_opening", criterion.fall_fraction},
           {"openings", openings},    {"blocks", blocks},
           {"keyblock_peak_m", peak}, {"keyblock_peak_id", peak_block},
-          {"detached", n_detached},  {"fell", n_fell}};
+          {"detached", n_detached},  {"fell", n_fell},
+          {"released", n_released}};
 }
 
 } // namespace ddafem

@@ -70,7 +70,15 @@ class KeyblockRecorder
 public:
   explicit KeyblockRecorder(const dda::ModelDescription& model, FallCriterion fall = {});
 
+  static constexpr std::size_t no_opening = static_cast<std::size_t>(-1);
+
   bool empty() const { return geometry.blocks.empty(); }
+  /// The opening block `block` is next to: a keyblock's own, else the one whose boundary is
+  /// nearest to `centroid` [m] (e.g. where a static stage released it); no_opening without
+  /// openings.
+  std::size_t opening_next_to(std::size_t block, const dda::Point& centroid) const;
+  /// Marks a block a static stage released (dda::ReleasedBlock): the summary shows it.
+  void mark_released(std::size_t block);
   const KeyblockGeometry& get_geometry() const { return geometry; }
 
   /// Appends one channel per keyblock, `keyblocks/block_<id>/displacement` (ux, uy) [m].
@@ -107,6 +115,7 @@ private:
   bool small_displacement = false;
   std::vector<std::size_t> slot; ///< per model block: its index in geometry.blocks, or npos
   std::vector<Track> tracks;
+  std::vector<bool> released;                      ///< per keyblock: a static stage released it
   bool referenced = false;                         ///< the first row has set the references
   std::unordered_set<std::size_t> closed_contacts; ///< ids of contacts seen closed in some row
 };

@@ -3,6 +3,7 @@
 #include "app/keyblocks.h"
 #include "app/rock_mass_scene.h"
 #include "app/run_support.h"
+#include "app/static_stage.h"
 
 #include "common/history_writer.h"
 #include "common/input_error.h"
@@ -515,7 +516,8 @@ std::string check_scene(const Scene& scene)
     if (st.mode == dda::StageMode::static_equilibrium)
       out << "static, dt " << format(st.dt) << " s, up to " << st.max_steps
           << " steps, equilibrium at an out-of-balance force ratio <= " << format(st.tolerance)
-          << "\n";
+          << " of each block's own load, released blocks "
+          << (st.release == dda::ReleaseAction::remove ? "removed" : "fall") << "\n";
     else
       out << "dynamic to t = " << format(st.end_time) << " s\n";
   }
@@ -676,66 +678,26 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   double smallest_dt = time.dt;
   for (const dda::Stage& stage : stages)
   {
-    system.begin_stage(stage.mode);
-    nlohmann::json record = {
-        {"name", stage.name},
-        {"mode", stage.mode == dda::StageMode::dynamic ? "dynamic" : "static"}};
-    const std::size_t first_step = system.n_steps();
     if (stage.mode == dda::StageMode::static_equilibrium)
     {
-      // Equilibrium: out-of-balance forces below tolerance x the applied ones. The pseudo time
-      // step is cut and grown back whatever time.control says: it has no physical meaning, and
-      // a held far field (coupled scenes) needs no flexibility per dt.
-      dda::TimeSettings pseudo_time = time;
-      pseudo_time.control = dda::TimeControl::adaptive;
-      dda::TimeStepper stepper(system, pseudo_time, stage.dt);
-      bool converged = false;
-      double last_ratio = 0.0;
-      std::size_t last_block = 0;
-      std::vector<dda::Point> stage_centroids;
-      for (const dda::Block& b : system.get_blocks())
-        stage_centroids.push_back(b.moments.centroid);
-      for (std::size_t k = 0; k < stage.max_steps && !converged; ++k)
-      {
-        const dda::StepStatus status = stepper.step();
-        if (status.outcome != dda::StepOutcome::success)
-        {
-          failure = status;
-          break;
-        }
-        last_ratio = status.unbalanced_force_ratio;
-        last_block = status.unbalanced_block;
-        converged = last_ratio <= stage.tolerance;
-        smallest_dt = std::min(smallest_dt, stepper.last_dt());
-        progress.update(system.n_steps(), system.time(), elapsed(wall_start));
-      }
-      n_cuts += stepper.n_cuts();
-      n_cut_steps += stepper.n_cut_steps();
-      record["steps"] = system.n_steps() - first_step;
-      record["converged"] = converged;
-      record["unbalanced_force_ratio"] = last_ratio;
-      record["tolerance"] = stage.tolerance;
-      stage_records.push_back(record);
+      const dda::StaticStageResult result = dda::run_static_stage(
+          system, stage, time,
+          [&] { progress.update(system.n_steps(), system.time(), elapsed(wall_start)); });
+      n_cuts += result.n_cuts;
+      n_cut_steps += result.n_cut_steps;
+      smallest_dt = std::min(smallest_dt, result.smallest_dt);
+      for (const dda::ReleasedBlock& r : result.released)
+        keyblocks.mark_released(r.block);
+      stage_records.push_back(static_stage_record(stage, result, system, keyblocks));
+      failure = static_stage_failure(stage, result, system);
       if (failure.outcome != dda::StepOutcome::success)
         break;
-      if (!converged)
-      {
-        failure.outcome = dda::StepOutcome::not_converged;
-        failure.message =
-            "static stage '" + stage.name + "' did not reach equilibrium in " +
-            std::to_string(stage.max_steps) + " steps: the out-of-balance force " + "ratio is " +
-            format(last_ratio) + ", above the tolerance " + format(stage.tolerance) +
-            "; the largest acts on " + scene.model.blocks[last_block].origin + ", which moved " +
-            format((system.get_blocks()[last_block].moments.centroid - stage_centroids[last_block])
-                       .norm()) +
-            " m in the stage (a block that keeps moving is released: it falls or "
-            "slides out; expected a model that can be in equilibrium, stronger "
-            "joints or support, or a larger `max_steps` or `tolerance`)";
-        break;
-      }
       continue;
     }
 
+    system.begin_stage(stage.mode);
+    const std::size_t first_step = system.n_steps();
+    nlohmann::json record = {{"name", stage.name}, {"mode", "dynamic"}};
     if (!initial_written)
     {
       write_state(true);

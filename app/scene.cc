@@ -1086,6 +1086,7 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
     t.static_dt = stage.number("dt");
   t.static_tolerance = stage.number("tolerance");
   t.static_max_steps = stage.integer("max_steps");
+  t.static_release = stage.choice("release");
 
   try
   {
@@ -1991,6 +1992,8 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
     stage.end_time = r.has("end_time") ? r.number("end_time") : model.time.end_time;
     stage.max_steps = static_cast<std::size_t>(r.integer("max_steps"));
     stage.tolerance = r.number("tolerance");
+    stage.release =
+        r.choice("release") == "remove" ? dda::ReleaseAction::remove : dda::ReleaseAction::fall;
     if (stage.mode == dda::StageMode::dynamic)
     {
       if (r.has("dt"))

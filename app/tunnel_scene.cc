@@ -612,6 +612,7 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
   stage_static["dt"] = plan.static_dt;
   stage_static["tolerance"] = t.static_tolerance;
   stage_static["max_steps"] = t.static_max_steps;
+  stage_static["release"] = t.static_release;
   stage_dynamic["name"] = "shake";
   stage_dynamic["mode"] = "dynamic";
   YAML::Node stages(YAML::NodeType::Sequence);

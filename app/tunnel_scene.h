@@ -73,8 +73,9 @@ struct TunnelDescription
   double window = 0.0;    ///< dynamic stage after the wave reaches the near field [s]; 0: chosen
   double dt = 0.0;        ///< [s]; 0: chosen
   double static_dt = 0.0; ///< [s]; 0: chosen
-  double static_tolerance = 1e-3;
+  double static_tolerance = 1e-5;
   long long static_max_steps = 5000;
+  std::string static_release = "fall"; ///< stages[i].release of the static stage
 };
 
 /// A grid of equal rectangular blocks (a `blocks` entry with a `grid`).

@@ -252,6 +252,17 @@ enum class StageMode
 
 /// A stage of the analysis. Stages run in sequence; each starts from the state the previous one
 /// left (a dynamic stage after a static one starts from the equilibrium, at rest, at t = 0).
+/// What a static stage does with a block it releases (one that cannot be in equilibrium, see
+/// ReleaseCriterion in dda/static_stage.h).
+enum class ReleaseAction
+{
+  /// Held where it was released for the rest of the static stage (System::hold_block), free in
+  /// the dynamic stage that follows: it falls or slides onto whatever is below.
+  fall,
+  /// Inert for the rest of the run (System::remove_block): held, no joints, no contacts.
+  remove
+};
+
 struct Stage
 {
   std::string name;
@@ -260,9 +271,10 @@ struct Stage
   double dt = 0.0;
   double end_time = 0.0;         ///< dynamic: the time it runs to [s]
   std::size_t max_steps = 10000; ///< static: stop (failed) after this many steps
-  /// static: equilibrium when the largest out-of-balance force on a block falls below
-  /// tolerance x the largest applied force on a block (StepStatus::unbalanced_force_ratio)
+  /// static: equilibrium when every block's out-of-balance force falls below tolerance x its
+  /// own load (StepStatus::unbalanced_force_ratio, BlockBalance), released blocks excepted
   double tolerance = 1e-5;
+  ReleaseAction release = ReleaseAction::fall; ///< static: what becomes of released blocks
 };
 
 /// Everything the DDA engine needs to build and run a model.

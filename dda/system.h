@@ -78,11 +78,29 @@ struct StepStatus
   bool penalty_raised = false;
   /// Contacts whose state changes were let go as carrying almost nothing (flip_force_ratio)
   std::size_t n_flips_ignored = 0;
-  /// Static stages: the largest out-of-balance force on a block at the start of the step (the
-  /// translational part of the step's right-hand side with zero velocity) over the largest
-  /// applied force (gravity and point loads) on a block [-]; 0 in dynamic stages.
+  /// Static stages: the largest BlockBalance::ratio() over the blocks not held [-], each
+  /// block's out-of-balance force against its own load; 0 in dynamic stages.
   double unbalanced_force_ratio = 0.0;
   std::size_t unbalanced_block = 0; ///< static stages: the block with the largest of them
+};
+
+/// Static stages: the balance of one block at the start of a step.
+struct BlockBalance
+{
+  /// The resultant force on the block [N] (global x, y): the translational part of the step's
+  /// right-hand side at zero velocity, i.e. gravity + loads + the forces of fixed points,
+  /// supports, bonded joints, contacts and ties at the step's start.
+  Vector2 out_of_balance = Vector2::Zero();
+  /// The block's own load [N]: the sum of the magnitudes of those forces, m |g| + sum |f_k|
+  /// (each end spring of a bonded joint, each closed contact, each load, fixed point, support and
+  /// tie point of the block counted once). |out_of_balance| <= load: a block in free fall has
+  /// ratio 1, one held by in-situ joint forces of many times its weight is measured against
+  /// them.
+  double load = 0.0;
+  double weight = 0.0; ///< m |g| [N]
+
+  /// |out_of_balance| / load [-], in [0, 1]; 0 for a block without load.
+  double ratio() const { return load > 0.0 ? out_of_balance.norm() / load : 0.0; }
 };
 
 /// Wall time spent in each phase of the step since construction [s], and work counters.
@@ -151,6 +169,23 @@ public:
   /// edge loads (reaction transfer).
   void begin_stage(StageMode mode);
   StageMode stage_mode() const { return mode; }
+
+  /// Holds block i where it is (each of its six unknowns gets a penalty spring of 1e8 x its own
+  /// diagonal entry of the step's matrix, so it moves 1e-8 of what it would)
+  /// until the next begin_stage: a static stage's released block, which cannot be in
+  /// equilibrium, so that it keeps the rest from converging no more. Its balance no longer
+  /// counts in StepStatus::unbalanced_force_ratio.
+  void hold_block(std::size_t i);
+  /// Makes block i inert for the rest of the run: held as by hold_block in every stage, its
+  /// bonded joints removed and no contacts with it, so that it puts no force on the others.
+  void remove_block(std::size_t i);
+  bool is_held(std::size_t i) const { return held[i] || removed[i]; }
+  bool is_removed(std::size_t i) const { return removed[i]; }
+  /// Static stages: every block's balance at the start of the last accepted step (empty before
+  /// the first static step).
+  const std::vector<BlockBalance>& block_balances() const { return balances; }
+  /// rho A0 [kg] of block i.
+  double mass_of(std::size_t i) const { return block_mass(blocks[i]); }
 
   double time() const { return current_time; }
   std::size_t n_steps() const { return timings.n_steps; }
@@ -229,6 +264,11 @@ private:
   Vector2 input_force(const BoundaryEdge& e, double t) const;
   /// Zero velocity and acceleration of every block (static stages, start of a dynamic one).
   void set_at_rest();
+  /// Static stages: each block's balance from the step's right-hand side (after the contact
+  /// and tie terms), into `balances`; the status's largest ratio over the blocks not held.
+  void measure_balance(StepStatus& status);
+  /// The penalty springs of held and removed blocks on the matrix's diagonal.
+  void add_hold_terms();
   /// Phase 1: block pairs whose boxes, inflated by d0, overlap.
   std::vector<std::pair<std::size_t, std::size_t>> find_contact_candidates() const;
   /// Phase 2: the vertex-edge contacts of the pairs, matched to the previous step's to keep
@@ -320,6 +360,9 @@ private:
   double angle_tolerance = 0.0;         ///< [rad]
   bool contacts_enabled = true;         ///< false in a small-displacement analysis
   StageMode mode = StageMode::dynamic;
+  std::vector<bool> held;             ///< per block: held until the next begin_stage
+  std::vector<bool> removed;          ///< per block: inert for the rest of the run
+  std::vector<BlockBalance> balances; ///< of the last accepted static step
   double default_fixed_stiffness = 0.0;
   IntegratorCoefficients integration; ///< of the scene's integrator
   /// The blocks' acceleration and force are not known (at t = 0, or set at rest): the next step

@@ -236,6 +236,10 @@ def stage_lines(summary):
             result = "%s: out-of-balance force ratio %.3g (tolerance %.3g)" % (
                 "equilibrium" if s.get("converged") else "**no equilibrium**",
                 s.get("unbalanced_force_ratio", float("nan")), s.get("tolerance", float("nan")))
+            released = s.get("released", [])
+            if released:
+                result += "; released (%s): %s" % (s.get("release", "fall"), ", ".join(
+                    "block %d (%.3g kg)" % (r["block"], r["mass_kg"]) for r in released))
         else:
             result = "to t = %.4g s" % s.get("end_time_s", float("nan"))
         lines.append("| %s | %s | %s | %s |" % (s.get("name"), s.get("mode"), s.get("steps"),
