@@ -241,13 +241,27 @@ def stage_lines(summary):
                 result += "; released (%s): %s" % (s.get("release", "fall"), ", ".join(
                     "block %d (%.3g kg)" % (r["block"], r["mass_kg"]) for r in released))
         else:
-            result = "to t = %.4g s" % s.get("end_time_s", float("nan"))
+            end = s.get("end_time_s", float("nan"))
+            reached = s.get("time_reached_s", end)
+            result = ("to t = %.4g s" % end if reached >= end - 1e-9 * max(abs(end), 1.0) else
+                      "**stopped at t = %.4g s** of %.4g s" % (reached, end))
         lines.append("| %s | %s | %s | %s |" % (s.get("name"), s.get("mode"), s.get("steps"),
                                                result))
     return lines
 
 
-def keyblock_lines(keyblocks):
+def wave_not_reached(summary):
+    """Why keyblock verdicts mean nothing yet: the run stopped before the wave reached the
+    near field (summary.tunnel.arrival_time_s), else None."""
+    arrival = summary.get("tunnel", {}).get("arrival_time_s")
+    reached = summary.get("time_reached_s", 0.0)
+    if summary.get("status") == "completed" or arrival is None or reached >= arrival:
+        return None
+    return ("the run stopped at t = %.4g s, before the wave reached the near field at %.4g s: "
+            "no verdict" % (reached, arrival))
+
+
+def keyblock_lines(keyblocks, not_reached=None):
     if not keyblocks:
         return ["No keyblocks: the blocks enclose no opening."]
     lines = []
@@ -258,10 +272,15 @@ def keyblock_lines(keyblocks):
                      % (k, o["size_m"], o["area_m2"], o["lower_m"][0], o["lower_m"][1],
                         o["upper_m"][0], o["upper_m"][1], mm(o["fall_threshold_m"]),
                         o["fall_speed_m_s"]))
-    lines.append("- %d keyblocks; largest peak displacement %s mm (block %d); %d detached, "
-                 "%d fell" % (keyblocks["count"], mm(keyblocks["keyblock_peak_m"]),
-                              keyblocks["keyblock_peak_id"], keyblocks["detached"],
-                              keyblocks["fell"]))
+    if not_reached:
+        lines.append("- %d keyblocks: **not reached**, %s" % (keyblocks["count"], not_reached))
+    else:
+        lines.append("- %d keyblocks; largest peak displacement %s mm (block %d); %d detached, "
+                     "%d fell" % (keyblocks["count"], mm(keyblocks["keyblock_peak_m"]),
+                                  keyblocks["keyblock_peak_id"], keyblocks["detached"],
+                                  keyblocks["fell"]))
+    verdict = (lambda flag: "not reached") if not_reached else \
+        (lambda flag: "**yes**" if flag else "no")
     lines += ["",
               "| block | name | peak \\|u\\| [mm] | at [s] | residual ux, uy [mm] | "
               "max slip [mm] | max opening [mm] | detached | fell |",
@@ -271,7 +290,7 @@ def keyblock_lines(keyblocks):
         lines.append("| %d | %s | %s | %.4g | %s, %s | %s | %s | %s | %s |" % (
             b["id"], b.get("name", ""), mm(b["peak_displacement_m"]), b["peak_time_s"], mm(ux),
             mm(uy), mm(b["max_slip_m"]), mm(b["max_opening_m"]),
-            "**yes**" if b["detached"] else "no", "**yes**" if b["fell"] else "no"))
+            verdict(b["detached"]), verdict(b["fell"])))
     return lines
 
 
@@ -285,6 +304,13 @@ def write_report(run_dir, summary, figures, path):
              % (summary.get("time_reached_s", 0.0), summary.get("end_time_s", 0.0),
                 summary.get("steps", "?"), summary.get("dt_s", float("nan")),
                 summary.get("time_step", {}).get("smallest_dt_s", float("nan"))),
+             "- time steps: %s dt cuts (%s steps cut), %s contact penalties raised, %s "
+             "contact flips at almost no force let go, %s open-close iterations"
+             % (summary.get("time_step", {}).get("cuts", "?"),
+                summary.get("time_step", {}).get("steps_cut", "?"),
+                summary.get("time_step", {}).get("penalty_raises", "?"),
+                summary.get("time_step", {}).get("flips_ignored", "?"),
+                summary.get("contacts", {}).get("open_close_iterations", "?")),
              "- wall time: %.3g s, peak memory %.0f MB"
              % (summary.get("wall_time_s", 0.0), summary.get("peak_memory_mb", 0.0)), ""]
     lines += ["## Model", ""] + model_lines(summary) + [""]
@@ -297,7 +323,7 @@ def write_report(run_dir, summary, figures, path):
               "Blocks with a point of their boundary on an opening. Displacements of the "
               "centroid from the start of the dynamic stage; slip and opening are the largest "
               "over the run among the block's joints and contacts.", ""]
-    lines += keyblock_lines(summary.get("keyblocks")) + [""]
+    lines += keyblock_lines(summary.get("keyblocks"), wave_not_reached(summary)) + [""]
     if figures:
         lines += ["## Pictures", ""]
         for caption, figure in figures:
