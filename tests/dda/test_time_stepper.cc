@@ -161,3 +161,43 @@ TEST(TimeStepper, LandsOnTheRequestedEndOfAStage)
   EXPECT_DOUBLE_EQ(s.time(), 1e-4);
   EXPECT_EQ(stepper.n_cuts(), 0u);
 }
+
+TEST(TimeStepper, RaisesTheContactPenaltyOnDeepPenetration)
+{
+  // A 1 m block (2650 kg) hits a fixed base at 5 m/s on soft joints (p = 1e8 N/m at each of its
+  // two corners, 2e8 N/m in all): the impact would compress them by v sqrt(m / (2 p)) = 1.8 cm,
+  // beyond the 5 mm allowed. The step is redone with the penetrating contacts' penalty x 10
+  // (5.8 mm: still too deep), then x 100 (1.8 mm), the cap; dt is never cut for it.
+  ModelDescription m;
+  m.materials.push_back({"rock", 2650.0, 10e9, 0.25});
+  m.joint_materials.push_back({"joint", 1e8, 0.4, 30.0, 0.0, 0.0, false});
+  m.default_joint_material = 0;
+  BlockDescription base, block;
+  base.vertices = {{-2, -1}, {2, -1}, {2, 0}, {-2, 0}};
+  block.vertices = {{-0.5, 0.01}, {0.5, 0.01}, {0.5, 1.01}, {-0.5, 1.01}};
+  block.initial_velocity = Vector2(0.0, -5.0);
+  m.blocks = {base, block};
+  for (const Point& x : {Point(-1.5, -0.5), Point(1.5, -0.5), Point(0, -0.5)})
+    m.fixed_points.push_back(
+        {x, 0.0, TimeFunction::constant(0.0), TimeFunction::constant(0.0), ""});
+  m.contacts.max_penetration = 5e-3;
+  m.contacts.search_distance = 0.2;
+  m.time.dt = 1e-3;
+  m.time.end_time = 0.05;
+  System s(m);
+  TimeStepper stepper(s, m.time);
+  double deepest = 0.0, largest_factor = 1.0;
+  while (s.time() < 0.05 - 1e-12)
+  {
+    const StepStatus status = stepper.step(0.05 - s.time());
+    ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
+    deepest = std::max(deepest, status.max_penetration);
+    for (const Contact& c : s.get_contacts())
+      largest_factor = std::max(largest_factor, c.penalty_factor);
+  }
+  EXPECT_EQ(stepper.n_penalty_raises(), 2u);
+  EXPECT_EQ(largest_factor, 100.0);
+  EXPECT_LE(deepest, 5e-3);
+  EXPECT_GT(deepest, 1e-3); // the stiffened contacts still took the impact
+  EXPECT_EQ(stepper.n_cuts(), 0u);
+}
