@@ -3,6 +3,7 @@
 #include "common/input_error.h"
 #include "dda/geometry.h"
 #include "dda/rock_mass.h"
+#include "joint_sets.h"
 
 #include <gtest/gtest.h>
 
@@ -23,14 +24,7 @@ std::vector<Point> rectangle(double x0, double y0, double x1, double y1)
   return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
 }
 
-JointSet persistent_set(double dip, double spacing, double offset = 0.0)
-{
-  JointSet set;
-  set.dip = dip;
-  set.spacing = spacing;
-  set.offset = offset;
-  return set;
-}
+using test_models::persistent_set;
 
 JointSet non_persistent_set(double dip, double spacing, double trace_length, double bridge)
 {

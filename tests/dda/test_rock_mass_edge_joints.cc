@@ -2,6 +2,7 @@
 // joint whose trace cut it, none on the region's and the openings' boundaries.
 #include "dda/geometry.h"
 #include "dda/rock_mass.h"
+#include "joint_sets.h"
 
 #include <gtest/gtest.h>
 
@@ -11,14 +12,7 @@ using namespace ddafem::dda;
 
 namespace
 {
-JointSet persistent_set(double dip, double spacing, double offset = 0.0)
-{
-  JointSet set;
-  set.dip = dip;
-  set.spacing = spacing;
-  set.offset = offset;
-  return set;
-}
+using test_models::persistent_set;
 
 /// Distance [m] from p to the closed polygon's boundary.
 double distance_to_boundary(const std::vector<Point>& polygon, const Point& p)
