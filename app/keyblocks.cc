@@ -229,6 +229,50 @@ KeyblockRecorder::KeyblockRecorder(const dda::ModelDescription& model, FallCrite
     slot[geometry.blocks[k]] = k;
   tracks.resize(geometry.blocks.size());
   released.assign(geometry.blocks.size(), false);
+  removed.assign(model.blocks.size(), false);
+  block_reference.assign(model.blocks.size(), Vector2::Zero());
+  ring_reference.assign(geometry.openings.size(), Vector2::Zero());
+  rings.resize(geometry.openings.size());
+  std::vector<Point> centroids;
+  for (const std::vector<Point>& p : polygons)
+  {
+    const dda::PolygonMoments m = dda::polygon_moments(dda::anticlockwise(p));
+    block_area.push_back(m.area);
+    centroids.push_back(m.centroid);
+  }
+  for (std::size_t o = 0; o < geometry.openings.size(); ++o)
+  {
+    const OpeningOutline& opening = geometry.openings[o];
+    const Point centre = 0.5 * (opening.lower + opening.upper);
+    for (std::size_t b = 0; b < polygons.size(); ++b)
+      if (const double d = (centroids[b] - centre).norm();
+          slot[b] == npos && d >= 0.75 * opening.size() && d <= 1.5 * opening.size())
+        rings[o].emplace_back(b, block_area[b]);
+  }
+}
+
+std::vector<Vector2>
+KeyblockRecorder::ring_displacements(const std::vector<dda::Block>& blocks) const
+{
+  std::vector<Vector2> mean(rings.size(), Vector2::Zero());
+  for (std::size_t o = 0; o < rings.size(); ++o)
+  {
+    double area = 0.0;
+    for (const auto& [b, a] : rings[o])
+    {
+      mean[o] += a * blocks[b].displacement();
+      area += a;
+    }
+    if (area > 0.0)
+      mean[o] /= area;
+  }
+  return mean;
+}
+
+void KeyblockRecorder::mark_removed(std::size_t block)
+{
+  if (block < removed.size())
+    removed[block] = true;
 }
 
 std::size_t KeyblockRecorder::opening_next_to(std::size_t block, const Point& centroid) const
@@ -256,9 +300,21 @@ void KeyblockRecorder::mark_released(std::size_t block)
 void KeyblockRecorder::add_channels(std::vector<HistoryChannel>& channels) const
 {
   for (const std::size_t b : geometry.blocks)
-    channels.push_back({"keyblocks/block_" + std::to_string(b) + "/displacement", 2, "m",
-                        "(ux, uy) of the centroid of keyblock " + std::to_string(b) +
-                            " (the block_id of the VTU), from the start of the dynamic stage"});
+  {
+    const std::string prefix = "keyblocks/block_" + std::to_string(b);
+    const std::string which = "keyblock " + std::to_string(b) + " (the block_id of the VTU)";
+    channels.push_back(
+        {prefix + "/displacement", 2, "m",
+         "(ux, uy) of the centroid of " + which + ", from the start of the dynamic stage"});
+    channels.push_back({prefix + "/relative_displacement", 2, "m",
+                        "(ux, uy) of the centroid of " + which +
+                            " less the mean of the rock around its opening (0.75 to 1.5 opening "
+                            "sizes from its centre), from the start of the dynamic stage"});
+    channels.push_back({prefix + "/joints", 2, "m",
+                        "(largest |slip|, largest opening) of the joints (bonded joints and "
+                        "contacts) of " +
+                            which + " in this row"});
+  }
 }
 
 void KeyblockRecorder::append_row(const dda::System& system, std::vector<double>& row)
@@ -268,33 +324,52 @@ void KeyblockRecorder::append_row(const dda::System& system, std::vector<double>
   {
     // The dynamic stage after a static one is measured from the equilibrium reached.
     if (system.stage_mode() == dda::StageMode::dynamic)
+    {
       for (std::size_t k = 0; k < tracks.size(); ++k)
         tracks[k].reference = blocks[geometry.blocks[k]].displacement();
+      for (std::size_t b = 0; b < blocks.size(); ++b)
+        block_reference[b] = blocks[b].displacement();
+      ring_reference = ring_displacements(blocks);
+    }
     referenced = true;
   }
+  update_joints(system);
+  std::vector<Vector2> ring = ring_displacements(blocks);
+  for (std::size_t o = 0; o < ring.size(); ++o)
+    ring[o] -= ring_reference[o];
   for (std::size_t k = 0; k < tracks.size(); ++k)
   {
     Track& t = tracks[k];
     t.last = blocks[geometry.blocks[k]].displacement() - t.reference;
-    row.insert(row.end(), {t.last.x(), t.last.y()});
+    t.last_relative = t.last - ring[geometry.opening_of[k]];
+    row.insert(row.end(), {t.last.x(), t.last.y(), t.last_relative.x(), t.last_relative.y(),
+                           t.row_slip, t.row_opening});
     if (t.last.norm() > t.peak)
     {
       t.peak = t.last.norm();
       t.peak_time = system.time();
     }
+    if (t.last_relative.norm() > t.peak_relative)
+    {
+      t.peak_relative = t.last_relative.norm();
+      t.peak_relative_time = system.time();
+    }
   }
-  update_joints(system);
 }
 
 void KeyblockRecorder::update_joints(const dda::System& system)
 {
+  for (Track& t : tracks)
+    t.row_slip = t.row_opening = 0.0;
   const auto record = [&](std::size_t block, double slip, double opening)
   {
     if (slot[block] == npos)
       return;
     Track& t = tracks[slot[block]];
-    t.max_slip = std::max(t.max_slip, std::abs(slip));
-    t.max_opening = std::max(t.max_opening, opening);
+    t.row_slip = std::max(t.row_slip, std::abs(slip));
+    t.row_opening = std::max(t.row_opening, opening);
+    t.max_slip = std::max(t.max_slip, t.row_slip);
+    t.max_opening = std::max(t.max_opening, t.row_opening);
   };
   for (const dda::Contact& c : system.get_contacts())
   {
@@ -316,11 +391,38 @@ void KeyblockRecorder::update_joints(const dda::System& system)
     }
 }
 
-nlohmann::json KeyblockRecorder::summary(const dda::System& system) const
+nlohmann::json KeyblockRecorder::fallen_per_opening(const dda::System& system) const
 {
-  if (empty())
-    return nullptr;
-  // Held: an intact bonded joint or a closed contact.
+  const std::vector<dda::Block>& blocks = system.get_blocks();
+  nlohmann::json openings = nlohmann::json::array();
+  std::vector<double> area(geometry.openings.size(), 0.0);
+  for (std::size_t o = 0; o < geometry.openings.size(); ++o)
+    openings.push_back({{"fallen_blocks", nlohmann::json::array()}});
+  for (std::size_t b = 0; b < blocks.size(); ++b)
+  {
+    const Point& c = blocks[b].moments.centroid;
+    const std::size_t o = opening_next_to(b, c);
+    if (o == no_opening)
+      continue;
+    const OpeningOutline& opening = geometry.openings[o];
+    double distance = std::numeric_limits<double>::infinity();
+    for (const auto& [from, to] : opening.segments)
+      distance = std::min(distance, distance_to_segment(c, from, to));
+    const bool near = slot[b] != npos || distance <= opening.size();
+    const bool fell = removed[b] || (blocks[b].displacement() - block_reference[b]).dot(down) >
+                                        criterion.fall_fraction * opening.size();
+    if (!near || !fell)
+      continue;
+    openings[o]["fallen_blocks"].push_back(b);
+    area[o] += block_area[b];
+  }
+  for (std::size_t o = 0; o < area.size(); ++o)
+    openings[o]["fallen_area_m2"] = area[o];
+  return openings;
+}
+
+std::vector<bool> KeyblockRecorder::held_keyblocks(const dda::System& system) const
+{
   std::vector<bool> held(tracks.size(), false);
   const auto hold = [&](std::size_t block)
   {
@@ -338,57 +440,93 @@ nlohmann::json KeyblockRecorder::summary(const dda::System& system) const
     hold(j.block_a);
     hold(j.block_b);
   }
+  return held;
+}
 
-  nlohmann::json openings = nlohmann::json::array();
-  for (const OpeningOutline& o : geometry.openings)
+nlohmann::json KeyblockRecorder::keyblock_summary(std::size_t k, const dda::System& system,
+                                                  bool held) const
+{
+  const std::size_t id = geometry.blocks[k];
+  const Track& t = tracks[k];
+  const Vector2 v = system.get_blocks()[id].velocity.head<2>();
+  const double size = geometry.openings[geometry.opening_of[k]].size();
+  const double threshold = criterion.fall_fraction * size;
+  const bool fell =
+      t.last.dot(down) > threshold || (!held && v.dot(down) > std::sqrt(2.0 * gravity * threshold));
+  return {{"id", id},
+          {"name", system.get_model().blocks[id].origin},
+          {"opening", geometry.opening_of[k]},
+          {"peak_displacement_m", t.peak},
+          {"peak_time_s", t.peak_time},
+          {"residual_displacement_m", {t.last.x(), t.last.y()}},
+          {"residual_m", t.last.norm()},
+          {"peak_relative_m", t.peak_relative},
+          {"peak_relative_time_s", t.peak_relative_time},
+          {"residual_relative_displacement_m", {t.last_relative.x(), t.last_relative.y()}},
+          {"residual_relative_m", t.last_relative.norm()},
+          {"final_velocity_m_s", {v.x(), v.y()}},
+          {"max_slip_m", t.max_slip},
+          {"max_opening_m", t.max_opening},
+          {"detached", !held},
+          {"fell", fell},
+          {"loosened", !fell && t.last_relative.norm() > criterion.loosen_fraction * size},
+          {"released", static_cast<bool>(released[k])}};
+}
+
+nlohmann::json KeyblockRecorder::summary(const dda::System& system) const
+{
+  if (empty())
+    return nullptr;
+  nlohmann::json openings = fallen_per_opening(system);
+  for (std::size_t k = 0; k < geometry.openings.size(); ++k)
   {
+    const OpeningOutline& o = geometry.openings[k];
     const double threshold = criterion.fall_fraction * o.size();
-    openings.push_back({{"size_m", o.size()},
+    openings[k].update({{"size_m", o.size()},
                         {"area_m2", o.area},
                         {"lower_m", {o.lower.x(), o.lower.y()}},
                         {"upper_m", {o.upper.x(), o.upper.y()}},
                         {"fall_threshold_m", threshold},
-                        {"fall_speed_m_s", std::sqrt(2.0 * gravity * threshold)}});
+                        {"fall_speed_m_s", std::sqrt(2.0 * gravity * threshold)},
+                        {"loosen_threshold_m", criterion.loosen_fraction * o.size()},
+                        {"ring_blocks", rings[k].size()}});
   }
+  const std::vector<bool> held = held_keyblocks(system);
   nlohmann::json blocks = nlohmann::json::array();
-  std::size_t n_detached = 0, n_fell = 0, n_released = 0, peak_block = geometry.blocks.front();
-  double peak = -1.0;
+  std::size_t n_detached = 0, n_fell = 0, n_loosened = 0, n_released = 0;
+  std::size_t peak_block = geometry.blocks.front(), peak_relative_block = peak_block;
+  double peak = -1.0, peak_relative = -1.0;
   for (std::size_t k = 0; k < tracks.size(); ++k)
   {
-    const std::size_t id = geometry.blocks[k];
-    const Track& t = tracks[k];
-    const Vector2 v = system.get_blocks()[id].velocity.head<2>();
-    const double threshold =
-        criterion.fall_fraction * geometry.openings[geometry.opening_of[k]].size();
-    const bool detached = !held[k];
-    const bool fell = t.last.dot(down) > threshold ||
-                      (detached && v.dot(down) > std::sqrt(2.0 * gravity * threshold));
-    n_detached += detached ? 1 : 0;
-    n_fell += fell ? 1 : 0;
+    blocks.push_back(keyblock_summary(k, system, held[k]));
+    const nlohmann::json& b = blocks.back();
+    n_detached += b["detached"].get<bool>() ? 1 : 0;
+    n_fell += b["fell"].get<bool>() ? 1 : 0;
+    n_loosened += b["loosened"].get<bool>() ? 1 : 0;
     n_released += released[k] ? 1 : 0;
-    if (t.peak > peak)
+    if (tracks[k].peak > peak)
     {
-      peak = t.peak;
-      peak_block = id;
+      peak = tracks[k].peak;
+      peak_block = geometry.blocks[k];
     }
-    blocks.push_back({{"id", id},
-                      {"name", system.get_model().blocks[id].origin},
-                      {"opening", geometry.opening_of[k]},
-                      {"peak_displacement_m", t.peak},
-                      {"peak_time_s", t.peak_time},
-                      {"residual_displacement_m", {t.last.x(), t.last.y()}},
-                      {"residual_m", t.last.norm()},
-                      {"final_velocity_m_s", {v.x(), v.y()}},
-                      {"max_slip_m", t.max_slip},
-                      {"max_opening_m", t.max_opening},
-                      {"detached", detached},
-                      {"fell", fell},
-                      {"released", static_cast<bool>(released[k])}});
+    if (tracks[k].peak_relative > peak_relative)
+    {
+      peak_relative = tracks[k].peak_relative;
+      peak_relative_block = geometry.blocks[k];
+    }
   }
-  return {{"count", tracks.size()},  {"fall_fraction_of_opening", criterion.fall_fraction},
-          {"openings", openings},    {"blocks", blocks},
-          {"keyblock_peak_m", peak}, {"keyblock_peak_id", peak_block},
-          {"detached", n_detached},  {"fell", n_fell},
+  return {{"count", tracks.size()},
+          {"fall_fraction_of_opening", criterion.fall_fraction},
+          {"loosen_fraction_of_opening", criterion.loosen_fraction},
+          {"openings", openings},
+          {"blocks", blocks},
+          {"keyblock_peak_m", peak},
+          {"keyblock_peak_id", peak_block},
+          {"keyblock_peak_relative_m", peak_relative},
+          {"keyblock_peak_relative_id", peak_relative_block},
+          {"detached", n_detached},
+          {"fell", n_fell},
+          {"loosened", n_loosened},
           {"released", n_released}};
 }
 

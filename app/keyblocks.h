@@ -59,12 +59,24 @@ KeyblockGeometry find_keyblocks(const std::vector<std::vector<dda::Point>>& bloc
 struct FallCriterion
 {
   double fall_fraction = 0.01; ///< [-] of OpeningOutline::size()
+  /// A keyblock that did not fall is loosened when its residual displacement relative to the
+  /// rock around the opening exceeds this fraction of the opening's size [-]: 0.6 mm for a 6 m
+  /// tunnel, about a hundred times the elastic closure of its joints under the in-situ stress
+  /// (sigma L / k_n = 1.3 MPa x 1 m / 2e11 N/m = 6.5 um in the default scene), a tenth of a
+  /// percent of the fall threshold's way.
+  double loosen_fraction = 1e-4;
 };
 
 /// Records the keyblocks of a run: their centroid displacement in every history row (measured,
 /// like the monitors, from the start of the dynamic stage that follows a static one, else from
-/// t = 0), the peak over the rows, the joints' largest slip and opening, and at the end whether
-/// each detached or fell. Does nothing for a model without openings.
+/// t = 0), absolute and relative to the surrounding rock (the area-weighted mean displacement
+/// of the blocks, keyblocks excepted, whose centroid lies 0.75 to 1.5 opening sizes from the
+/// opening's centre: the free field the wave moves the opening with), the peaks over the rows,
+/// the joints' largest slip and opening per row and over the run, at the end whether each
+/// detached or fell, and per opening the blocks that fell (any block within one opening size
+/// of it whose centroid went down more than the fall threshold, and blocks a static stage
+/// removed) and their area (volume per metre of tunnel). Does nothing for a model without
+/// openings.
 class KeyblockRecorder
 {
 public:
@@ -81,7 +93,12 @@ public:
   void mark_released(std::size_t block);
   const KeyblockGeometry& get_geometry() const { return geometry; }
 
-  /// Appends one channel per keyblock, `keyblocks/block_<id>/displacement` (ux, uy) [m].
+  /// Marks a block a static stage removed (ReleaseAction::remove): it counts as fallen.
+  void mark_removed(std::size_t block);
+
+  /// Appends three channels per keyblock: `keyblocks/block_<id>/displacement` (ux, uy) and
+  /// `relative_displacement` (ux, uy) [m], `joints` (largest |slip|, largest opening of its
+  /// joints in that row) [m].
   void add_channels(std::vector<HistoryChannel>& channels) const;
   /// Appends the keyblocks' displacements to a history row (in the order of add_channels) and
   /// updates the peaks and the joints' extremes.
@@ -96,8 +113,12 @@ private:
   {
     dda::Vector2 reference = dda::Vector2::Zero(); ///< centroid displacement it is measured from
     dda::Vector2 last = dda::Vector2::Zero();      ///< displacement in the last row [m]
-    double peak = 0.0;                             ///< largest |displacement| [m]
-    double peak_time = 0.0;                        ///< [s]
+    dda::Vector2 last_relative = dda::Vector2::Zero(); ///< relative to the rock, last row [m]
+    double peak = 0.0;                                 ///< largest |displacement| [m]
+    double peak_time = 0.0;                            ///< [s]
+    double peak_relative = 0.0;                        ///< largest |relative displacement| [m]
+    double peak_relative_time = 0.0;                   ///< [s]
+    double row_slip = 0.0, row_opening = 0.0;          ///< of its joints in the last row [m]
     /// Largest |slip| of its joints [m]: contacts' accumulated sliding, bonded joints' shear.
     double max_slip = 0.0;
     /// Largest normal opening of its joints [m]: bonded joints' stretch, gaps of contacts that
@@ -107,6 +128,14 @@ private:
 
   /// Slip and opening of every joint (contact or bonded joint) of a keyblock, into the tracks.
   void update_joints(const dda::System& system);
+  /// Per opening, the area-weighted mean displacement of its ring of surrounding rock [m].
+  std::vector<dda::Vector2> ring_displacements(const std::vector<dda::Block>& blocks) const;
+  /// Per opening: {"fallen_blocks": [ids], "fallen_area_m2"} at the end.
+  nlohmann::json fallen_per_opening(const dda::System& system) const;
+  /// Per keyblock: held by an intact bonded joint or a closed contact at the end.
+  std::vector<bool> held_keyblocks(const dda::System& system) const;
+  /// Keyblock k's entry of the summary's `blocks`, with its verdicts.
+  nlohmann::json keyblock_summary(std::size_t k, const dda::System& system, bool held) const;
 
   KeyblockGeometry geometry;
   FallCriterion criterion;
@@ -115,8 +144,14 @@ private:
   bool small_displacement = false;
   std::vector<std::size_t> slot; ///< per model block: its index in geometry.blocks, or npos
   std::vector<Track> tracks;
-  std::vector<bool> released;                      ///< per keyblock: a static stage released it
-  bool referenced = false;                         ///< the first row has set the references
+  std::vector<bool> released; ///< per keyblock: a static stage released it
+  /// Per opening: the blocks of its ring of surrounding rock and their areas [m^2].
+  std::vector<std::vector<std::pair<std::size_t, double>>> rings;
+  std::vector<dda::Vector2> ring_reference;  ///< per opening: ring displacement at the reference
+  std::vector<dda::Vector2> block_reference; ///< per model block: displacement at the reference
+  std::vector<double> block_area;            ///< per model block [m^2]
+  std::vector<bool> removed;                 ///< per model block: a static stage removed it
+  bool referenced = false;                   ///< the first row has set the references
   std::unordered_set<std::size_t> closed_contacts; ///< ids of contacts seen closed in some row
 };
 

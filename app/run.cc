@@ -3,11 +3,12 @@
 #include "app/keyblocks.h"
 #include "app/rock_mass_scene.h"
 #include "app/run_support.h"
-#include "app/static_stage.h"
+#include "app/stage_records.h"
 
 #include "common/history_writer.h"
 #include "common/input_error.h"
 #include "coupling/far_field_ties.h"
+#include "dda/dynamic_stage.h"
 #include "dda/system.h"
 #include "dda/time_stepper.h"
 #include "dda/vtu_writer.h"
@@ -511,16 +512,7 @@ std::string check_scene(const Scene& scene)
       << format(system.max_penetration()) << " m, up to "
       << model.contacts.max_open_close_iterations << " open-close iterations\n";
   for (const dda::Stage& st : model.stages)
-  {
-    out << "  stage " << st.name << ": ";
-    if (st.mode == dda::StageMode::static_equilibrium)
-      out << "static, dt " << format(st.dt) << " s, up to " << st.max_steps
-          << " steps, equilibrium at an out-of-balance force ratio <= " << format(st.tolerance)
-          << " of each block's own load, released blocks "
-          << (st.release == dda::ReleaseAction::remove ? "removed" : "fall") << "\n";
-    else
-      out << "dynamic to t = " << format(st.end_time) << " s\n";
-  }
+    out << "  stage " << st.name << ": " << describe_stage(st) << "\n";
   const TimeStepAdvice advice = suggest_time_step(scene);
   out << "  suggested dt: " << format(advice.dt_min, 3) << " to " << format(advice.dt_max, 3)
       << " s (" << advice.reason << ")\n";
@@ -676,6 +668,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   bool initial_written = false;
   std::size_t n_cuts = 0, n_cut_steps = 0, n_penalty_raises = 0, n_flips_ignored = 0;
   double smallest_dt = time.dt;
+  std::optional<std::vector<dda::Vector2>> fall_reference; // per block [m]
   for (const dda::Stage& stage : stages)
   {
     if (stage.mode == dda::StageMode::static_equilibrium)
@@ -685,9 +678,14 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
           [&] { progress.update(system.n_steps(), system.time(), elapsed(wall_start)); });
       n_cuts += result.n_cuts;
       n_cut_steps += result.n_cut_steps;
+      n_penalty_raises += result.n_penalty_raises;
       smallest_dt = std::min(smallest_dt, result.smallest_dt);
       for (const dda::ReleasedBlock& r : result.released)
+      {
         keyblocks.mark_released(r.block);
+        if (stage.release == dda::ReleaseAction::remove)
+          keyblocks.mark_removed(r.block);
+      }
       stage_records.push_back(static_stage_record(stage, result, system, keyblocks));
       failure = static_stage_failure(stage, result, system);
       if (failure.outcome != dda::StepOutcome::success)
@@ -695,42 +693,41 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
       continue;
     }
 
-    system.begin_stage(stage.mode);
-    const std::size_t first_step = system.n_steps();
-    nlohmann::json record = {{"name", stage.name}, {"mode", "dynamic"}};
+    system.begin_stage(dda::StageMode::dynamic);
+    if (!fall_reference)
+    {
+      // Falls in settle stages are measured from the first dynamic stage's start.
+      fall_reference.emplace();
+      for (const dda::Block& b : system.get_blocks())
+        fall_reference->push_back(b.displacement());
+    }
     if (!initial_written)
     {
       write_state(true);
       initial_written = true;
     }
-    dda::TimeStepper stepper(system, time);
+    const std::size_t first_step = system.n_steps();
     double next_snapshot = system.time() + scene.output.interval;
-    while (system.time() < stage.end_time - 1e-9 * time.dt)
-    {
-      const dda::StepStatus status = stepper.step(stage.end_time - system.time());
-      if (status.outcome != dda::StepOutcome::success)
-      {
-        failure = status;
-        break;
-      }
-      last_step = {stepper.last_dt(), status.n_open_close_iterations, stepper.n_last_step_cuts()};
-      n_flips_ignored += status.n_flips_ignored;
-      smallest_dt = std::min(smallest_dt, stepper.last_dt());
-      const bool last = system.time() >= stage.end_time - 1e-9 * time.dt;
-      const bool snapshot =
-          run_support::snapshot_due(system.time(), scene.output.interval, time.dt, next_snapshot) ||
-          last;
-      if ((system.n_steps() - first_step) % scene.output.history_every == 0 || last || snapshot)
-        write_state(snapshot);
-      progress.update(system.n_steps(), system.time(), elapsed(wall_start));
-    }
-    n_cuts += stepper.n_cuts();
-    n_cut_steps += stepper.n_cut_steps();
-    n_penalty_raises += stepper.n_penalty_raises();
-    record["steps"] = system.n_steps() - first_step;
-    record["end_time_s"] = stage.end_time;
-    record["time_reached_s"] = system.time();
-    stage_records.push_back(record);
+    const dda::DynamicStageResult result = dda::run_dynamic_stage(
+        system, stage, time, *fall_reference,
+        [&](const dda::TimeStepper& stepper, const dda::StepStatus& status, bool last)
+        {
+          last_step = {stepper.last_dt(), status.n_open_close_iterations,
+                       stepper.n_last_step_cuts()};
+          const bool snapshot = run_support::snapshot_due(system.time(), scene.output.interval,
+                                                          time.dt, next_snapshot) ||
+                                last;
+          if ((system.n_steps() - first_step) % scene.output.history_every == 0 || last || snapshot)
+            write_state(snapshot);
+          progress.update(system.n_steps(), system.time(), elapsed(wall_start));
+        });
+    n_cuts += result.n_cuts;
+    n_cut_steps += result.n_cut_steps;
+    n_penalty_raises += result.n_penalty_raises;
+    n_flips_ignored += result.n_flips_ignored;
+    smallest_dt = std::min(smallest_dt, result.smallest_dt);
+    stage_records.push_back(dynamic_stage_record(stage, result, system, keyblocks));
+    failure = result.failure;
     if (failure.outcome != dda::StepOutcome::success)
       break;
   }

@@ -1087,6 +1087,14 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
   t.static_tolerance = stage.number("tolerance");
   t.static_max_steps = stage.integer("max_steps");
   t.static_release = stage.choice("release");
+  const MapReader settle = r.section_reader("settle");
+  if (settle.has("enabled"))
+    t.settle = settle.boolean("enabled");
+  t.settle_rest_speed = settle.number("rest_speed");
+  if (settle.has("rest_duration"))
+    t.settle_rest_duration = settle.number("rest_duration");
+  if (settle.has("max_duration"))
+    t.settle_max_duration = settle.number("max_duration");
 
   try
   {
@@ -1584,6 +1592,23 @@ coupling::InterfaceDescription read_interface(const MapReader& r,
   return d;
 }
 
+/// A `stages[i]` item with `mode: settle`: its SettleCriterion (no `dt`, no `end_time`: it runs
+/// with time.dt from where the previous stage ended, to rest or its max_duration).
+dda::SettleCriterion read_settle_criterion(const MapReader& r)
+{
+  for (const char* key : {"dt", "end_time", "max_steps", "tolerance", "release"})
+    if (r.has(key))
+      throw r.error(key, std::string("a settle stage runs with time.dt until its blocks are at "
+                                     "rest or max_duration: expected no `") +
+                             key + "` here");
+  dda::SettleCriterion c;
+  c.rest_speed = r.number("rest_speed");
+  c.rest_duration = r.number("rest_duration");
+  c.fall_distance = r.number("fall_distance");
+  c.max_duration = r.number("max_duration");
+  return c;
+}
+
 /// Stages of blocks tied to a far field: static stages hold the far field (the ties are
 /// springs to fixed ground) and the far field starts at rest from the first dynamic stage, so
 /// every static stage must come before it; a static stage cannot carry a frictional interface
@@ -1984,17 +2009,23 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
 
   for (const MapReader& r : top.section_list("stages"))
   {
+    if (!model.stages.empty() && model.stages.back().settle)
+      throw r.error("mode", "a stage after the settle stage " + model.stages.back().name +
+                                ", whose end is not known before the run: expected the settle "
+                                "stage last");
     dda::Stage stage;
     stage.name = r.string("name");
     stage.mode =
         r.choice("mode") == "static" ? dda::StageMode::static_equilibrium : dda::StageMode::dynamic;
+    if (r.choice("mode") == "settle")
+      stage.settle = read_settle_criterion(r);
     stage.dt = r.has("dt") ? r.number("dt") : model.time.dt;
     stage.end_time = r.has("end_time") ? r.number("end_time") : model.time.end_time;
     stage.max_steps = static_cast<std::size_t>(r.integer("max_steps"));
     stage.tolerance = r.number("tolerance");
     stage.release =
         r.choice("release") == "remove" ? dda::ReleaseAction::remove : dda::ReleaseAction::fall;
-    if (stage.mode == dda::StageMode::dynamic)
+    if (stage.mode == dda::StageMode::dynamic && !stage.settle)
     {
       if (r.has("dt"))
         throw r.error("dt", "a dynamic stage steps with time.dt: expected no `dt` here");

@@ -560,7 +560,40 @@ SceneSchema::SceneSchema()
         key("static", T::section)
             .section("tunnel.static")
             .default_note("see `tunnel.static`")
-            .meaning("the static stage: gravity, in-situ stress and the excavation")}});
+            .meaning("the static stage: gravity, in-situ stress and the excavation"),
+        key("settle", T::section)
+            .section("tunnel.settle")
+            .default_note("see `tunnel.settle`")
+            .meaning("the settle stage after the wave: until every block is at rest or fell")}});
+
+  all_sections.push_back(
+      {"tunnel.settle",
+       "The settle stage (stages[i] with mode settle) after the wave: the motion goes on until "
+       "every block is at rest or has fallen (its centroid 1% of the opening's size below where "
+       "the wave found it, the keyblocks' fall threshold), so that a keyblock reported as "
+       "fallen fell and one reported as held stays.",
+       {key("enabled", T::boolean)
+            .default_note("true for the blocks-only truncations (vb1, dashpot, blocks); false "
+                          "for hybrid and reference, whose blocks keep the far field's "
+                          "trapezoidal rule: its undamped contact modes never come to rest")
+            .meaning("false: the run ends with the wave's window"),
+        key("rest_speed", T::number)
+            .unit("m/s")
+            .default_yaml("1e-3")
+            .greater_than(0)
+            .meaning("a block is at rest while its vertices move no faster than this"),
+        key("rest_duration", T::number)
+            .unit("s")
+            .default_note("max(0.1, 1 / tunnel.wave.frequency)")
+            .greater_than(0)
+            .meaning("how long without a break a block must stay below rest_speed"),
+        key("max_duration", T::number)
+            .unit("s")
+            .default_note("rest_duration + 2 sqrt(2 D / g), D the opening's size: twice a fall "
+                          "across the opening")
+            .greater_than(0)
+            .meaning("the stage ends after this long even if blocks still move (listed in "
+                     "summary.json, not a failure)")}});
 
   all_sections.push_back(
       {"tunnel.wave",
@@ -1219,9 +1252,12 @@ SceneSchema::SceneSchema()
        "static stages come first, with a linear interface.",
        {key("name", T::string).required().meaning("shown in messages and summary.json"),
         key("mode", T::choice)
-            .choices({"static", "dynamic"})
+            .choices({"static", "dynamic", "settle"})
             .required()
-            .meaning("static: seek equilibrium; dynamic: integrate the motion"),
+            .meaning("static: seek equilibrium; dynamic: integrate the motion to end_time; "
+                     "settle: integrate the motion from where the previous stage ended until "
+                     "every block is at rest or has fallen (at most max_duration), so that a "
+                     "block reported as fallen fell"),
         key("dt", T::number)
             .unit("s")
             .default_note("time.dt")
@@ -1243,6 +1279,31 @@ SceneSchema::SceneSchema()
             .meaning("static stages: the out-of-balance force ratio of equilibrium, each "
                      "block's resultant force over its own load (the sum of the magnitudes of "
                      "the forces on it: weight, loads, joints, contacts, supports, ties)"),
+        key("rest_speed", T::number)
+            .unit("m/s")
+            .default_yaml("1e-3")
+            .greater_than(0)
+            .meaning("settle stages: a block is at rest while the largest speed of its "
+                     "vertices stays at most this for rest_duration"),
+        key("rest_duration", T::number)
+            .unit("s")
+            .default_yaml("0.1")
+            .greater_than(0)
+            .meaning("settle stages: how long a block must stay below rest_speed without a "
+                     "break (longer than the period of its slowest bounce)"),
+        key("fall_distance", T::number)
+            .unit("m")
+            .default_yaml("0")
+            .at_least(0)
+            .meaning("settle stages: a block whose centroid has moved this far along gravity "
+                     "since the first dynamic stage began has fallen and is not waited for; 0: "
+                     "every block must come to rest"),
+        key("max_duration", T::number)
+            .unit("s")
+            .default_yaml("2")
+            .greater_than(0)
+            .meaning("settle stages: the stage ends after this long even if blocks still move "
+                     "(summary.json lists them; not a failure)"),
         key("release", T::choice)
             .choices({"fall", "remove"})
             .default_yaml("fall")

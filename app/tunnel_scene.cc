@@ -1,5 +1,6 @@
 #include "app/tunnel_scene.h"
 
+#include "app/keyblocks.h"
 #include "app/run_support.h"
 
 #include "common/input_error.h"
@@ -209,6 +210,30 @@ void plan_outer_blocks(const TunnelDescription& t, double wavelength, TunnelPlan
                 std::string(plan.top_is_surface ? "" : " and top") +
                 ", the incident wave entering at the base");
 }
+/// The settle stage's criterion: falls measured as the keyblocks' (FallCriterion, 1% of the
+/// opening's size), the bound twice a fall across the opening from rest.
+dda::SettleCriterion plan_settle_stage(const TunnelDescription& t, const TunnelPlan& plan,
+                                       std::vector<std::string>& why)
+{
+  const double size = (plan.opening_upper - plan.opening_lower).maxCoeff();
+  dda::SettleCriterion c;
+  c.rest_speed = t.settle_rest_speed;
+  c.rest_duration =
+      t.settle_rest_duration > 0.0 ? t.settle_rest_duration : std::max(0.1, 1.0 / t.wave_frequency);
+  c.fall_distance = FallCriterion{}.fall_fraction * size;
+  const double fall_time = std::sqrt(2.0 * size / t.gravity);
+  c.max_duration =
+      t.settle_max_duration > 0.0 ? t.settle_max_duration : c.rest_duration + 2.0 * fall_time;
+  why.push_back(
+      "settle stage after the wave: until every block moves slower than " + format(c.rest_speed) +
+      " m/s for " + format(c.rest_duration) + " s or has fallen " + format(c.fall_distance) +
+      " m (1% of the opening's " + format(size) + " m), at most " + format(c.max_duration) + " s" +
+      (t.settle_max_duration > 0.0
+           ? std::string(" (tunnel.settle.max_duration)")
+           : " = rest + twice the " + format(fall_time) + " s of a fall across the opening"));
+  return c;
+}
+
 } // namespace
 
 TunnelPlan plan_tunnel(const TunnelDescription& t)
@@ -428,6 +453,14 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
                     ", the model's size over the near field's: it settles in about as many "
                     "steps as the near field alone";
   why.push_back("static stage: pseudo time step " + format(plan.static_dt) + " s" + static_reason);
+  if (t.settle.value_or(!plan.far_field))
+    plan.settle = plan_settle_stage(t, plan, why);
+  else if (t.settle.has_value())
+    why.push_back("no settle stage (tunnel.settle.enabled false): the run ends with the window");
+  else
+    why.push_back("no settle stage: blocks tied to a far field keep the trapezoidal rule, whose "
+                  "undamped contact modes never come to rest (tunnel.settle.enabled: true runs "
+                  "it to its bound)");
   return plan;
 }
 
@@ -618,6 +651,17 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
   YAML::Node stages(YAML::NodeType::Sequence);
   stages.push_back(stage_static);
   stages.push_back(stage_dynamic);
+  if (plan.settle)
+  {
+    YAML::Node stage_settle;
+    stage_settle["name"] = "settle";
+    stage_settle["mode"] = "settle";
+    stage_settle["rest_speed"] = plan.settle->rest_speed;
+    stage_settle["rest_duration"] = plan.settle->rest_duration;
+    stage_settle["fall_distance"] = plan.settle->fall_distance;
+    stage_settle["max_duration"] = plan.settle->max_duration;
+    stages.push_back(stage_settle);
+  }
   root["stages"] = stages;
 
   YAML::Node time = given["time"] ? YAML::Clone(given["time"]) : YAML::Node(YAML::NodeType::Map);

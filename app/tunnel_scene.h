@@ -4,6 +4,7 @@
 // in_situ_stress, stages, monitors, time) that the scene reader then reads like any others.
 #pragma once
 
+#include "dda/model_description.h"
 #include "dda/rock_mass.h"
 
 #include <yaml-cpp/yaml.h>
@@ -76,6 +77,11 @@ struct TunnelDescription
   double static_tolerance = 1e-5;
   long long static_max_steps = 5000;
   std::string static_release = "fall"; ///< stages[i].release of the static stage
+  /// A settle stage after the wave (tunnel.settle.enabled); unset: for blocks-only truncations
+  std::optional<bool> settle;
+  double settle_rest_speed = 1e-3;   ///< [m/s]
+  double settle_rest_duration = 0.0; ///< [s]; 0: chosen
+  double settle_max_duration = 0.0;  ///< [s]; 0: chosen
 };
 
 /// A grid of equal rectangular blocks (a `blocks` entry with a `grid`).
@@ -125,7 +131,9 @@ struct TunnelPlan
   double end_time = 0.0;              ///< [s]
   double dt = 0.0;                    ///< [s]
   double static_dt = 0.0;             ///< pseudo time step of the static stage [s]
-  std::vector<std::string> reasons;   ///< one line per choice, for `check`
+  /// The settle stage (none if not TunnelDescription::settle).
+  std::optional<dda::SettleCriterion> settle;
+  std::vector<std::string> reasons; ///< one line per choice, for `check`
 };
 
 /// E_eff = 1 / (1/E + L / (2 p d)) [Pa] of a block of modulus E [Pa] and area [m^2] with a

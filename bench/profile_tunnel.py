@@ -2,7 +2,7 @@
 """Where the time of the default tunnel scene goes, per phase, before and after the fix of its
 largest avoidable cost, in the same run: writes docs/performance/profile_tunnel.{json,md,png}.
 
-The scene (examples/tunnel/circular_sv.yaml, hybrid truncation) is run one at a time (nothing
+The scene (examples/tunnel/stable_sv.yaml, hybrid truncation) is run one at a time (nothing
 else of this script runs beside it), with `output.vtu_compression` at
 
   before  best_compression  deal.II DataOut's default zlib level, what ddafem wrote until issue 8
@@ -32,7 +32,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SCENE = os.path.join(TOP, "examples/tunnel/circular_sv.yaml")
+SCENE = os.path.join(TOP, "examples/tunnel/stable_sv.yaml")
 VARIANTS = [("before", "best_compression"), ("after", "best_speed")]
 
 

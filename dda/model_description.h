@@ -250,8 +250,6 @@ enum class StageMode
   dynamic ///< the motion in time
 };
 
-/// A stage of the analysis. Stages run in sequence; each starts from the state the previous one
-/// left (a dynamic stage after a static one starts from the equilibrium, at rest, at t = 0).
 /// What a static stage does with a block it releases (one that cannot be in equilibrium, see
 /// ReleaseCriterion in dda/static_stage.h).
 enum class ReleaseAction
@@ -263,6 +261,23 @@ enum class ReleaseAction
   remove
 };
 
+/// When a settle stage (a dynamic stage without a fixed end, Stage::settle) ends: every block
+/// is at rest or has fallen (dda/settle_stage.h).
+struct SettleCriterion
+{
+  /// A block is at rest while the largest speed of its vertices is at most this [m/s] ...
+  double rest_speed = 1e-3;
+  /// ... for this long without a break [s].
+  double rest_duration = 0.1;
+  /// A block has fallen once its centroid moved this far along gravity from where the first
+  /// dynamic stage found it [m]; 0: none counts as fallen, every block must come to rest.
+  double fall_distance = 0.0;
+  /// The stage ends after this long even if blocks still move [s] (a result, not a failure).
+  double max_duration = 2.0;
+};
+
+/// A stage of the analysis. Stages run in sequence; each starts from the state the previous one
+/// left (a dynamic stage after a static one starts from the equilibrium, at rest, at t = 0).
 struct Stage
 {
   std::string name;
@@ -275,6 +290,10 @@ struct Stage
   /// own load (StepStatus::unbalanced_force_ratio, BlockBalance), released blocks excepted
   double tolerance = 1e-5;
   ReleaseAction release = ReleaseAction::fall; ///< static: what becomes of released blocks
+  /// dynamic: a settle stage (YAML `mode: settle`), which runs from where the previous stage
+  /// ended until every block is at rest or has fallen, at most settle->max_duration; end_time
+  /// is then not used.
+  std::optional<SettleCriterion> settle;
 };
 
 /// Everything the DDA engine needs to build and run a model.

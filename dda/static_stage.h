@@ -88,6 +88,7 @@ struct StaticStageResult
   std::vector<ReleasedBlock> released;
   StepStatus failure;                      ///< of the failed step (step_failed)
   std::size_t n_cuts = 0, n_cut_steps = 0; ///< of the pseudo time step (TimeStepper)
+  std::size_t n_penalty_raises = 0;        ///< TimeStepper::n_penalty_raises
   double smallest_dt = 0.0;                ///< of the accepted pseudo steps [s]
 };
 

@@ -104,33 +104,51 @@ def plot_monitor_histories(h5, time_ms, histories, run_dir):
     return written
 
 
-def keyblock_histories(h5):
-    """{block id: (n, 2) displacement [m]} of the keyblocks in histories.h5."""
+def keyblock_histories(h5, channel="displacement"):
+    """{block id: (n, 2) array} of a keyblock channel in histories.h5: displacement or
+    relative_displacement [m], or joints (largest |slip|, largest opening) [m]."""
     group = h5.get("keyblocks")
     if group is None:
         return {}
-    return {int(name.split("_")[-1]): np.asarray(group[name]["displacement"][...], dtype=float)
-            for name in group if "displacement" in group[name]}
+    return {int(name.split("_")[-1]): np.asarray(group[name][channel][...], dtype=float)
+            for name in group if channel in group[name]}
 
 
-def plot_keyblocks(time_ms, histories, keyblocks, top, path):
-    """|u| of the `top` keyblocks with the largest peaks against time."""
-    ranked = sorted(keyblocks["blocks"], key=lambda b: -b["peak_displacement_m"])[:top]
-    figure, ax = plt.subplots(figsize=(8.0, 4.5))
+def plot_keyblocks(time_ms, h5, keyblocks, top, path):
+    """The `top` keyblocks with the largest peaks against time: |u| relative to the rock around
+    the opening (absolute where the histories have no relative channel), and the largest slip
+    and opening of their joints."""
+    ranked = sorted(keyblocks["blocks"], key=lambda b: -b.get("peak_relative_m",
+                                                               b["peak_displacement_m"]))[:top]
+    relative = keyblock_histories(h5, "relative_displacement")
+    displacement = relative or keyblock_histories(h5)
+    joints = keyblock_histories(h5, "joints")
+    figure, axes = plt.subplots(2 if joints else 1, 1, figsize=(8.0, 7.5 if joints else 4.5),
+                                sharex=True, squeeze=False)
     for block in ranked:
-        u = histories.get(block["id"])
+        label = "block %d%s" % (block["id"], " (fell)" if block["fell"] else
+                                " (detached)" if block["detached"] else "")
+        u = displacement.get(block["id"])
         if u is None:
             continue
         n = min(len(time_ms), len(u))
-        label = "block %d%s" % (block["id"], " (fell)" if block["fell"] else
-                                " (detached)" if block["detached"] else "")
-        ax.plot(time_ms[:n], 1e3 * np.linalg.norm(u[:n], axis=1), label=label)
-    ax.set_xlabel("time [ms]")
-    ax.set_ylabel("|u| of the centroid [mm]")
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize="small", ncol=2)
-    ax.set_title("Keyblocks: displacement from the start of the dynamic stage (largest %d peaks)"
-                 % len(ranked), fontsize="medium")
+        line, = axes[0, 0].plot(time_ms[:n], 1e3 * np.linalg.norm(u[:n], axis=1), label=label)
+        j = joints.get(block["id"])
+        if j is not None:
+            axes[1, 0].plot(time_ms[:n], 1e3 * j[:n, 0], color=line.get_color())
+            axes[1, 0].plot(time_ms[:n], 1e3 * j[:n, 1], "--", color=line.get_color())
+    axes[0, 0].set_ylabel("|u| of the centroid%s [mm]"
+                          % (" relative to the rock" if relative else ""))
+    axes[0, 0].legend(loc="best", fontsize="small", ncol=2)
+    axes[0, 0].set_title("Keyblocks%s "
+                         "(largest %d peaks)" % (" relative to the rock around the opening"
+                                                 if relative else "", len(ranked)),
+                         fontsize="medium")
+    if joints:
+        axes[1, 0].set_ylabel("their joints: slip (solid), opening (dashed) [mm]")
+    for ax in axes[:, 0]:
+        ax.grid(True, alpha=0.3)
+    axes[-1, 0].set_xlabel("time [ms]")
     figure.tight_layout()
     figure.savefig(path, dpi=150)
     plt.close(figure)
@@ -204,7 +222,7 @@ def plot_map(run_dir, summary, path):
 # ---- report.md -----------------------------------------------------------------------------
 
 def mm(value):
-    return "%.3g" % (1e3 * value)
+    return "-" if value is None else "%.3g" % (1e3 * value)
 
 
 def model_lines(summary):
@@ -240,6 +258,8 @@ def stage_lines(summary):
             if released:
                 result += "; released (%s): %s" % (s.get("release", "fall"), ", ".join(
                     "block %d (%.3g kg)" % (r["block"], r["mass_kg"]) for r in released))
+        elif s.get("mode") == "settle":
+            result = settle_result(s)
         else:
             end = s.get("end_time_s", float("nan"))
             reached = s.get("time_reached_s", end)
@@ -248,6 +268,25 @@ def stage_lines(summary):
         lines.append("| %s | %s | %s | %s |" % (s.get("name"), s.get("mode"), s.get("steps"),
                                                result))
     return lines
+
+
+def settle_result(s):
+    """A settle stage's outcome: at rest, or still moving at its bound, and what fell."""
+    reached = s.get("time_reached_s", float("nan"))
+    if s.get("settled"):
+        result = ("every block at rest (slower than %.3g m/s for %.3g s) or fallen at t = %.4g s"
+                  % (s["rest_speed_m_s"], s["rest_duration_s"], reached))
+    elif reached < s.get("end_time_s", reached) - 1e-9:
+        result = "**stopped at t = %.4g s**" % reached
+    else:
+        result = ("**still moving at t = %.4g s** (its bound, %.3g s): %d blocks, the fastest "
+                  "at %.3g m/s" % (reached, s["max_duration_s"], len(s.get("moving", [])),
+                                   s.get("moving_speed_m_s", float("nan"))))
+    fallen = s.get("fallen", [])
+    if fallen:
+        result += "; fallen: " + ", ".join("block %d (%.3g kg)" % (f["block"], f["mass_kg"])
+                                           for f in fallen)
+    return result
 
 
 def wave_not_reached(summary):
@@ -268,30 +307,54 @@ def keyblock_lines(keyblocks, not_reached=None):
     for k, o in enumerate(keyblocks["openings"]):
         lines.append("- opening %d: %.3g m across (%.3g m^2), from (%.3g, %.3g) to (%.3g, %.3g) m;"
                      " a keyblock fell if it ended more than %s mm lower (or detached and still "
-                     "falling faster than %.3g m/s)"
+                     "falling faster than %.3g m/s); one that did not fall loosened if it ended "
+                     "more than %s mm from its place relative to the rock around the opening"
                      % (k, o["size_m"], o["area_m2"], o["lower_m"][0], o["lower_m"][1],
                         o["upper_m"][0], o["upper_m"][1], mm(o["fall_threshold_m"]),
-                        o["fall_speed_m_s"]))
+                        o["fall_speed_m_s"], mm(o.get("loosen_threshold_m"))))
+        if "fallen_blocks" in o and not not_reached:
+            lines.append("  - fallen into it: %d blocks, %.3g m^3 per metre of tunnel%s"
+                         % (len(o["fallen_blocks"]), o["fallen_area_m2"],
+                            " (blocks %s)" % ", ".join(str(b) for b in o["fallen_blocks"])
+                            if o["fallen_blocks"] else ""))
     if not_reached:
         lines.append("- %d keyblocks: **not reached**, %s" % (keyblocks["count"], not_reached))
     else:
-        lines.append("- %d keyblocks; largest peak displacement %s mm (block %d); %d detached, "
-                     "%d fell" % (keyblocks["count"], mm(keyblocks["keyblock_peak_m"]),
-                                  keyblocks["keyblock_peak_id"], keyblocks["detached"],
-                                  keyblocks["fell"]))
+        lines.append("- %d keyblocks; largest peak displacement %s mm (block %d), %s mm "
+                     "relative to the rock around the opening (block %s); %d detached, %d fell, "
+                     "%s loosened"
+                     % (keyblocks["count"], mm(keyblocks["keyblock_peak_m"]),
+                        keyblocks["keyblock_peak_id"],
+                        mm(keyblocks.get("keyblock_peak_relative_m")),
+                        keyblocks.get("keyblock_peak_relative_id", "-"), keyblocks["detached"],
+                        keyblocks["fell"], keyblocks.get("loosened", "-")))
     verdict = (lambda flag: "not reached") if not_reached else \
         (lambda flag: "**yes**" if flag else "no")
     lines += ["",
-              "| block | name | peak \\|u\\| [mm] | at [s] | residual ux, uy [mm] | "
-              "max slip [mm] | max opening [mm] | detached | fell |",
-              "|---|---|---|---|---|---|---|---|---|"]
-    for b in sorted(keyblocks["blocks"], key=lambda b: -b["peak_displacement_m"]):
+              "| block | name | peak \\|u\\| [mm] | at [s] | peak relative [mm] | "
+              "residual ux, uy [mm] | residual relative ux, uy [mm] | "
+              "max slip [mm] | max opening [mm] | detached | fell | loosened |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for b in sorted(keyblocks["blocks"], key=lambda b: -b.get("peak_relative_m",
+                                                               b["peak_displacement_m"])):
         ux, uy = b["residual_displacement_m"]
-        lines.append("| %d | %s | %s | %.4g | %s, %s | %s | %s | %s | %s |" % (
-            b["id"], b.get("name", ""), mm(b["peak_displacement_m"]), b["peak_time_s"], mm(ux),
-            mm(uy), mm(b["max_slip_m"]), mm(b["max_opening_m"]),
-            verdict(b["detached"]), verdict(b["fell"])))
+        rx, ry = b.get("residual_relative_displacement_m", [None, None])
+        lines.append("| %d | %s | %s | %.4g | %s | %s, %s | %s, %s | %s | %s | %s | %s | %s |"
+                     % (b["id"], b.get("name", ""), mm(b["peak_displacement_m"]),
+                        b["peak_time_s"], mm(b.get("peak_relative_m")), mm(ux), mm(uy), mm(rx),
+                        mm(ry), mm(b["max_slip_m"]), mm(b["max_opening_m"]),
+                        verdict(b["detached"]), verdict(b["fell"]),
+                        verdict(b.get("loosened", False))))
     return lines
+
+
+def simulated_of(summary):
+    """What the time reached is out of: time.end_time, or a settle stage's bound after it."""
+    settle = [s for s in summary.get("stages", []) if s.get("mode") == "settle"]
+    if settle:
+        return ("(the wave's window to %.4g s, then settling, at most to %.4g s)"
+                % (summary.get("end_time_s", 0.0), settle[-1].get("end_time_s", float("nan"))))
+    return "of %.4g s" % summary.get("end_time_s", 0.0)
 
 
 def write_report(run_dir, summary, figures, path):
@@ -300,8 +363,8 @@ def write_report(run_dir, summary, figures, path):
              "- scene: `%s` (ddafem %s)" % (summary.get("scene", "?"), summary.get("version", "?")),
              "- status: **%s**%s" % (status, ": " + summary["failure"]
                                      if "failure" in summary else ""),
-             "- simulated %.4g s of %.4g s in %s steps (dt up to %.3g s, smallest %.3g s)"
-             % (summary.get("time_reached_s", 0.0), summary.get("end_time_s", 0.0),
+             "- simulated %.4g s %s in %s steps (dt up to %.3g s, smallest %.3g s)"
+             % (summary.get("time_reached_s", 0.0), simulated_of(summary),
                 summary.get("steps", "?"), summary.get("dt_s", float("nan")),
                 summary.get("time_step", {}).get("smallest_dt_s", float("nan"))),
              "- time steps: %s dt cuts (%s steps cut), %s contact penalties raised, %s "
@@ -321,7 +384,9 @@ def write_report(run_dir, summary, figures, path):
         lines += ["## Warnings", ""] + ["- " + w for w in summary["warnings"]] + [""]
     lines += ["## Keyblocks", "",
               "Blocks with a point of their boundary on an opening. Displacements of the "
-              "centroid from the start of the dynamic stage; slip and opening are the largest "
+              "centroid from the start of the dynamic stage, absolute and relative to the rock "
+              "around the opening (the mean of the blocks 0.75 to 1.5 opening sizes from its "
+              "centre, which the wave moves with the opening); slip and opening are the largest "
               "over the run among the block's joints and contacts.", ""]
     lines += keyblock_lines(summary.get("keyblocks"), wave_not_reached(summary)) + [""]
     if figures:
@@ -365,7 +430,7 @@ def main(argv):
             keyblocks = summary.get("keyblocks")
             if keyblocks and keyblocks.get("blocks"):
                 path = os.path.join(run_dir, "report_keyblocks.png")
-                plot_keyblocks(time_ms, keyblock_histories(h5), keyblocks, args.top, path)
+                plot_keyblocks(time_ms, h5, keyblocks, args.top, path)
                 figures.append(("Keyblock displacement", path))
     map_path = os.path.join(run_dir, "report_map.png")
     caption = plot_map(run_dir, summary, map_path)

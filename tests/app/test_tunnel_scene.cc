@@ -18,6 +18,8 @@ namespace
 {
 const std::string default_scene =
     std::string(DDAFEM_SOURCE_DIR) + "/examples/tunnel/circular_sv.yaml";
+/// The default tunnel with strong joints and the hybrid truncation.
+const std::string stable_scene = std::string(DDAFEM_SOURCE_DIR) + "/examples/tunnel/stable_sv.yaml";
 
 /// A 6 m circular opening at the origin in rock cut by a horizontal and a vertical set of
 /// persistent joints 3 m apart (lines at multiples of 3 m), 50 m deep, under a 25 Hz SV pulse.
@@ -239,20 +241,61 @@ TEST(TunnelPlan, NearFieldAboveTheSurfaceIsAnInputError)
   EXPECT_THROW(plan_tunnel(t), InputError);
 }
 
-TEST(TunnelScene, DefaultSceneExpandsIntoBlocksFarFieldInterfaceAndStages)
+TEST(TunnelScene, HybridSceneExpandsIntoBlocksFarFieldInterfaceAndStages)
 {
-  const Scene s = read_scene(default_scene);
+  const Scene s = read_scene(stable_scene);
   ASSERT_TRUE(s.tunnel.has_value());
   ASSERT_TRUE(s.coupled());
   ASSERT_TRUE(s.rock_mass.has_value());
   EXPECT_EQ(s.model.blocks.size(), s.tunnel->n_blocks);
   EXPECT_EQ(s.interface->part, fem::BoundaryPart::hole);
   EXPECT_DOUBLE_EQ(s.far_field->youngs_modulus, s.tunnel->rock_mass_modulus);
+  // No settle stage by default: the trapezoidal rule's contact modes would never rest.
   ASSERT_EQ(s.model.stages.size(), 2u);
   EXPECT_EQ(s.model.stages[0].mode, dda::StageMode::static_equilibrium);
   EXPECT_EQ(s.model.stages[1].mode, dda::StageMode::dynamic);
+  EXPECT_FALSE(s.model.stages[1].settle.has_value());
+  const Scene settled = read_scene(stable_scene, {{"tunnel.settle.enabled", "true"}});
+  ASSERT_EQ(settled.model.stages.size(), 3u);
+  EXPECT_TRUE(settled.model.stages[2].settle.has_value());
   EXPECT_EQ(s.model.monitors.size(), 5u);
   EXPECT_NE(s.expanded_yaml.find("in_situ_stress"), std::string::npos);
+}
+
+// The settle stage falls by the keyblocks' threshold (1% of the 6 m opening) and is bounded by
+// twice a fall across the opening after the rest duration (1 / 25 Hz < 0.1 s); it can be turned
+// off and its keys overridden.
+TEST(TunnelScene, SettleStageFollowsTheWaveByDefault)
+{
+  const Scene s = read_scene(default_scene);
+  ASSERT_EQ(s.model.stages.size(), 3u);
+  ASSERT_TRUE(s.model.stages[2].settle.has_value());
+  const dda::SettleCriterion& c = *s.model.stages[2].settle;
+  EXPECT_DOUBLE_EQ(c.fall_distance, 0.06);
+  EXPECT_DOUBLE_EQ(c.rest_duration, 0.1);
+  EXPECT_DOUBLE_EQ(c.rest_speed, 1e-3);
+  EXPECT_NEAR(c.max_duration, 0.1 + 2.0 * std::sqrt(2.0 * 6.0 / 9.81), 1e-12);
+  const Scene off = read_scene(default_scene, {{"tunnel.settle.enabled", "false"}});
+  EXPECT_EQ(off.model.stages.size(), 2u);
+  const Scene longer = read_scene(
+      default_scene, {{"tunnel.settle.max_duration", "5"}, {"tunnel.settle.rest_speed", "1e-4"}});
+  EXPECT_DOUBLE_EQ(longer.model.stages[2].settle->max_duration, 5.0);
+  EXPECT_DOUBLE_EQ(longer.model.stages[2].settle->rest_speed, 1e-4);
+}
+
+// The default scene is blocks only with VB I until coupled runs can cut dt (issue 17).
+TEST(TunnelScene, DefaultSceneIsBlocksOnlyWithRealisticJoints)
+{
+  const Scene s = read_scene(default_scene);
+  ASSERT_TRUE(s.tunnel.has_value());
+  EXPECT_FALSE(s.far_field.has_value());
+  EXPECT_EQ(s.tunnel->truncation, TunnelTruncation::vb1);
+  ASSERT_EQ(s.model.joint_materials.size(), 1u);
+  const dda::JointMaterial& j = s.model.joint_materials[0];
+  EXPECT_LE(j.cohesion, 0.2e6);
+  EXPECT_EQ(j.tensile_strength, 0.0);
+  EXPECT_GE(j.friction_angle, 30.0);
+  EXPECT_LE(j.friction_angle, 35.0);
 }
 
 TEST(TunnelScene, OneSettingSwitchesToBlocksOnlyWithVbOne)
@@ -269,7 +312,7 @@ TEST(TunnelScene, BlocksTruncationPutsTheNearFieldInBondedOuterGridsWithDashpots
 {
   // Coarse outer blocks (2 per wavelength) keep the test fast.
   const Scene s = read_scene(
-      default_scene, {{"tunnel.truncation", "blocks"}, {"tunnel.points_per_wavelength", "2"}});
+      stable_scene, {{"tunnel.truncation", "blocks"}, {"tunnel.points_per_wavelength", "2"}});
   ASSERT_TRUE(s.tunnel.has_value());
   EXPECT_FALSE(s.far_field.has_value());
   const TunnelPlan& plan = *s.tunnel;

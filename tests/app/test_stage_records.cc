@@ -1,6 +1,6 @@
-// A scene's static stage end to end (app/static_stage.h): a block that cannot be in equilibrium
+// A scene's static stage end to end (app/stage_records.h): a block that cannot be in equilibrium
 // is released, recorded in summary.json, and the run goes on to its dynamic stage (exit 0).
-#include "app/static_stage.h"
+#include "app/stage_records.h"
 
 #include "app/run.h"
 #include "app/scene.h"

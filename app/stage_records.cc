@@ -1,4 +1,4 @@
-#include "app/static_stage.h"
+#include "app/stage_records.h"
 
 #include "app/run_support.h"
 
@@ -6,6 +6,24 @@
 
 namespace ddafem
 {
+std::string describe_stage(const dda::Stage& st)
+{
+  using run_support::format;
+  if (st.mode == dda::StageMode::static_equilibrium)
+    return "static, dt " + format(st.dt) + " s, up to " + std::to_string(st.max_steps) +
+           " steps, equilibrium at an out-of-balance force ratio <= " + format(st.tolerance) +
+           " of each block's own load, released blocks " +
+           (st.release == dda::ReleaseAction::remove ? "removed" : "fall");
+  if (!st.settle)
+    return "dynamic to t = " + format(st.end_time) + " s";
+  const dda::SettleCriterion& c = *st.settle;
+  return "settle until every block moves slower than " + format(c.rest_speed) + " m/s for " +
+         format(c.rest_duration) + " s" +
+         (c.fall_distance > 0.0 ? " or has fallen " + format(c.fall_distance) + " m"
+                                : std::string()) +
+         ", at most " + format(c.max_duration) + " s";
+}
+
 nlohmann::json static_stage_record(const dda::Stage& stage, const dda::StaticStageResult& result,
                                    const dda::System& system, const KeyblockRecorder& keyblocks)
 {
@@ -31,6 +49,40 @@ nlohmann::json static_stage_record(const dda::Stage& stage, const dda::StaticSta
           {"tolerance", stage.tolerance},
           {"release", stage.release == dda::ReleaseAction::remove ? "remove" : "fall"},
           {"released", released}};
+}
+
+nlohmann::json dynamic_stage_record(const dda::Stage& stage, const dda::DynamicStageResult& result,
+                                    const dda::System& system, const KeyblockRecorder& keyblocks)
+{
+  nlohmann::json record = {{"name", stage.name},
+                           {"mode", stage.settle ? "settle" : "dynamic"},
+                           {"steps", result.n_steps},
+                           {"end_time_s", result.end_time},
+                           {"time_reached_s", system.time()}};
+  if (!stage.settle)
+    return record;
+  const dda::SettleCriterion& c = *stage.settle;
+  nlohmann::json fallen = nlohmann::json::array();
+  for (const std::size_t i : result.fallen)
+  {
+    const std::size_t opening =
+        keyblocks.opening_next_to(i, system.get_blocks()[i].moments.centroid);
+    fallen.push_back(
+        {{"block", i},
+         {"name", system.get_model().blocks[i].origin},
+         {"mass_kg", system.mass_of(i)},
+         {"opening", opening == KeyblockRecorder::no_opening ? nlohmann::json(nullptr)
+                                                             : nlohmann::json(opening)}});
+  }
+  record["settled"] = result.settled;
+  record["rest_speed_m_s"] = c.rest_speed;
+  record["rest_duration_s"] = c.rest_duration;
+  record["fall_distance_m"] = c.fall_distance;
+  record["max_duration_s"] = c.max_duration;
+  record["moving"] = result.moving;
+  record["moving_speed_m_s"] = result.moving_speed;
+  record["fallen"] = fallen;
+  return record;
 }
 
 dda::StepStatus static_stage_failure(const dda::Stage& stage, const dda::StaticStageResult& result,

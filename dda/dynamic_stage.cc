@@ -1,0 +1,113 @@
+#include "dda/dynamic_stage.h"
+
+#include "dda/submatrices.h"
+
+#include <algorithm>
+#include <optional>
+#include <utility>
+
+namespace ddafem::dda
+{
+double block_speed(const Block& block)
+{
+  double speed = 0.0;
+  for (const Point& x : block.vertices)
+    speed =
+        std::max(speed, (displacement_matrix(block.moments.centroid, x) * block.velocity).norm());
+  return speed;
+}
+
+SettleDetector::SettleDetector(const System& system, const SettleCriterion& criterion_,
+                               std::vector<Vector2> reference_)
+    : criterion(criterion_), reference(std::move(reference_)),
+      quiet(system.get_blocks().size(), 0.0), has_fallen(system.get_blocks().size(), false)
+{
+  const Vector2 g = system.get_model().gravity;
+  if (g.norm() > 0.0)
+    down = g.normalized();
+  reference.resize(quiet.size(), Vector2::Zero());
+}
+
+bool SettleDetector::observe(const System& system, double dt)
+{
+  const std::vector<Block>& blocks = system.get_blocks();
+  bool settled = true;
+  moving_speed = 0.0;
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+  {
+    const double speed = block_speed(blocks[i]);
+    quiet[i] = speed <= criterion.rest_speed ? quiet[i] + dt : 0.0;
+    if (criterion.fall_distance > 0.0 && down.squaredNorm() > 0.0 && !has_fallen[i] &&
+        (blocks[i].displacement() - reference[i]).dot(down) >= criterion.fall_distance)
+      has_fallen[i] = true;
+    if (has_fallen[i] || quiet[i] >= criterion.rest_duration)
+      continue;
+    settled = false;
+    moving_speed = std::max(moving_speed, speed);
+  }
+  return settled;
+}
+
+std::vector<std::size_t> SettleDetector::moving() const
+{
+  std::vector<std::size_t> ids;
+  for (std::size_t i = 0; i < quiet.size(); ++i)
+    if (!has_fallen[i] && quiet[i] < criterion.rest_duration)
+      ids.push_back(i);
+  return ids;
+}
+
+std::vector<std::size_t> SettleDetector::fallen() const
+{
+  std::vector<std::size_t> ids;
+  for (std::size_t i = 0; i < has_fallen.size(); ++i)
+    if (has_fallen[i])
+      ids.push_back(i);
+  return ids;
+}
+
+DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const TimeSettings& time,
+                                     const std::vector<Vector2>& fall_reference,
+                                     const AfterDynamicStep& after_step)
+{
+  DynamicStageResult result;
+  result.end_time = stage.settle ? system.time() + stage.settle->max_duration : stage.end_time;
+  result.smallest_dt = time.dt;
+  const std::size_t first_step = system.n_steps();
+  TimeStepper stepper(system, time);
+  std::optional<SettleDetector> detector;
+  if (stage.settle)
+    detector.emplace(system, *stage.settle, fall_reference);
+  // Within round-off of the end (1e-9 dt) counts as there.
+  const auto at_end = [&] { return system.time() >= result.end_time - 1e-9 * time.dt; };
+  while (!at_end())
+  {
+    const StepStatus status = stepper.step(result.end_time - system.time());
+    if (status.outcome != StepOutcome::success)
+    {
+      result.failure = status;
+      break;
+    }
+    result.n_flips_ignored += status.n_flips_ignored;
+    result.smallest_dt = std::min(result.smallest_dt, stepper.last_dt());
+    if (detector)
+      result.settled = detector->observe(system, stepper.last_dt());
+    if (after_step)
+      after_step(stepper, status, result.settled || at_end());
+    if (result.settled)
+      break;
+  }
+  result.n_steps = system.n_steps() - first_step;
+  result.n_cuts = stepper.n_cuts();
+  result.n_cut_steps = stepper.n_cut_steps();
+  result.n_penalty_raises = stepper.n_penalty_raises();
+  if (detector)
+  {
+    result.moving = detector->moving();
+    result.fallen = detector->fallen();
+    result.moving_speed = detector->largest_moving_speed();
+  }
+  return result;
+}
+
+} // namespace ddafem::dda

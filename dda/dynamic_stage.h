@@ -1,0 +1,76 @@
+// A dynamic stage: the motion in time to a fixed end, or a settle stage (issue 16) that runs
+// until every block is at rest or has fallen, so that "fell" in the results means fell.
+#pragma once
+
+#include "dda/model_description.h"
+#include "dda/system.h"
+#include "dda/time_stepper.h"
+
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+namespace ddafem::dda
+{
+/// The largest speed of a block's vertices [m/s]: |T(x) v| over its vertices x (rigid motion
+/// and strain rate alike).
+double block_speed(const Block& block);
+
+/// Watches a settle stage's blocks, step by step, for the SettleCriterion.
+class SettleDetector
+{
+public:
+  /// `reference`: per block, its centroid displacement [m] where falls are measured from (the
+  /// start of the first dynamic stage); the fall direction is the model's gravity.
+  SettleDetector(const System& system, const SettleCriterion& criterion,
+                 std::vector<Vector2> reference);
+
+  /// After an accepted step of `dt` [s]: whether every block is now at rest (speed at most
+  /// rest_speed for rest_duration without a break) or has fallen.
+  bool observe(const System& system, double dt);
+
+  /// Blocks neither at rest nor fallen at the last observe, ascending.
+  std::vector<std::size_t> moving() const;
+  /// Blocks that have fallen (once fallen, always), ascending.
+  std::vector<std::size_t> fallen() const;
+  /// The largest block_speed of the blocks neither at rest nor fallen [m/s] (0 if none).
+  double largest_moving_speed() const { return moving_speed; }
+
+private:
+  SettleCriterion criterion;
+  std::vector<Vector2> reference;
+  Vector2 down = Vector2::Zero(); ///< unit vector along gravity; zero without gravity
+  std::vector<double> quiet;      ///< per block: time spent at rest without a break [s]
+  std::vector<bool> has_fallen;
+  double moving_speed = 0.0;
+};
+
+/// What a dynamic (or settle) stage did.
+struct DynamicStageResult
+{
+  StepStatus failure; ///< outcome success unless a step failed even at the smallest dt
+  std::size_t n_steps = 0;
+  std::size_t n_cuts = 0, n_cut_steps = 0, n_penalty_raises = 0, n_flips_ignored = 0;
+  double smallest_dt = 0.0; ///< of the accepted steps [s]
+  double end_time = 0.0;    ///< the time the stage was to reach [s] (settle: its bound)
+  /// Settle stages: every block came to rest or fell before the bound.
+  bool settled = false;
+  std::vector<std::size_t> moving; ///< settle: blocks still moving at the end
+  std::vector<std::size_t> fallen; ///< settle: blocks fallen
+  double moving_speed = 0.0;       ///< settle: the fastest moving block's speed at the end [m/s]
+};
+
+/// Called after every accepted step with the stepper, the step's status and whether it is the
+/// stage's last.
+using AfterDynamicStep = std::function<void(const TimeStepper&, const StepStatus&, bool)>;
+
+/// Runs a dynamic stage of `system` (begin_stage(dynamic) first) with the scene's time control:
+/// to stage.end_time, or for a settle stage (stage.settle) until SettleDetector::observe says
+/// every block is at rest or has fallen, at most settle->max_duration after the stage's start.
+/// `fall_reference`: SettleDetector's reference. A failed step ends the stage with its status
+/// (nothing throws).
+DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const TimeSettings& time,
+                                     const std::vector<Vector2>& fall_reference,
+                                     const AfterDynamicStep& after_step = {});
+
+} // namespace ddafem::dda

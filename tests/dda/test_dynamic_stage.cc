@@ -1,0 +1,139 @@
+// Dynamic and settle stages (issue 16): a settle stage runs until every block is at rest or has
+// fallen, bounded by its max_duration.
+#include "dda/dynamic_stage.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace ddafem;
+using namespace ddafem::dda;
+
+namespace
+{
+constexpr double g = 9.81;
+
+/// A fixed 8 m x 1 m base (three fixed points) and a 1 m x 1 m block with its lower left corner
+/// at `corner`, frictional joint (30 degrees, `friction` if given), gravity (0, -g) turned by
+/// `tilt` [deg] (a slope of that angle along +x).
+ModelDescription block_on_base(const Point& corner, double tilt = 0.0, double friction = 30.0)
+{
+  ModelDescription m;
+  m.materials = {{"rock", 2650.0, 10e9, 0.25}};
+  m.joint_materials = {{"joint", 1e10, 0.4, friction, 0.0, 0.0, false}};
+  m.default_joint_material = 0;
+  BlockDescription base;
+  base.vertices = {{-4, -1}, {4, -1}, {4, 0}, {-4, 0}};
+  m.blocks.push_back(base);
+  BlockDescription b;
+  b.vertices = {corner, corner + Vector2(1, 0), corner + Vector2(1, 1), corner + Vector2(0, 1)};
+  m.blocks.push_back(b);
+  for (const Point& x : {Point(-3.5, -0.5), Point(3.5, -0.5), Point(0, -0.5)})
+    m.fixed_points.push_back(
+        {x, 0.0, TimeFunction::constant(0.0), TimeFunction::constant(0.0), ""});
+  const double a = tilt * M_PI / 180.0;
+  m.gravity = {g * std::sin(a), -g * std::cos(a)};
+  m.time.dt = 1e-3;
+  m.time.end_time = 1.0;
+  return m;
+}
+
+Stage settle_stage(double fall_distance, double max_duration)
+{
+  Stage s;
+  s.name = "settle";
+  s.settle = SettleCriterion{1e-3, 0.1, fall_distance, max_duration};
+  return s;
+}
+
+std::vector<Vector2> no_displacement(const System& s)
+{
+  return std::vector<Vector2>(s.get_blocks().size(), Vector2::Zero());
+}
+} // namespace
+
+// A unit square turning at w about its centroid: its corners move at w / sqrt(2).
+TEST(DynamicStage, BlockSpeedIsTheFastestVertex)
+{
+  Block b(0, {{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  b.velocity << 0.0, 0.0, 2.0, 0.0, 0.0, 0.0;
+  EXPECT_NEAR(block_speed(b), 2.0 * std::sqrt(0.5), 1e-12);
+  b.velocity << 0.3, -0.4, 0.0, 0.0, 0.0, 0.0;
+  EXPECT_NEAR(block_speed(b), 0.5, 1e-12);
+}
+
+// A block set down on a flat base rings on its contact springs and comes to rest: the stage
+// ends once it has been slower than 1 mm/s for 0.1 s, long before its bound.
+TEST(DynamicStage, BlockOnFlatBaseSettles)
+{
+  const ModelDescription m = block_on_base({-0.5, 0.0});
+  System s(m);
+  s.begin_stage(StageMode::dynamic);
+  const DynamicStageResult r =
+      run_dynamic_stage(s, settle_stage(0.0, 2.0), m.time, no_displacement(s));
+  EXPECT_EQ(r.failure.outcome, StepOutcome::success) << r.failure.message;
+  EXPECT_TRUE(r.settled);
+  EXPECT_TRUE(r.moving.empty());
+  EXPECT_TRUE(r.fallen.empty());
+  EXPECT_GE(s.time(), 0.1 - 1e-9); // at least rest_duration
+  EXPECT_LT(s.time(), 0.5);
+  EXPECT_EQ(r.n_steps, s.n_steps());
+}
+
+// On a frictionless 20 degree slope the block slides on: without a fall distance the stage runs
+// to its bound and says which block still moves and how fast, g sin 20 t at t = 0.3 s.
+TEST(DynamicStage, SlidingBlockRunsToTheBound)
+{
+  const ModelDescription m = block_on_base({-2.0, 0.0}, 20.0, 0.0);
+  System s(m);
+  s.begin_stage(StageMode::dynamic);
+  const DynamicStageResult r =
+      run_dynamic_stage(s, settle_stage(0.0, 0.3), m.time, no_displacement(s));
+  EXPECT_EQ(r.failure.outcome, StepOutcome::success) << r.failure.message;
+  EXPECT_FALSE(r.settled);
+  EXPECT_NEAR(s.time(), 0.3, 1e-9);
+  EXPECT_NEAR(r.end_time, 0.3, 1e-12);
+  ASSERT_EQ(r.moving, std::vector<std::size_t>{1});
+  const double v = g * std::sin(20.0 * M_PI / 180.0) * 0.3;
+  EXPECT_NEAR(r.moving_speed, v, 0.02 * v);
+}
+
+// A block with nothing below falls; once its centroid is 0.1 m lower it has fallen and is not
+// waited for: the stage ends at sqrt(2 x 0.1 / g) = 0.143 s (the base, fixed, rests from 0.1 s).
+TEST(DynamicStage, FallenBlockIsNotWaitedFor)
+{
+  const ModelDescription m = block_on_base({6.0, 0.0});
+  System s(m);
+  s.begin_stage(StageMode::dynamic);
+  const DynamicStageResult r =
+      run_dynamic_stage(s, settle_stage(0.1, 2.0), m.time, no_displacement(s));
+  EXPECT_EQ(r.failure.outcome, StepOutcome::success) << r.failure.message;
+  EXPECT_TRUE(r.settled);
+  EXPECT_EQ(r.fallen, std::vector<std::size_t>{1});
+  EXPECT_TRUE(r.moving.empty());
+  EXPECT_NEAR(s.time(), std::sqrt(2.0 * 0.1 / g), 2e-3); // within two steps
+}
+
+// A dynamic stage without settle runs to its end_time.
+TEST(DynamicStage, DynamicStageRunsToItsEnd)
+{
+  const ModelDescription m = block_on_base({-0.5, 0.0});
+  System s(m);
+  s.begin_stage(StageMode::dynamic);
+  Stage stage;
+  stage.name = "shake";
+  stage.end_time = 0.05;
+  std::size_t calls = 0;
+  bool last_seen = false;
+  const DynamicStageResult r =
+      run_dynamic_stage(s, stage, m.time, no_displacement(s),
+                        [&](const TimeStepper&, const StepStatus&, bool last)
+                        {
+                          ++calls;
+                          last_seen = last;
+                        });
+  EXPECT_NEAR(s.time(), 0.05, 1e-12);
+  EXPECT_EQ(calls, r.n_steps);
+  EXPECT_TRUE(last_seen);
+  EXPECT_FALSE(r.settled);
+}
