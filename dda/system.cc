@@ -980,8 +980,6 @@ std::size_t System::update_trial_states(unsigned iteration, std::size_t& n_ignor
   for (const Contact& c : trial_contacts)
     largest_force = std::max(largest_force, c.trial.normal_force);
   const double negligible = model.contacts.flip_force_ratio * largest_force;
-  const auto carries = [negligible](const ContactForces& f)
-  { return std::max(std::abs(f.normal_force), std::abs(f.shear_force)) > negligible; };
   std::size_t n_changes = 0;
   for (std::size_t k = 0; k < trial_contacts.size(); ++k)
   {
@@ -1000,7 +998,7 @@ std::size_t System::update_trial_states(unsigned iteration, std::size_t& n_ignor
     // (contacts flipping between slide and lock under a kN where the rock carries MN).
     if (state_changed(c.trial, next) && std::abs(c.end_gap) > 2e-12 * w0)
     {
-      if (iteration < 3 || carries(c.trial) || carries(next))
+      if (change_holds_iteration(iteration, c.trial, next, negligible))
         ++n_changes;
       else
         ++n_ignored;

@@ -43,6 +43,14 @@ ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start
   return out;
 }
 
+bool change_holds_iteration(unsigned iteration, const ContactForces& before,
+                            const ContactForces& after, double negligible)
+{
+  const auto carries = [negligible](const ContactForces& f)
+  { return std::max(std::abs(f.normal_force), std::abs(f.shear_force)) > negligible; };
+  return iteration < 3 || carries(before) || carries(after);
+}
+
 bool state_changed(const ContactForces& a, const ContactForces& b)
 {
   if (a.state != b.state)

@@ -52,4 +52,12 @@ ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start
 /// of sliding.
 bool state_changed(const ContactForces& a, const ContactForces& b);
 
+/// Whether a contact's change of trial state from `before` to `after` in open-close iteration
+/// `iteration` (from 1) keeps the iteration going. Every change counts in the first two
+/// iterations; from the third on, a contact that carries at most `negligible` [N] (its larger
+/// of |normal force| and |shear force|) before and after is let go: flipping between slide and
+/// lock under a kN where the rock carries MN changes nothing the blocks feel.
+bool change_holds_iteration(unsigned iteration, const ContactForces& before,
+                            const ContactForces& after, double negligible);
+
 } // namespace ddafem::dda

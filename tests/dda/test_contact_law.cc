@@ -161,3 +161,22 @@ TEST(ContactLaw, StateChangedComparesStateAndSlidingDirection)
   smooth.shear_force = 0.0;
   EXPECT_FALSE(state_changed(smooth, slide_minus));
 }
+
+// From the third open-close iteration on, a contact flipping between slide and lock while
+// carrying at most the negligible force (flip_force_ratio x the step's largest normal force)
+// before and after no longer holds the iteration back; one that carries more always does.
+TEST(ContactLaw, FlipsAtAlmostNoForceAreLetGoFromTheThirdIteration)
+{
+  const double negligible = 1e3; // N: 1e-3 of a 1 MN contact elsewhere
+  ContactForces lock_small = closed(800.0, 200.0), slide_small = closed(800.0, -300.0);
+  slide_small.state = ContactState::slide;
+  EXPECT_TRUE(change_holds_iteration(1, lock_small, slide_small, negligible));
+  EXPECT_TRUE(change_holds_iteration(2, lock_small, slide_small, negligible));
+  EXPECT_FALSE(change_holds_iteration(3, lock_small, slide_small, negligible));
+  EXPECT_FALSE(change_holds_iteration(6, slide_small, lock_small, negligible));
+  // Carrying more than the negligible force before or after (normal or shear): it counts.
+  EXPECT_TRUE(change_holds_iteration(3, lock_small, closed(1500.0, 0.0), negligible));
+  EXPECT_TRUE(change_holds_iteration(3, closed(500.0, -1200.0), slide_small, negligible));
+  // Opening from nothing to nothing: let go.
+  EXPECT_FALSE(change_holds_iteration(4, ContactForces{}, lock_small, negligible));
+}
