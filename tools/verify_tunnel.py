@@ -6,7 +6,7 @@
   docs/verification/tunnel.md     the table
   docs/verification/figures/tunnel_keyblock.png   the peak keyblock's displacement over time
 
-The same scene (default: the default tunnel scene examples/tunnel/stable_sv.yaml) runs with
+The same scene (default: the stable tunnel examples/tunnel/stable_sv.yaml, strong joints) runs with
 `--set tunnel.truncation=M` for M in
   reference  (c) blocks in a far field so large that nothing reflected at its truncation returns
              to the opening within the run: the reference
