@@ -6,6 +6,18 @@
 
 namespace ddafem
 {
+namespace
+{
+/// The index of the opening block `block` (centroid [m]) is next to, null without openings.
+nlohmann::json opening_of(const KeyblockRecorder& keyblocks, std::size_t block,
+                          const dda::Point& centroid)
+{
+  const std::size_t opening = keyblocks.opening_next_to(block, centroid);
+  return opening == KeyblockRecorder::no_opening ? nlohmann::json(nullptr)
+                                                 : nlohmann::json(opening);
+}
+} // namespace
+
 std::string describe_stage(const dda::Stage& st)
 {
   using run_support::format;
@@ -29,18 +41,13 @@ nlohmann::json static_stage_record(const dda::Stage& stage, const dda::StaticSta
 {
   nlohmann::json released = nlohmann::json::array();
   for (const dda::ReleasedBlock& r : result.released)
-  {
-    const std::size_t opening = keyblocks.opening_next_to(r.block, r.centroid);
-    released.push_back(
-        {{"block", r.block},
-         {"name", system.get_model().blocks[r.block].origin},
-         {"step", r.step},
-         {"mass_kg", r.mass},
-         {"centroid_m", {r.centroid.x(), r.centroid.y()}},
-         {"ratio", r.ratio},
-         {"opening", opening == KeyblockRecorder::no_opening ? nlohmann::json(nullptr)
-                                                             : nlohmann::json(opening)}});
-  }
+    released.push_back({{"block", r.block},
+                        {"name", system.get_model().blocks[r.block].origin},
+                        {"step", r.step},
+                        {"mass_kg", r.mass},
+                        {"centroid_m", {r.centroid.x(), r.centroid.y()}},
+                        {"ratio", r.ratio},
+                        {"opening", opening_of(keyblocks, r.block, r.centroid)}});
   return {{"name", stage.name},
           {"mode", "static"},
           {"steps", result.n_steps},
@@ -64,16 +71,11 @@ nlohmann::json dynamic_stage_record(const dda::Stage& stage, const dda::DynamicS
   const dda::SettleCriterion& c = *stage.settle;
   nlohmann::json fallen = nlohmann::json::array();
   for (const std::size_t i : result.fallen)
-  {
-    const std::size_t opening =
-        keyblocks.opening_next_to(i, system.get_blocks()[i].moments.centroid);
     fallen.push_back(
         {{"block", i},
          {"name", system.get_model().blocks[i].origin},
          {"mass_kg", system.mass_of(i)},
-         {"opening", opening == KeyblockRecorder::no_opening ? nlohmann::json(nullptr)
-                                                             : nlohmann::json(opening)}});
-  }
+         {"opening", opening_of(keyblocks, i, system.get_blocks()[i].moments.centroid)}});
   record["settled"] = result.settled;
   record["rest_speed_m_s"] = c.rest_speed;
   record["rest_duration_s"] = c.rest_duration;

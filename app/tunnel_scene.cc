@@ -210,6 +210,7 @@ void plan_outer_blocks(const TunnelDescription& t, double wavelength, TunnelPlan
                 std::string(plan.top_is_surface ? "" : " and top") +
                 ", the incident wave entering at the base");
 }
+
 /// The settle stage's criterion: falls measured as the keyblocks' (FallCriterion, 1% of the
 /// opening's size), the bound twice a fall across the opening from rest.
 dda::SettleCriterion plan_settle_stage(const TunnelDescription& t, const TunnelPlan& plan,
