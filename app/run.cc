@@ -667,6 +667,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   nlohmann::json stage_records = nlohmann::json::array();
   bool initial_written = false;
   std::size_t n_cuts = 0, n_cut_steps = 0, n_penalty_raises = 0, n_flips_ignored = 0;
+  std::size_t n_reversals = 0;
   double smallest_dt = time.dt;
   std::optional<std::vector<dda::Vector2>> fall_reference; // per block [m]
   for (const dda::Stage& stage : stages)
@@ -725,6 +726,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
     n_cut_steps += result.n_cut_steps;
     n_penalty_raises += result.n_penalty_raises;
     n_flips_ignored += result.n_flips_ignored;
+    n_reversals += result.n_reversals;
     smallest_dt = std::min(smallest_dt, result.smallest_dt);
     stage_records.push_back(dynamic_stage_record(stage, result, system, keyblocks));
     failure = result.failure;
@@ -762,7 +764,8 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
       {"cuts", n_cuts},
       {"steps_cut", n_cut_steps},
       {"penalty_raises", n_penalty_raises},
-      {"flips_ignored", n_flips_ignored}};
+      {"flips_ignored", n_flips_ignored},
+      {"slip_reversals", n_reversals}};
   summary["stages"] = stage_records;
   if (scene.tunnel)
   {

@@ -1994,6 +1994,7 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   }
   model.time.cut_factor = time.number("cut_factor");
   model.time.growth_factor = time.number("growth_factor");
+  model.time.reversal_tolerance = time.number("reversal_tolerance");
 
   const MapReader contacts = top.section_reader("contacts");
   model.contacts.max_displacement_ratio = contacts.number("max_displacement_ratio");

@@ -101,6 +101,7 @@ DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const T
   result.n_cuts = stepper.n_cuts();
   result.n_cut_steps = stepper.n_cut_steps();
   result.n_penalty_raises = stepper.n_penalty_raises();
+  result.n_reversals = stepper.n_reversals();
   if (detector)
   {
     result.moving = detector->moving();

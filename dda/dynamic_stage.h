@@ -51,8 +51,9 @@ struct DynamicStageResult
   StepStatus failure; ///< outcome success unless a step failed even at the smallest dt
   std::size_t n_steps = 0;
   std::size_t n_cuts = 0, n_cut_steps = 0, n_penalty_raises = 0, n_flips_ignored = 0;
-  double smallest_dt = 0.0; ///< of the accepted steps [s]
-  double end_time = 0.0;    ///< the time the stage was to reach [s] (settle: its bound)
+  std::size_t n_reversals = 0; ///< steps shortened at a slip reversal (TimeStepper::n_reversals)
+  double smallest_dt = 0.0;    ///< of the accepted steps [s]
+  double end_time = 0.0;       ///< the time the stage was to reach [s] (settle: its bound)
   /// Settle stages: every block came to rest or fell before the bound.
   bool settled = false;
   std::vector<std::size_t> moving; ///< settle: blocks still moving at the end

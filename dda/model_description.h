@@ -215,6 +215,11 @@ struct TimeSettings
   double dt_min = 0.0;        ///< smallest dt before the run stops [s]; 0: dt * 1e-4
   double cut_factor = 0.3;    ///< dt multiplier after a failed step (Shi: 0.3)
   double growth_factor = 1.2; ///< dt multiplier after a successful step, up to `dt`
+  /// Adaptive control: the slip error [m] that a slip reversal within a step may leave, where
+  /// the step's friction acted the wrong way for part of it (slip_error); a step with a larger
+  /// one is redone to end just before the reversal (System::localize_slip_reversals). 0: no
+  /// localisation.
+  double reversal_tolerance = 1e-6;
 };
 
 /// Settings of contact detection and of the open-close iteration (Shi 1988, ch. 4).

@@ -460,6 +460,28 @@ StepStatus System::advance(double dt)
     status.message = m.str();
     return status;
   }
+  // Slip reversals: end the step before one that its friction would get wrong; a step at which
+  // friction turns around takes DDA's scheme, as the first step of a motion does:
+  // generalized-alpha's (1 - alpha_f) r_{n+1} + alpha_f r_n would apply the jump Delta r only
+  // in part and leave the velocity alpha_f dt Delta r / m behind for as long as the new
+  // friction lasts (a first-order error at every reversal of two-way sliding).
+  if (reversal_tolerance > 0.0 && mode == StageMode::dynamic)
+  {
+    const ReversalScan scan = scan_slip_reversals(dt);
+    if (scan.earliest > 0.0)
+    {
+      status.reversal_fraction = scan.earliest;
+      status.outcome = StepOutcome::slip_reversal;
+      status.message = "a sliding contact reverses its slip " + format_time(scan.earliest * dt) +
+                       " after the step's start " + when;
+      return status;
+    }
+    if (scan.friction_turns && !motion_starts)
+    {
+      motion_starts = true;
+      return advance(dt);
+    }
+  }
 
   // 5. Update the tied body, blocks and contacts.
   if (tied_body)
@@ -476,6 +498,12 @@ StepStatus System::advance(double dt)
   {
     if (c.trial.state == ContactState::slide)
       c.total_slip += c.step_slip;
+    const bool slides_on = c.forces.state == ContactState::slide &&
+                           c.trial.state == ContactState::slide &&
+                           std::signbit(c.forces.shear_force) == std::signbit(c.trial.shear_force);
+    c.slide_duration = c.trial.state != ContactState::slide ? 0.0
+                       : slides_on                          ? c.slide_duration + dt
+                                                            : dt;
     c.forces = c.trial;
   }
   contacts.swap(trial_contacts);
@@ -764,6 +792,7 @@ void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_
       c.id = previous->id;
       c.forces = previous->forces;
       c.total_slip = previous->total_slip;
+      c.slide_duration = previous->slide_duration;
       c.penalty_factor = previous->penalty_factor;
     }
     else

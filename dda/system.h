@@ -58,7 +58,12 @@ enum class StepOutcome
   penetration_too_large,
   /// a bonded joint broke in a small-displacement analysis, which cannot follow contacts
   joint_broken,
-  energy_growth ///< stored energy exceeds 10x the energy put in: something feeds the model
+  energy_growth, ///< stored energy exceeds 10x the energy put in: something feeds the model
+  /// a sliding contact reversed its slip within the step and its friction, acting the wrong
+  /// way for part of it, left more than the tolerated speed error
+  /// (System::localize_slip_reversals); the step is redone to end before the reversal
+  /// (StepStatus::reversal_fraction)
+  slip_reversal
 };
 
 /// Whether a smaller dt can cure the outcome.
@@ -82,6 +87,8 @@ struct StepStatus
   /// block's out-of-balance force against its own load; 0 in dynamic stages.
   double unbalanced_force_ratio = 0.0;
   std::size_t unbalanced_block = 0; ///< static stages: the block with the largest of them
+  /// slip_reversal: the fraction of the step before the earliest reversal [-], in (0, 1)
+  double reversal_fraction = 0.0;
 };
 
 /// Static stages: the balance of one block at the start of a step.
@@ -152,6 +159,16 @@ public:
   /// solve with the open-close iteration, update blocks (then bonded joints beyond their
   /// strength break). On a failure nothing changes (the caller may retry with a smaller dt).
   StepStatus advance(double dt);
+
+  /// Dynamic steps from now on fail with StepOutcome::slip_reversal when a sliding contact that
+  /// carries force (above ContactSettings::flip_force_ratio of the largest) reverses its slip
+  /// within the step with a slip error (slip_error of SlipReversal::speed_error) above
+  /// `tolerance` [m]: a step applies the end state's shear force throughout, so the friction
+  /// acted the wrong way for part of it, an error that repeated reversals add up (two-way
+  /// sliding). With
+  /// generalized-alpha, a step in which such a contact's friction turns around is taken with
+  /// DDA's scheme. 0 (the default) accepts every step as it is.
+  void localize_slip_reversals(double tolerance) { reversal_tolerance = tolerance; }
 
   /// Ties m points, each on the boundary of its block, to `body`, which the System steps with
   /// itself from then on (see TiedBody). The body must outlive the System. Before the first
@@ -291,6 +308,17 @@ private:
   /// is at ContactSettings::max_penalty_factor already.
   bool raise_penalties();
   double largest_vertex_displacement(const Eigen::VectorXd& d) const;
+  /// Slip reversals among the trial contacts that slid at the step's start and carry force.
+  struct ReversalScan
+  {
+    /// the earliest reversal (SlipReversal::at, a fraction of the step) whose slip error
+    /// (slip_error of its speed error) exceeds the reversal tolerance; 0 if there is none
+    double earliest = 0.0;
+    /// a contact's friction turned around in the step with a generalized-alpha velocity lag,
+    /// alpha_f |v1 - v0|, whose slip error exceeds the reversal tolerance
+    bool friction_turns = false;
+  };
+  ReversalScan scan_slip_reversals(double dt) const;
   void set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings);
   std::size_t coupling_of(std::size_t i, std::size_t j) const;
   /// After an accepted step: bonded joints beyond their strength break. Returns the message of
@@ -358,6 +386,7 @@ private:
   double contact_search_distance = 0.0; ///< d0 [m]
   double penetration_limit = 0.0;       ///< [m]
   double angle_tolerance = 0.0;         ///< [rad]
+  double reversal_tolerance = 0.0;      ///< localize_slip_reversals [m]; 0: none
   bool contacts_enabled = true;         ///< false in a small-displacement analysis
   StageMode mode = StageMode::dynamic;
   std::vector<bool> held;             ///< per block: held until the next begin_stage

@@ -9,8 +9,17 @@ namespace ddafem::dda
 TimeStepper::TimeStepper(System& system_, const TimeSettings& settings, double dt_max_)
     : system(system_), control(settings.control), dt_max(dt_max_ > 0.0 ? dt_max_ : settings.dt),
       dt_min(settings.dt_min > 0.0 ? std::min(settings.dt_min, dt_max) : 1e-4 * dt_max),
-      cut_factor(settings.cut_factor), growth_factor(settings.growth_factor), dt(dt_max)
+      cut_factor(settings.cut_factor), growth_factor(settings.growth_factor), dt(dt_max),
+      reversal_tolerance(control == TimeControl::adaptive ? settings.reversal_tolerance : 0.0)
 {
+  system.localize_slip_reversals(reversal_tolerance);
+}
+
+double TimeStepper::reversal_dt(const StepStatus& status, double trial) const
+{
+  // End 5% short of the estimated reversal, so that the next step meets it at its very start.
+  const double shortened = 0.95 * status.reversal_fraction * trial;
+  return shortened < dt_min ? 0.0 : shortened;
 }
 
 double TimeStepper::reduced_dt(const StepStatus& status, double trial) const
@@ -30,13 +39,37 @@ StepStatus TimeStepper::step(double dt_limit)
   {
     const double trial = std::min(dt, dt_limit);
     StepStatus status = system.advance(trial);
+    if (status.outcome == StepOutcome::slip_reversal)
+    {
+      const double shortened = reversal_dt(status, trial);
+      if (shortened == 0.0)
+      {
+        // Too close to dt_min to end before it: take the reversal within this step.
+        system.localize_slip_reversals(0.0);
+        status = system.advance(trial);
+        system.localize_slip_reversals(reversal_tolerance);
+      }
+      else
+      {
+        if (resume_dt == 0.0)
+          resume_dt = dt;
+        dt = shortened;
+        continue;
+      }
+    }
     if (status.outcome == StepOutcome::success)
     {
       accepted_dt = trial;
       if (last_cuts > 0)
         ++cut_step_count;
+      else if (resume_dt > 0.0)
+      {
+        dt = resume_dt;
+        ++reversal_count;
+      }
       else if (control == TimeControl::adaptive)
         dt = std::min(dt_max, dt * growth_factor);
+      resume_dt = 0.0;
       return status;
     }
     if (!can_retry_with_smaller_step(status.outcome))

@@ -16,7 +16,9 @@ namespace ddafem::dda
 ///   with the penetrating contacts' penalty raised x 10 (System::advance does it, up to
 ///   ContactSettings::max_penalty_factor), then dt x cut_factor. After an accepted step dt grows
 ///   by growth_factor, up to the largest dt. Below dt_min the step fails with a message naming
-///   the cause.
+///   the cause. A step in which a sliding contact reverses its slip with a slip error above
+///   reversal_tolerance (System::localize_slip_reversals) is not a failure but an event: it is
+///   redone to end just before the reversal, and the next step tries the dt of before again.
 /// - fixed: every step has the largest dt; any failure is final.
 class TimeStepper
 {
@@ -36,6 +38,8 @@ public:
   std::size_t n_last_step_cuts() const { return last_cuts; } ///< cuts of the last step
   /// Retries of the same dt after a contact's penalty was raised
   std::size_t n_penalty_raises() const { return penalty_raise_count; }
+  /// Steps shortened to end at a sliding contact's slip reversal
+  std::size_t n_reversals() const { return reversal_count; }
 
 private:
   System& system;
@@ -47,6 +51,13 @@ private:
   std::size_t cut_step_count = 0;
   std::size_t last_cuts = 0;
   std::size_t penalty_raise_count = 0;
+  std::size_t reversal_count = 0;
+  double reversal_tolerance = 0.0; ///< [m]; 0: fixed control, no localisation
+  double resume_dt = 0.0;          ///< after a step shortened at a reversal: the dt to go on with
+
+  /// The dt of the step that ends before a slip reversal found by a trial of `trial` [s]; 0 when
+  /// that would be below dt_min (the reversal is then taken within the step).
+  double reversal_dt(const StepStatus& status, double trial) const;
 
   /// The dt to retry after a failed step of `trial` [s] (adaptive control).
   double reduced_dt(const StepStatus& status, double trial) const;

@@ -368,11 +368,13 @@ def write_report(run_dir, summary, figures, path):
                 summary.get("steps", "?"), summary.get("dt_s", float("nan")),
                 summary.get("time_step", {}).get("smallest_dt_s", float("nan"))),
              "- time steps: %s dt cuts (%s steps cut), %s contact penalties raised, %s "
-             "contact flips at almost no force let go, %s open-close iterations"
+             "contact flips at almost no force let go, %s steps shortened to end at a slip "
+             "reversal, %s open-close iterations"
              % (summary.get("time_step", {}).get("cuts", "?"),
                 summary.get("time_step", {}).get("steps_cut", "?"),
                 summary.get("time_step", {}).get("penalty_raises", "?"),
                 summary.get("time_step", {}).get("flips_ignored", "?"),
+                summary.get("time_step", {}).get("slip_reversals", "?"),
                 summary.get("contacts", {}).get("open_close_iterations", "?")),
              "- wall time: %.3g s, peak memory %.0f MB"
              % (summary.get("wall_time_s", 0.0), summary.get("peak_memory_mb", 0.0)), ""]

@@ -1156,7 +1156,7 @@ TEST_F(SceneTest, ProblemsWithOverriddenValuesNameTheCommandLine)
       message("time.dtt=1e-4"),
       "command line --set time.dtt=1e-4: key 'time.dtt': unknown key; did you mean 'dt'? "
       "Allowed keys here: dt, end_time, integrator, spectral_radius, control, dt_min, cut_factor, "
-      "growth_factor");
+      "growth_factor, reversal_tolerance");
   EXPECT_NE(message("blocks.0.vertices=[[0, 0], [1, 1]]")
                 .find("command line --set blocks.0.vertices=[[0, 0], [1, 1]]: key "
                       "'blocks[0].vertices'"),
