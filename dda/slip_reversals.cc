@@ -8,6 +8,12 @@
 
 namespace ddafem::dda
 {
+namespace
+{
+/// Reversals earlier in the step than this fraction are taken within it [-].
+constexpr double min_reversal_fraction = 0.05;
+} // namespace
+
 System::ReversalScan System::scan_slip_reversals(double dt) const
 {
   double largest_force = 0.0;
@@ -30,8 +36,10 @@ System::ReversalScan System::scan_slip_reversals(double dt) const
     m.slip = c.step_slip;
     const double v1 = end_velocity(step_integration, dt, m);
     const SlipReversal r = slip_reversal(c.forces, c.trial, m.velocity, v1);
+    // A reversal in the first 5% of the step cannot be ended before in a useful step (and
+    // would shorten steps to nanoseconds when the iteration's slip and the velocities disagree).
     const double duration = c.slide_duration + dt;
-    if (slip_error(r.speed_error, duration) > reversal_tolerance &&
+    if (r.at >= min_reversal_fraction && slip_error(r.speed_error, duration) > reversal_tolerance &&
         (scan.earliest == 0.0 || r.at < scan.earliest))
       scan.earliest = r.at;
     // Friction turned around in this step: generalized-alpha's velocity lag alpha_f Delta v.

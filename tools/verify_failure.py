@@ -95,6 +95,7 @@ JOINT_STIFFNESS = 1e11
 # slip reversals localised (the default) and not (time.reversal_tolerance 0).
 SWEEP_CASES = ["two_way_flat_4Hz", "one_way_10deg_5Hz"]
 SWEEP_STIFFNESS = [1e10, 1e11, 1e12]
+REVERSAL_TOLERANCE = 1e-6  # m, time.reversal_tolerance of the localised runs (default: 0, off)
 ROCK = {"density": 2650, "youngs_modulus": 10e9, "poisson_ratio": 0.25}
 
 # Newmark cases: incline alpha [deg], friction phi [deg], amplitude A over the yield acceleration
@@ -610,9 +611,10 @@ def sweep_lines(d):
         "### 1b. The joint's stiffness and the localisation of slip reversals", "",
         f"{d['default_integrator']} at dt {NEWMARK_DT:g} s on the cases that slide to and fro, "
         "per contact normal stiffness (shear 0.4 of it), with slip reversals localised "
-        "(`time.reversal_tolerance` at its default: a step in which a sliding contact turns "
-        "around is redone to end just before it, and the step at the turn takes DDA's scheme) "
-        "and not (`time.reversal_tolerance: 0`). The elastic shear spring of a softer joint "
+        f"(`time.reversal_tolerance: {REVERSAL_TOLERANCE:g}`: a step in which a sliding contact "
+        "turns around is redone to end just before it, and the step at the turn takes DDA's "
+        "scheme) and not (`time.reversal_tolerance: 0`, the default: localisation lets some "
+        "tunnels gain energy, docs/design.md, Integrators). The elastic shear spring of a softer joint "
         "stores mu N / p_s at every reversal and gives it back: an error of the joint, not of "
         "the integrator, that shrinks as the joint stiffens. Without localisation each "
         "reversal leaves the friction acting the wrong way for part of a step.", "",
@@ -673,9 +675,10 @@ def write_markdown(path, data):
         f"{REFERENCE_STEP:g} s grid refined by bisection, closed forms within phases).", "",
         "final error = |s(T) - s_ref(T)| / |s_ref(T)| at the end of the run; history error = "
         "max over the history rows of |s - s_ref| / max |s_ref|. Below yield: the largest |s|. "
-        "Where the sliding reverses without a stick phase (two_way_flat_4Hz: six times), "
-        "adaptive control localises each reversal (part 1b; docs/design.md, section "
-        "Integrators).",
+        "Where the sliding reverses without a stick phase (two_way_flat_4Hz: six times), each "
+        "reversal leaves the friction acting the wrong way for part of a step unless "
+        "`time.reversal_tolerance` is set (off by default), which localises it (part 1b; "
+        "docs/design.md, section Integrators).",
         "",
         "| case | alpha [deg] | phi [deg] | A / a_y | f [Hz] x cycles | integrator | steps | "
         "s_ref(T) [mm] | s(T) [mm] | final error | history error | max abs s [mm] | pass |",
@@ -825,8 +828,7 @@ def main():
                 for localised in (True, False):
                     settings = {**integrator_settings(default),
                                 "joint_materials.sliding.normal_stiffness": k}
-                    if not localised:
-                        settings["time.reversal_tolerance"] = 0
+                    settings["time.reversal_tolerance"] = REVERSAL_TOLERANCE if localised else 0
                     jobs.append(SA.spec("newmark_sweep", default, f"{case['name']} {k:g} "
                                         f"{localised}", scene, settings, case_name=case["name"],
                                         integrator=default, dt=NEWMARK_DT, est_s=2.0,
