@@ -16,10 +16,7 @@ constexpr double min_reversal_fraction = 0.05;
 
 System::ReversalScan System::scan_slip_reversals(double dt) const
 {
-  double largest_force = 0.0;
-  for (const Contact& c : trial_contacts)
-    largest_force = std::max(largest_force, c.trial.normal_force);
-  const double negligible = model.contacts.flip_force_ratio * largest_force;
+  const double negligible = negligible_contact_force();
   ReversalScan scan;
   for (std::size_t k = 0; k < trial_contacts.size(); ++k)
   {

@@ -1001,14 +1001,17 @@ Eigen::VectorXd System::tie_increments(const Eigen::VectorXd& d) const
   return delta;
 }
 
-std::size_t System::update_trial_states(unsigned iteration, std::size_t& n_ignored)
+double System::negligible_contact_force() const
 {
-  // The force below which a contact carries almost nothing: a fraction of the largest normal
-  // force of the trials [N].
   double largest_force = 0.0;
   for (const Contact& c : trial_contacts)
     largest_force = std::max(largest_force, c.trial.normal_force);
-  const double negligible = model.contacts.flip_force_ratio * largest_force;
+  return model.contacts.flip_force_ratio * largest_force;
+}
+
+std::size_t System::update_trial_states(unsigned iteration, std::size_t& n_ignored)
+{
+  const double negligible = negligible_contact_force();
   std::size_t n_changes = 0;
   for (std::size_t k = 0; k < trial_contacts.size(); ++k)
   {

@@ -60,7 +60,7 @@ enum class StepOutcome
   joint_broken,
   energy_growth, ///< stored energy exceeds 10x the energy put in: something feeds the model
   /// a sliding contact reversed its slip within the step and its friction, acting the wrong
-  /// way for part of it, left more than the tolerated speed error
+  /// way for part of it, left more than the tolerated slip error
   /// (System::localize_slip_reversals); the step is redone to end before the reversal
   /// (StepStatus::reversal_fraction)
   slip_reversal
@@ -165,9 +165,8 @@ public:
   /// within the step with a slip error (slip_error of SlipReversal::speed_error) above
   /// `tolerance` [m]: a step applies the end state's shear force throughout, so the friction
   /// acted the wrong way for part of it, an error that repeated reversals add up (two-way
-  /// sliding). With
-  /// generalized-alpha, a step in which such a contact's friction turns around is taken with
-  /// DDA's scheme. 0 (the default) accepts every step as it is.
+  /// sliding). With generalized-alpha, a step in which such a contact's friction turns around
+  /// is taken with DDA's scheme. 0 (the default) accepts every step as it is.
   void localize_slip_reversals(double tolerance) { reversal_tolerance = tolerance; }
 
   /// Ties m points, each on the boundary of its block, to `body`, which the System steps with
@@ -304,6 +303,9 @@ private:
   /// iteration back (from `iteration` 3 on, not those of contacts carrying almost nothing,
   /// which are counted in `n_ignored`).
   std::size_t update_trial_states(unsigned iteration, std::size_t& n_ignored);
+  /// The force below which a trial contact carries almost nothing [N]:
+  /// ContactSettings::flip_force_ratio of the largest normal force of the trials.
+  double negligible_contact_force() const;
   /// Raises the penalty of the contacts that penetrate deeper than allowed; false if every one
   /// is at ContactSettings::max_penalty_factor already.
   bool raise_penalties();
