@@ -1192,15 +1192,16 @@ SceneSchema::SceneSchema()
             .meaning("dt multiplier after an accepted step, up to dt"),
         key("reversal_tolerance", T::number)
             .unit("m")
-            .default_yaml("0")
+            .default_yaml("1e-6")
             .at_least(0)
             .meaning("adaptive control: the slip error a sliding contact's reversal within a "
                      "step may leave (its friction acted the wrong way for part of the step: "
                      "the speed error times the duration of the slide it ends); a step with a "
                      "larger one is redone to end just before the reversal and dt goes back up "
-                     "at the next step. 0: no localisation. 1e-6 makes two-way sliding on a "
-                     "shaken joint exact (docs/verification/failure.md, part 1b) but lets some "
-                     "tunnels gain energy, hence off by default (docs/design.md, Integrators)")}});
+                     "at the next step; with generalized-alpha, a step in which friction turns "
+                     "around is redone from the jump. 0: no localisation (two-way sliding on a "
+                     "shaken joint several % off Newmark's; docs/verification/failure.md, part "
+                     "1b)")}});
 
   all_sections.push_back(
       {"contacts",

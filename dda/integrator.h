@@ -12,7 +12,10 @@ enum class Integrator
   /// Chung & Hulbert's generalized-alpha: second order, high frequencies damped to the chosen
   /// spectral radius rho_inf (TimeSettings::spectral_radius) with the least low-frequency damping
   generalized_alpha,
-  dda,                ///< Shi's scheme, beta = 1/2, gamma = 1: first order, dissipative
+  /// Shi's scheme, beta = 1/2, gamma = 1: first order; dissipative at omega dt near 1 but not
+  /// at high frequencies (spectral radius 1 as omega dt grows: a stiff contact's velocity
+  /// flips sign each step instead of decaying)
+  dda,
   newmark_trapezoidal ///< beta = 1/4, gamma = 1/2: second order, conserves energy
 };
 

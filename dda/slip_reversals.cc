@@ -1,7 +1,11 @@
 // System::scan_slip_reversals: when, within the step being tried, a sliding contact's slip
-// reverses (dda/contact/slip_reversal), the event adaptive step control localises.
+// reverses (dda/contact/slip_reversal), the event adaptive step control localises; and the
+// restart of generalized-alpha where friction turns around within a step.
 #include "dda/contact/slip_reversal.h"
+#include "dda/submatrices.h"
 #include "dda/system.h"
+
+#include <Eigen/Cholesky>
 
 #include <algorithm>
 #include <cmath>
@@ -39,14 +43,48 @@ System::ReversalScan System::scan_slip_reversals(double dt) const
     if (r.at >= min_reversal_fraction && slip_error(r.speed_error, duration) > reversal_tolerance &&
         (scan.earliest == 0.0 || r.at < scan.earliest))
       scan.earliest = r.at;
-    // Friction turned around in this step: generalized-alpha's velocity lag alpha_f Delta v.
-    const bool turns = c.trial.shear_force != 0.0 &&
+    // Friction turned around in this step (from slide to slide: a lock force changes with the
+    // displacement, continuously): generalized-alpha's velocity lag alpha_f Delta v.
+    const bool turns = c.trial.state == ContactState::slide &&
                        std::signbit(c.forces.shear_force) != std::signbit(c.trial.shear_force);
     if (turns && slip_error(step_integration.alpha_f * std::abs(v1 - m.velocity), duration) >
                      reversal_tolerance)
-      scan.friction_turns = true;
+      scan.friction_turns.push_back(k);
   }
   return scan;
+}
+
+void System::restart_at_friction_jumps(const std::vector<std::size_t>& turning)
+{
+  const auto add = [this](std::size_t i, const Vector6& jump)
+  {
+    Block& b = blocks[i];
+    if (std::none_of(friction_jumps.begin(), friction_jumps.end(),
+                     [i](const StateBeforeJump& s) { return s.block == i; }))
+      friction_jumps.push_back({i, b.acceleration, b.force});
+    const Matrix6 m = mass_matrix(linearisation_moments(b), block_density(b));
+    b.force += jump;
+    b.acceleration += m.ldlt().solve(jump);
+  };
+  for (const std::size_t k : turning)
+  {
+    const Contact& c = trial_contacts[k];
+    const ContactFrame& f = frames[k];
+    // S acts on the vertex block as -S t and on the edge block as +S t.
+    const Vector2 jump = (c.trial.shear_force - c.forces.shear_force) * f.tangent;
+    add(c.vertex_block, -f.t_vertex.transpose() * jump);
+    add(c.edge_block, f.t_edge.transpose() * jump);
+  }
+}
+
+void System::undo_friction_jumps()
+{
+  for (const StateBeforeJump& s : friction_jumps)
+  {
+    blocks[s.block].acceleration = s.acceleration;
+    blocks[s.block].force = s.force;
+  }
+  friction_jumps.clear();
 }
 
 } // namespace ddafem::dda

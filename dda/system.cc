@@ -363,6 +363,12 @@ void System::tie(TiedBody& body, const std::vector<MaterialPoint>& points)
 
 StepStatus System::advance(double dt)
 {
+  undo_friction_jumps(); // each attempt starts from the accepted state
+  return attempt_step(dt);
+}
+
+StepStatus System::attempt_step(double dt)
+{
   const std::string when =
       "at t = " + format_time(current_time) + " (dt = " + format_time(dt) + ")";
   ++timings.n_attempts;
@@ -461,10 +467,7 @@ StepStatus System::advance(double dt)
     return status;
   }
   // Slip reversals: end the step before one that its friction would get wrong; a step at which
-  // friction turns around takes DDA's scheme, as the first step of a motion does:
-  // generalized-alpha's (1 - alpha_f) r_{n+1} + alpha_f r_n would apply the jump Delta r only
-  // in part and leave the velocity alpha_f dt Delta r / m behind for as long as the new
-  // friction lasts (a first-order error at every reversal of two-way sliding).
+  // friction turns around is redone with generalized-alpha restarted at the jump.
   if (reversal_tolerance > 0.0 && mode == StageMode::dynamic)
   {
     const ReversalScan scan = scan_slip_reversals(dt);
@@ -476,10 +479,10 @@ StepStatus System::advance(double dt)
                        " after the step's start " + when;
       return status;
     }
-    if (scan.friction_turns && !motion_starts)
+    if (!scan.friction_turns.empty() && step_integration.alpha_f > 0.0 && friction_jumps.empty())
     {
-      motion_starts = true;
-      return advance(dt);
+      restart_at_friction_jumps(scan.friction_turns);
+      return attempt_step(dt);
     }
   }
 
@@ -514,6 +517,7 @@ StepStatus System::advance(double dt)
   {
     current_time += dt;
     motion_starts = false;
+    friction_jumps.clear(); // the restarted state is the accepted one
   }
   timings.update += seconds_since(start);
   ++timings.n_steps;
@@ -1021,7 +1025,8 @@ std::size_t System::update_trial_states(unsigned iteration, std::size_t& n_ignor
                              f.t_edge * solution.segment<6>(6 * c.edge_block);
     c.end_gap = c.gap + f.normal.dot(relative);
     c.step_slip = f.tangent.dot(relative);
-    const ContactForces next = evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip);
+    const ContactForces next = iteration_trial(
+        iteration, c.trial, evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip));
     // A contact that ends the step within rounding of zero gap (1e-12 of the model size; its
     // forces are then p x that, e.g. 0.5 N) is decided by rounding noise: it carries nothing
     // in either state and may flip between iterations (the head joints of bricks falling

@@ -166,7 +166,8 @@ public:
   /// `tolerance` [m]: a step applies the end state's shear force throughout, so the friction
   /// acted the wrong way for part of it, an error that repeated reversals add up (two-way
   /// sliding). With generalized-alpha, a step in which such a contact's friction turns around
-  /// is taken with DDA's scheme. 0 (the default) accepts every step as it is.
+  /// is redone from the right-hand limit of the start state (restart_at_friction_jumps). 0 (the
+  /// default) accepts every step as it is.
   void localize_slip_reversals(double tolerance) { reversal_tolerance = tolerance; }
 
   /// Ties m points, each on the boundary of its block, to `body`, which the System steps with
@@ -316,11 +317,24 @@ private:
     /// the earliest reversal (SlipReversal::at, a fraction of the step) whose slip error
     /// (slip_error of its speed error) exceeds the reversal tolerance; 0 if there is none
     double earliest = 0.0;
-    /// a contact's friction turned around in the step with a generalized-alpha velocity lag,
-    /// alpha_f |v1 - v0|, whose slip error exceeds the reversal tolerance
-    bool friction_turns = false;
+    /// the trial contacts (indices) whose friction turned around from slide to slide in the
+    /// step with a generalized-alpha velocity lag, alpha_f |v1 - v0|, whose slip error exceeds
+    /// the reversal tolerance
+    std::vector<std::size_t> friction_turns;
   };
   ReversalScan scan_slip_reversals(double dt) const;
+  /// Friction that turns around in a step jumps by Delta S = S_end - S_start [N] along the
+  /// contact's tangent. Generalized-alpha's (1 - alpha_f) r_{n+1} + alpha_f r_n would apply the
+  /// jump only in part and leave the velocity alpha_f dt Delta r / m behind for as long as the
+  /// new friction lasts (a first-order error at every reversal of two-way sliding). Restarts
+  /// the integrator at the jump instead, as at any discontinuous load: the start state of the
+  /// blocks on each side takes its right-hand limit, r_n + Delta r and a_n + M^-1 Delta r (the
+  /// displacements, hence every other force, are continuous). The state before is kept in
+  /// `friction_jumps` until the step is accepted or undo_friction_jumps() restores it.
+  void restart_at_friction_jumps(const std::vector<std::size_t>& turning);
+  void undo_friction_jumps();
+  /// One attempt at a step (advance() without undoing an earlier attempt's friction jumps).
+  StepStatus attempt_step(double dt);
   void set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings);
   std::size_t coupling_of(std::size_t i, std::size_t j) const;
   /// After an accepted step: bonded joints beyond their strength break. Returns the message of
@@ -400,7 +414,14 @@ private:
   /// of generalized-alpha takes DDA's scheme, in which neither enters and after which M a = r
   /// holds (the Newmark schemes start from a = 0 as they always have).
   bool motion_starts = true;
-  IntegratorCoefficients step_integration; ///< of the step being tried
+  /// A block's accepted acceleration and force before restart_at_friction_jumps changed them.
+  struct StateBeforeJump
+  {
+    std::size_t block = 0;
+    Vector6 acceleration, force;
+  };
+  std::vector<StateBeforeJump> friction_jumps; ///< of the step being tried
+  IntegratorCoefficients step_integration;     ///< of the step being tried
 
   std::vector<std::pair<std::size_t, std::size_t>> coupling_pairs; ///< the matrix's, sorted
   BlockSparseMatrix matrix;

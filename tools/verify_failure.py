@@ -95,7 +95,7 @@ JOINT_STIFFNESS = 1e11
 # slip reversals localised (the default) and not (time.reversal_tolerance 0).
 SWEEP_CASES = ["two_way_flat_4Hz", "one_way_10deg_5Hz"]
 SWEEP_STIFFNESS = [1e10, 1e11, 1e12]
-REVERSAL_TOLERANCE = 1e-6  # m, time.reversal_tolerance of the localised runs (default: 0, off)
+REVERSAL_TOLERANCE = 1e-6  # m, time.reversal_tolerance of the localised runs (the default)
 ROCK = {"density": 2650, "youngs_modulus": 10e9, "poisson_ratio": 0.25}
 
 # Newmark cases: incline alpha [deg], friction phi [deg], amplitude A over the yield acceleration
@@ -612,9 +612,10 @@ def sweep_lines(d):
         f"{d['default_integrator']} at dt {NEWMARK_DT:g} s on the cases that slide to and fro, "
         "per contact normal stiffness (shear 0.4 of it), with slip reversals localised "
         f"(`time.reversal_tolerance: {REVERSAL_TOLERANCE:g}`: a step in which a sliding contact "
-        "turns around is redone to end just before it, and the step at the turn takes DDA's "
-        "scheme) and not (`time.reversal_tolerance: 0`, the default: localisation lets some "
-        "tunnels gain energy, docs/design.md, Integrators). The elastic shear spring of a softer joint "
+        "turns around is redone to end just before it, and the step at the turn is redone "
+        "with the integrator restarted at the friction's jump; the default) and not "
+        "(`time.reversal_tolerance: 0`; docs/design.md, Integrators). The elastic shear spring "
+        "of a softer joint "
         "stores mu N / p_s at every reversal and gives it back: an error of the joint, not of "
         "the integrator, that shrinks as the joint stiffens. Without localisation each "
         "reversal leaves the friction acting the wrong way for part of a step.", "",
@@ -676,8 +677,8 @@ def write_markdown(path, data):
         "final error = |s(T) - s_ref(T)| / |s_ref(T)| at the end of the run; history error = "
         "max over the history rows of |s - s_ref| / max |s_ref|. Below yield: the largest |s|. "
         "Where the sliding reverses without a stick phase (two_way_flat_4Hz: six times), each "
-        "reversal leaves the friction acting the wrong way for part of a step unless "
-        "`time.reversal_tolerance` is set (off by default), which localises it (part 1b; "
+        "reversal would leave the friction acting the wrong way for part of a step; "
+        "`time.reversal_tolerance` (1e-6 m by default) localises it (part 1b, with and without; "
         "docs/design.md, section Integrators).",
         "",
         "| case | alpha [deg] | phi [deg] | A / a_y | f [Hz] x cycles | integrator | steps | "

@@ -43,6 +43,21 @@ ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start
   return out;
 }
 
+ContactForces iteration_trial(unsigned iteration, const ContactForces& previous,
+                              const ContactForces& next)
+{
+  const bool reverses = previous.state == ContactState::slide &&
+                        next.state == ContactState::slide && previous.shear_force != 0.0 &&
+                        next.shear_force != 0.0 &&
+                        std::signbit(previous.shear_force) != std::signbit(next.shear_force);
+  if (iteration < 2 || !reverses)
+    return next;
+  ContactForces locked = next;
+  locked.state = ContactState::lock;
+  locked.shear_force = 0.0; // provisional: the law gives it from the next solution's slip
+  return locked;
+}
+
 bool change_holds_iteration(unsigned iteration, const ContactForces& before,
                             const ContactForces& after, double negligible)
 {

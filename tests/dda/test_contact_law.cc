@@ -180,3 +180,33 @@ TEST(ContactLaw, FlipsAtAlmostNoForceAreLetGoFromTheThirdIteration)
   // Opening from nothing to nothing: let go.
   EXPECT_FALSE(change_holds_iteration(4, ContactForces{}, lock_small, negligible));
 }
+
+// A sliding direction that reverses between two trials of the open-close iteration is taken as
+// lock (the slip that keeps the elastic trial within the limit lies between the two sliding
+// solutions); in the first iteration the previous trial is the step's start and a reversal
+// stands. Everything else passes through unchanged.
+TEST(ContactLaw, SlidingThatReversesBetweenTrialsIsTakenAsLock)
+{
+  ContactForces slide_plus = closed(1000.0, 500.0, false), slide_minus = slide_plus;
+  slide_plus.state = slide_minus.state = ContactState::slide;
+  slide_minus.shear_force = -500.0;
+
+  const ContactForces locked = iteration_trial(2, slide_plus, slide_minus);
+  EXPECT_EQ(locked.state, ContactState::lock);
+  EXPECT_NEAR(locked.normal_force, 1000.0, tol);
+  EXPECT_NEAR(locked.shear_force, 0.0, tol);
+  EXPECT_FALSE(locked.intact);
+  EXPECT_EQ(iteration_trial(5, slide_minus, slide_plus).state, ContactState::lock);
+
+  // The step's own reversal (iteration 1: the previous trial is the start state).
+  EXPECT_EQ(iteration_trial(1, slide_plus, slide_minus).state, ContactState::slide);
+  EXPECT_NEAR(iteration_trial(1, slide_plus, slide_minus).shear_force, -500.0, tol);
+  // Same direction, lock to slide, slide to lock: the law's trial as it is.
+  EXPECT_EQ(iteration_trial(3, slide_plus, slide_plus).state, ContactState::slide);
+  EXPECT_EQ(iteration_trial(3, closed(1000.0, 100.0), slide_minus).state, ContactState::slide);
+  EXPECT_EQ(iteration_trial(3, slide_plus, closed(1000.0, -100.0)).state, ContactState::lock);
+  // Frictionless sliding has no direction to reverse.
+  ContactForces smooth = slide_plus;
+  smooth.shear_force = 0.0;
+  EXPECT_EQ(iteration_trial(3, smooth, slide_minus).state, ContactState::slide);
+}
