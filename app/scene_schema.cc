@@ -1159,8 +1159,10 @@ SceneSchema::SceneSchema()
             .default_yaml("generalized_alpha")
             .meaning("generalized_alpha (Chung & Hulbert 1993): second order, damps stiff "
                      "contact modes to spectral_radius per step (right for frictional sliding "
-                     "and for waves, docs/verification/failure.md); dda: Shi's dissipative "
-                     "first-order scheme (damps waves); newmark_trapezoidal: energy-conserving, "
+                     "and for waves, docs/verification/failure.md); dda: Shi's first-order "
+                     "scheme (damps waves, but not stiff contact modes: its spectral radius "
+                     "returns to 1 as omega dt grows, and a rock mass at rest can gain energy, "
+                     "docs/design.md, Integrators); newmark_trapezoidal: energy-conserving, "
                      "second order (penalty contacts ring: blocks bounce and slide too far)"),
         key("spectral_radius", T::number)
             .default_yaml("0.2")
@@ -1192,16 +1194,18 @@ SceneSchema::SceneSchema()
             .meaning("dt multiplier after an accepted step, up to dt"),
         key("reversal_tolerance", T::number)
             .unit("m")
-            .default_yaml("1e-6")
+            .default_yaml("0")
             .at_least(0)
             .meaning("adaptive control: the slip error a sliding contact's reversal within a "
                      "step may leave (its friction acted the wrong way for part of the step: "
                      "the speed error times the duration of the slide it ends); a step with a "
                      "larger one is redone to end just before the reversal and dt goes back up "
                      "at the next step; with generalized-alpha, a step in which friction turns "
-                     "around is redone from the jump. 0: no localisation (two-way sliding on a "
-                     "shaken joint several % off Newmark's; docs/verification/failure.md, part "
-                     "1b)")}});
+                     "around is redone from the jump, and the open-close iteration locks a "
+                     "contact whose sliding reverses between trials. 0: none. 1e-6 makes "
+                     "two-way sliding on a shaken joint exact (docs/verification/failure.md, "
+                     "part 1b) but lets some rock masses at rest gain energy, hence off by "
+                     "default (docs/design.md, Integrators)")}});
 
   all_sections.push_back(
       {"contacts",

@@ -217,9 +217,10 @@ struct TimeSettings
   double growth_factor = 1.2; ///< dt multiplier after a successful step, up to `dt`
   /// Adaptive control: the slip error [m] that a slip reversal within a step may leave, where
   /// the step's friction acted the wrong way for part of it (slip_error); a step with a larger
-  /// one is redone to end just before the reversal (System::localize_slip_reversals). 0: no
-  /// localisation (two-way sliding several % off; docs/design.md, Integrators).
-  double reversal_tolerance = 1e-6;
+  /// one is redone to end just before the reversal (System::localize_slip_reversals). 0 (the
+  /// default): no localisation; 1e-6 makes two-way sliding exact but lets some rock masses at
+  /// rest gain energy (docs/design.md, Integrators).
+  double reversal_tolerance = 0.0;
 };
 
 /// Settings of contact detection and of the open-close iteration (Shi 1988, ch. 4).

@@ -1016,6 +1016,7 @@ double System::negligible_contact_force() const
 std::size_t System::update_trial_states(unsigned iteration, std::size_t& n_ignored)
 {
   const double negligible = negligible_contact_force();
+  const bool localising = reversal_tolerance > 0.0 && mode == StageMode::dynamic;
   std::size_t n_changes = 0;
   for (std::size_t k = 0; k < trial_contacts.size(); ++k)
   {
@@ -1025,8 +1026,10 @@ std::size_t System::update_trial_states(unsigned iteration, std::size_t& n_ignor
                              f.t_edge * solution.segment<6>(6 * c.edge_block);
     c.end_gap = c.gap + f.normal.dot(relative);
     c.step_slip = f.tangent.dot(relative);
-    const ContactForces next = iteration_trial(
-        iteration, c.trial, evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip));
+    const ContactForces law = evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip);
+    // With slip reversals localised (only then: in a rock mass at rest the rule feeds energy,
+    // docs/design.md, Integrators), sliding that reverses between trials is taken as lock.
+    const ContactForces next = localising ? iteration_trial(iteration, c.trial, law) : law;
     // A contact that ends the step within rounding of zero gap (1e-12 of the model size; its
     // forces are then p x that, e.g. 0.5 N) is decided by rounding noise: it carries nothing
     // in either state and may flip between iterations (the head joints of bricks falling

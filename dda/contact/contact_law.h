@@ -56,7 +56,7 @@ ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start
 /// directions for ever (a block whose slip stops and turns within the step). The next
 /// iteration solves with the shear spring and the law then decides lock or slide from where
 /// the slip ends. In the first iteration the previous trial is the start state, and a
-/// reversal is the step's own.
+/// reversal is the step's own. (System applies it only with slip reversals localised.)
 ContactForces iteration_trial(unsigned iteration, const ContactForces& previous,
                               const ContactForces& next);
 
