@@ -3,7 +3,7 @@
 // slip reverses without a stick phase, which a step gets wrong unless the reversal is localised
 // (time.reversal_tolerance) and generalized-alpha is restarted at the friction's jump.
 //
-// Tolerance: the acceptance, 1% of the largest slip (about 24 mm here) for the final
+// Tolerance: the acceptance, 1% of the largest slip (27.6 mm here) for the final
 // slip and over the history. The independent integration (explicit, 1 us steps, stick decided
 // at each zero crossing of the slip velocity) is within 1e-3 of that; the block's contacts
 // (1e11 N/m, 10 E x 1 m) store mu N / p_s = 0.07 um of elastic shear, 3e-6 of the slip.
