@@ -1194,18 +1194,19 @@ SceneSchema::SceneSchema()
             .meaning("dt multiplier after an accepted step, up to dt"),
         key("reversal_tolerance", T::number)
             .unit("m")
-            .default_yaml("0")
+            .default_yaml("1e-6")
             .at_least(0)
             .meaning("adaptive control: the slip error a sliding contact's reversal within a "
                      "step may leave (its friction acted the wrong way for part of the step: "
                      "the speed error times the duration of the slide it ends); a step with a "
                      "larger one is redone to end just before the reversal and dt goes back up "
                      "at the next step; with generalized-alpha, a step in which friction turns "
-                     "around is redone from the jump, and the open-close iteration locks a "
-                     "contact whose sliding reverses between trials. 0: none. 1e-6 makes "
-                     "two-way sliding on a shaken joint exact (docs/verification/failure.md, "
-                     "part 1b) but lets some rock masses at rest gain energy, hence off by "
-                     "default (docs/design.md, Integrators)")}});
+                     "around is redone from the jump and the open-close iteration locks a "
+                     "contact whose sliding reverses between trials (these two only on slides "
+                     "of at least 10 steps: shorter ones are contacts chattering under a wave). "
+                     "1e-6 makes two-way sliding on a shaken joint exact "
+                     "(docs/verification/failure.md, part 1b); 0: none (docs/design.md, "
+                     "Integrators)")}});
 
   all_sections.push_back(
       {"contacts",

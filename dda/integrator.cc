@@ -1,6 +1,7 @@
 #include "dda/integrator.h"
 
 #include <algorithm>
+#include <tuple>
 
 namespace ddafem::dda
 {
@@ -55,10 +56,8 @@ KinematicState advance_state(const IntegratorCoefficients& c, const Matrix6& mas
                              const KinematicState& start, const Vector6& d, double dt)
 {
   KinematicState end;
-  end.acceleration = (d - dt * start.velocity - dt * dt * (0.5 - c.beta) * start.acceleration) /
-                     (c.beta * dt * dt);
-  end.velocity =
-      start.velocity + dt * ((1.0 - c.gamma) * start.acceleration + c.gamma * end.acceleration);
+  std::tie(end.acceleration, end.velocity) =
+      newmark_end<Vector6>(c, dt, d, start.velocity, start.acceleration);
   const Vector6 inertia =
       mass * ((1.0 - c.alpha_m) * end.acceleration + c.alpha_m * start.acceleration);
   end.force = (inertia - c.alpha_f * start.force) / (1.0 - c.alpha_f);

@@ -4,6 +4,8 @@
 
 #include "dda/types.h"
 
+#include <utility>
+
 namespace ddafem::dda
 {
 /// The time integrator.
@@ -63,6 +65,18 @@ struct KinematicState
 /// / (1 - alpha_f), with M the block's mass matrix [kg, kg m, kg m^2].
 Vector6 inertia_force(const IntegratorCoefficients& c, const Matrix6& mass,
                       const KinematicState& start, double dt);
+
+/// Newmark's acceleration and velocity at the end of a step of displacement d from velocity v
+/// and acceleration a at its start: a_{n+1} = (d - dt v - dt^2 (1/2 - beta) a) / (beta dt^2),
+/// v_{n+1} = v + dt ((1 - gamma) a + gamma a_{n+1}). T: a scalar or an Eigen vector.
+template <typename T>
+std::pair<T, T> newmark_end(const IntegratorCoefficients& c, double dt, const T& d, const T& v,
+                            const T& a)
+{
+  const T a1 = (d - dt * v - dt * dt * (0.5 - c.beta) * a) / (c.beta * dt * dt);
+  const T v1 = v + dt * ((1.0 - c.gamma) * a + c.gamma * a1);
+  return {a1, v1};
+}
 
 /// The state at the step's end from the step's displacement d, the state at its start and the
 /// mass matrix the step used: Newmark's a_{n+1}, v_{n+1}, and r_{n+1} from the equation of

@@ -217,10 +217,11 @@ struct TimeSettings
   double growth_factor = 1.2; ///< dt multiplier after a successful step, up to `dt`
   /// Adaptive control: the slip error [m] that a slip reversal within a step may leave, where
   /// the step's friction acted the wrong way for part of it (slip_error); a step with a larger
-  /// one is redone to end just before the reversal (System::localize_slip_reversals). 0 (the
-  /// default): no localisation; 1e-6 makes two-way sliding exact but lets some rock masses at
-  /// rest gain energy (docs/design.md, Integrators).
-  double reversal_tolerance = 0.0;
+  /// one is redone to end just before the reversal (TimeStepper), and with generalized-alpha a
+  /// slide of at least 10 steps whose friction turns around restarts it at the jump
+  /// (System::restart_at_friction_jumps). 1e-6 (the default) makes two-way sliding exact; 0: no
+  /// localisation (docs/design.md, Integrators).
+  double reversal_tolerance = 1e-6;
 };
 
 /// Settings of contact detection and of the open-close iteration (Shi 1988, ch. 4).

@@ -16,7 +16,15 @@ namespace
 {
 /// Reversals earlier in the step than this fraction are taken within it [-].
 constexpr double min_reversal_fraction = 0.05;
+/// Slides shorter than this many steps are contacts chattering under a wave, not a block
+/// sliding on a joint [-].
+constexpr double min_slide_steps = 10.0;
 } // namespace
+
+bool System::slides_long_enough(const Contact& c, double dt) const
+{
+  return c.slide_duration >= min_slide_steps * dt;
+}
 
 System::ReversalScan System::scan_slip_reversals(double dt) const
 {
@@ -47,8 +55,9 @@ System::ReversalScan System::scan_slip_reversals(double dt) const
     // displacement, continuously): generalized-alpha's velocity lag alpha_f Delta v.
     const bool turns = c.trial.state == ContactState::slide &&
                        std::signbit(c.forces.shear_force) != std::signbit(c.trial.shear_force);
-    if (turns && slip_error(step_integration.alpha_f * std::abs(v1 - m.velocity), duration) >
-                     reversal_tolerance)
+    if (turns && slides_long_enough(c, dt) &&
+        slip_error(step_integration.alpha_f * std::abs(v1 - m.velocity), duration) >
+            reversal_tolerance)
       scan.friction_turns.push_back(k);
   }
   return scan;

@@ -291,6 +291,22 @@ private:
   /// Phase 2: the vertex-edge contacts of the pairs, matched to the previous step's to keep
   /// id, state and forces; sets trial_contacts and the matrix structure.
   void update_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
+  /// The vertices tied by an intact joint to another block, (block, vertex, other block)
+  /// sorted, into `jointed_vertices`: they make no contact with that block.
+  void mark_jointed_vertices();
+  bool jointed(std::size_t block, std::size_t vertex, std::size_t other) const;
+  /// Whether vertex va of block a and vertex vb of block b are both tied by intact joints to a
+  /// common third block (which keeps the two corners apart).
+  bool held_by_common_block(std::size_t a, std::size_t va, std::size_t b, std::size_t vb) const;
+  /// The narrow phase: the vertex-edge contacts of the pairs, sorted by key, into
+  /// trial_contacts (without state).
+  void find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
+  /// Id, state, forces and slip history of the previous step's contacts that persist; a new
+  /// contact starts closed if its blocks touch, else open.
+  void inherit_contact_states();
+  /// The matrix structure (joined blocks and blocks in contact) and the contacts' frames at
+  /// the step's start.
+  void set_contact_structure();
   ContactLaw contact_law(const Contact& c) const;
   /// Phase 4: solves with the contacts in their trial states until no state changes.
   /// `new_matrix`: the matrix was assembled for this step (else base_matrix holds it).
@@ -323,6 +339,12 @@ private:
     std::vector<std::size_t> friction_turns;
   };
   ReversalScan scan_slip_reversals(double dt) const;
+  /// Whether the slide a contact is in has lasted at least 10 steps of dt, so that the
+  /// friction restart and the open-close lock rule apply to it. Under a wave, contacts of a
+  /// rock mass at rest slide for a few steps at a time (15 to 120 us at dt 3e-5 s in the
+  /// horseshoe) with speed jumps of 0.1 m/s: restarting or locking those fed energy into it
+  /// (docs/design.md, Integrators); a block sliding on a shaken joint slides for 0.1 s.
+  bool slides_long_enough(const Contact& c, double dt) const;
   /// Friction that turns around in a step jumps by Delta S = S_end - S_start [N] along the
   /// contact's tangent. Generalized-alpha's (1 - alpha_f) r_{n+1} + alpha_f r_n would apply the
   /// jump only in part and leave the velocity alpha_f dt Delta r / m behind for as long as the
@@ -335,6 +357,32 @@ private:
   void undo_friction_jumps();
   /// One attempt at a step (advance() without undoing an earlier attempt's friction jumps).
   StepStatus attempt_step(double dt);
+  /// Phases 1 and 2 of a step: find_contact_candidates among the blocks not removed, then
+  /// update_contacts.
+  void detect_contacts();
+  /// Phase 3: the step's matrix and right-hand side; true if the matrix was assembled anew
+  /// (a small-displacement analysis keeps it while dt is unchanged).
+  bool assemble_step(double dt);
+  /// The tied body (far field) starts its step: its condensed stiffness and force on the ties.
+  /// A failure message, empty if none.
+  std::string begin_tied_step(double dt);
+  /// Phase 4: the solution, with the open-close iteration if there are contacts or ties.
+  StepStatus solve_step(const std::string& when, bool new_matrix);
+  /// Step control on the solution: sets the status's largest vertex displacement and
+  /// penetration, and its outcome if one exceeds its limit (g2 w0; penetration_limit, after
+  /// raising the penalties of the contacts too deep).
+  void check_motion_limits(StepStatus& status, const std::string& when);
+  /// Phase 5: the tied body, blocks and contacts take the solution; time advances. A failure
+  /// message of the tied body, empty if none (then nothing else is updated).
+  std::string accept_step(double dt);
+  /// A boundary beyond its stability limit feeds energy into the model: the status's outcome
+  /// is energy_growth when the stored energy exceeds ten times all the energy ever put in.
+  void check_energy_growth(StepStatus& status);
+  /// Whether slip reversals are localised in this stage (a reversal tolerance, dynamic).
+  bool localising_slip_reversals() const
+  {
+    return reversal_tolerance > 0.0 && mode == StageMode::dynamic;
+  }
   void set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings);
   std::size_t coupling_of(std::size_t i, std::size_t j) const;
   /// After an accepted step: bonded joints beyond their strength break. Returns the message of

@@ -92,10 +92,10 @@ NO_SLIP_LIMIT = 1e-4       # m: largest |s| below yield (elastic shear of the co
 # Part 1b shows what a softer joint's elastic shear adds.
 JOINT_STIFFNESS = 1e11
 # Part 1b: the default integrator on the cases that slide to and fro, per contact penalty, with
-# slip reversals localised (time.reversal_tolerance 1e-6) and not (0, the default).
+# slip reversals localised (time.reversal_tolerance 1e-6, the default) and not (0).
 SWEEP_CASES = ["two_way_flat_4Hz", "one_way_10deg_5Hz"]
 SWEEP_STIFFNESS = [1e10, 1e11, 1e12]
-REVERSAL_TOLERANCE = 1e-6  # m, time.reversal_tolerance of the localised runs (default: 0, off)
+REVERSAL_TOLERANCE = 1e-6  # m, time.reversal_tolerance of the localised runs (the default)
 ROCK = {"density": 2650, "youngs_modulus": 10e9, "poisson_ratio": 0.25}
 
 # Newmark cases: incline alpha [deg], friction phi [deg], amplitude A over the yield acceleration
@@ -613,9 +613,8 @@ def sweep_lines(d):
         "per contact normal stiffness (shear 0.4 of it), with slip reversals localised "
         f"(`time.reversal_tolerance: {REVERSAL_TOLERANCE:g}`: a step in which a sliding contact "
         "turns around is redone to end just before it, and the step at the turn is redone "
-        "with the integrator restarted at the friction's jump) and not "
-        "(`time.reversal_tolerance: 0`, the default: localisation lets some rock masses at rest "
-        "gain energy, docs/design.md, Integrators). The elastic shear spring "
+        "with the integrator restarted at the friction's jump; the default) and not "
+        "(`time.reversal_tolerance: 0`; docs/design.md, Integrators). The elastic shear spring "
         "of a softer joint "
         "stores mu N / p_s at every reversal and gives it back: an error of the joint, not of "
         "the integrator, that shrinks as the joint stiffens. Without localisation each "
@@ -679,7 +678,7 @@ def write_markdown(path, data):
         "max over the history rows of |s - s_ref| / max |s_ref|. Below yield: the largest |s|. "
         "Where the sliding reverses without a stick phase (two_way_flat_4Hz: six times), each "
         "reversal leaves the friction acting the wrong way for part of a step unless "
-        "`time.reversal_tolerance` is set (off by default), which localises it (part 1b; "
+        "`time.reversal_tolerance` localises it (1e-6 m by default; part 1b; "
         "docs/design.md, section Integrators).",
         "",
         "| case | alpha [deg] | phi [deg] | A / a_y | f [Hz] x cycles | integrator | steps | "

@@ -6,9 +6,7 @@ namespace ddafem::dda
 {
 double end_velocity(const IntegratorCoefficients& c, double dt, const TangentialMotion& m)
 {
-  const double a1 =
-      (m.slip - dt * m.velocity - dt * dt * (0.5 - c.beta) * m.acceleration) / (c.beta * dt * dt);
-  return m.velocity + dt * ((1.0 - c.gamma) * m.acceleration + c.gamma * a1);
+  return newmark_end(c, dt, m.slip, m.velocity, m.acceleration).second;
 }
 
 SlipReversal slip_reversal(const ContactForces& start, const ContactForces& end, double v0,

@@ -1,0 +1,323 @@
+#include "dda/system.h"
+
+#include "dda/contact/broad_phase.h"
+#include "dda/submatrices.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+// Contact detection of System: phases 1 and 2 of a step (broad phase, narrow phase, contacts
+// matched to the previous step's) and the matrix structure they give.
+
+namespace ddafem::dda
+{
+namespace
+{
+/// Length [m] over which the leg of `poly` at `vertex` that runs parallel to the edge [e0, e1]
+/// overlaps it, halved (each end of an edge-to-edge contact carries half); 0 if no leg is
+/// parallel within `angle_tolerance` [rad].
+double carried_length(const std::vector<Point>& poly, std::size_t vertex, const Point& e0,
+                      const Point& e1, double angle_tolerance)
+{
+  const std::size_t n = poly.size();
+  const Point& v = poly[vertex];
+  const double edge_length = (e1 - e0).norm();
+  const Vector2 t = (e1 - e0) / edge_length;
+  double best = 0.0;
+  for (const Point& w : {poly[(vertex + 1) % n], poly[(vertex + n - 1) % n]})
+  {
+    const Vector2 leg = w - v;
+    if (std::abs(t.x() * leg.y() - t.y() * leg.x()) > std::sin(angle_tolerance) * leg.norm())
+      continue;
+    const double s0 = t.dot(v - e0), s1 = t.dot(w - e0);
+    const double overlap =
+        std::min(std::max(s0, s1), edge_length) - std::max(std::min(s0, s1), 0.0);
+    best = std::max(best, 0.5 * std::max(overlap, 0.0));
+  }
+  return best;
+}
+} // namespace
+
+std::vector<std::pair<std::size_t, std::size_t>> System::find_contact_candidates() const
+{
+  std::vector<BoundingBox> boxes;
+  boxes.reserve(blocks.size());
+  for (const Block& b : blocks)
+    boxes.push_back(bounding_box(b.vertices, 0.5 * contact_search_distance));
+  return overlapping_pairs(boxes);
+}
+
+void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs)
+{
+  mark_jointed_vertices();
+  find_trial_contacts(pairs);
+  inherit_contact_states();
+  set_contact_structure();
+}
+
+void System::mark_jointed_vertices()
+{
+  // Vertices tied by an intact bonded joint to the other block do not make contacts there. In a
+  // static stage which vertices those are is decided in the initial configuration: in the
+  // current one the joint's shear displacement (forces / springs, 1e-5 m under MN in-situ
+  // forces) can carry an end vertex in and out of the tolerance from step to step, and the
+  // contact it then makes came and went every other step (a 2-cycle that never reached
+  // equilibrium). A dynamic stage follows the current configuration: a vertex that has left the
+  // joint's end meets the other block through a contact.
+  jointed_vertices.clear();
+  const double tol = 1e-6 * w0;
+  for (const Joint& j : joints)
+  {
+    const bool initial = mode == StageMode::static_equilibrium;
+    const Point& p = initial ? j.points[0].on_a.initial : j.points[0].on_a.position;
+    const Vector2 t = j.tangent(initial);
+    const double length =
+        ((initial ? j.points[1].on_a.initial : j.points[1].on_a.position) - p).norm();
+    const auto mark = [&](std::size_t block, std::size_t edge, std::size_t other)
+    {
+      const std::vector<Point>& v =
+          initial ? blocks[block].initial_vertices : blocks[block].vertices;
+      for (const std::size_t k : {edge, (edge + 1) % v.size()})
+      {
+        const double s = t.dot(v[k] - p);
+        if (s > -tol && s < length + tol)
+          jointed_vertices.emplace_back(block, k, other);
+      }
+    };
+    mark(j.block_a, j.edge_a, j.block_b);
+    mark(j.block_b, j.edge_b, j.block_a);
+  }
+  std::sort(jointed_vertices.begin(), jointed_vertices.end());
+}
+
+bool System::jointed(std::size_t block, std::size_t vertex, std::size_t other) const
+{
+  return std::binary_search(jointed_vertices.begin(), jointed_vertices.end(),
+                            std::make_tuple(block, vertex, other));
+}
+
+bool System::held_by_common_block(std::size_t a, std::size_t va, std::size_t b,
+                                  std::size_t vb) const
+{
+  // The blocks vertex va of a is tied to: a range of the sorted list.
+  auto it = std::lower_bound(jointed_vertices.begin(), jointed_vertices.end(),
+                             std::make_tuple(a, va, std::size_t{0}));
+  for (; it != jointed_vertices.end() && std::get<0>(*it) == a && std::get<1>(*it) == va; ++it)
+    if (jointed(b, vb, std::get<2>(*it)))
+      return true;
+  return false;
+}
+
+void System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs)
+{
+  // Two convex blocks held by an intact joint touch only along it (their other vertices lie
+  // more than d0 away, d0 being below a quarter of the shortest edge): no narrow phase.
+  bonded_pairs.clear();
+  for (const Joint& j : joints)
+    if (convex[j.block_a] && convex[j.block_b])
+      bonded_pairs.emplace_back(j.block_a, j.block_b);
+  std::sort(bonded_pairs.begin(), bonded_pairs.end());
+
+  trial_contacts.clear();
+  for (const auto& [a, b] : pairs)
+  {
+    if (std::binary_search(bonded_pairs.begin(), bonded_pairs.end(), std::make_pair(a, b)))
+      continue;
+    const std::vector<VertexEdgePair> found = find_vertex_edge_pairs(
+        blocks[a].vertices, blocks[b].vertices, contact_search_distance, angle_tolerance);
+    for (const VertexEdgePair& f : found)
+    {
+      Contact c;
+      c.vertex_block = f.vertex_polygon == 0 ? a : b;
+      c.edge_block = f.vertex_polygon == 0 ? b : a;
+      if (jointed(c.vertex_block, f.vertex, c.edge_block))
+        continue;
+      // Corners of diagonal neighbours (four blocks meeting at a point of a jointed grid): when
+      // both corners are held by intact joints to a common third block, that block keeps them
+      // apart and the vertex-vertex contact between them would only flip between states at
+      // rounding-level gaps, costing open-close iterations.
+      if (f.kind == ContactKind::vertex_vertex)
+      {
+        const std::vector<Point>& ev = blocks[c.edge_block].vertices;
+        const std::size_t corner = f.ratio < 0.5 ? f.edge : (f.edge + 1) % ev.size();
+        if (held_by_common_block(c.vertex_block, f.vertex, c.edge_block, corner))
+          continue;
+      }
+      c.vertex = f.vertex;
+      c.edge = f.edge;
+      c.kind = f.kind;
+      c.ratio = f.ratio;
+      c.gap = f.distance;
+      c.joint_material = joint_material_at_edge(model, c.edge_block, c.edge, c.vertex_block);
+      const std::vector<Point>& ev = blocks[c.edge_block].vertices;
+      c.length = carried_length(blocks[c.vertex_block].vertices, c.vertex, ev[c.edge],
+                                ev[(c.edge + 1) % ev.size()], angle_tolerance);
+      trial_contacts.push_back(c);
+    }
+  }
+  std::sort(trial_contacts.begin(), trial_contacts.end(),
+            [](const Contact& x, const Contact& y) { return x.key() < y.key(); });
+}
+
+void System::inherit_contact_states()
+{
+  // Keep id, state and forces of contacts that persist; a vertex that moved on to another edge
+  // of the same block inherits its previous contact there (sliding past a corner).
+  for (Contact& c : trial_contacts)
+  {
+    const auto same =
+        std::lower_bound(contacts.begin(), contacts.end(), c.key(),
+                         [](const Contact& x, const auto& key) { return x.key() < key; });
+    const Contact* previous = nullptr;
+    if (same != contacts.end() && same->key() == c.key())
+      previous = &*same;
+    else
+      for (auto it = std::lower_bound(
+               contacts.begin(), contacts.end(),
+               std::make_tuple(c.vertex_block, c.vertex, c.edge_block, std::size_t{0}),
+               [](const Contact&x, const auto&key) { return x.key() < key; });
+           it != contacts.end() && it->vertex_block == c.vertex_block && it->vertex == c.vertex &&
+           it->edge_block == c.edge_block;
+           ++it)
+        if (it->forces.state != ContactState::open)
+          previous = &*it;
+    if (previous)
+    {
+      c.id = previous->id;
+      c.forces = previous->forces;
+      c.total_slip = previous->total_slip;
+      c.slide_duration = previous->slide_duration;
+      c.penalty_factor = previous->penalty_factor;
+    }
+    else
+    {
+      // A new contact starts closed if its blocks touch (within the 1e-9 of the model size that
+      // joins shared edges): blocks stacked in the scene then start closed together, where
+      // starting open would close them one course per open-close iteration (a stack of n
+      // courses would need n iterations, and Shi's 6 then cut dt without end). Those in
+      // tension open in the first iteration.
+      c.id = next_contact_id++;
+      c.forces.state = c.gap <= 2e-9 * w0 ? ContactState::lock : ContactState::open;
+    }
+    if (const auto raised = raised_penalties.find(c.key()); raised != raised_penalties.end())
+      c.penalty_factor = std::max(c.penalty_factor, raised->second);
+    c.trial = c.forces;
+  }
+}
+
+void System::set_contact_structure()
+{
+  // The matrix couples joined blocks and blocks in contact.
+  std::vector<std::pair<std::size_t, std::size_t>> couplings;
+  for (const Joint& j : joints)
+    couplings.emplace_back(j.block_a, j.block_b);
+  for (const Contact& c : trial_contacts)
+    couplings.emplace_back(std::min(c.vertex_block, c.edge_block),
+                           std::max(c.vertex_block, c.edge_block));
+  set_matrix_structure(std::move(couplings));
+  for (Contact& c : trial_contacts)
+    c.coupling = coupling_of(c.vertex_block, c.edge_block);
+
+  // The contacts' frames in the configuration at the step start.
+  frames.resize(trial_contacts.size());
+  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
+  {
+    const Contact& c = trial_contacts[k];
+    const Block& vb = blocks[c.vertex_block];
+    const Block& eb = blocks[c.edge_block];
+    const Point& e0 = eb.vertices[c.edge];
+    const Point& e1 = eb.vertices[(c.edge + 1) % eb.vertices.size()];
+    ContactFrame& f = frames[k];
+    f.tangent = (e1 - e0).normalized();
+    f.normal = Vector2(f.tangent.y(), -f.tangent.x());
+    f.t_vertex = displacement_matrix(vb.moments.centroid, vb.vertices[c.vertex]);
+    f.t_edge = displacement_matrix(eb.moments.centroid, e0 + c.ratio * (e1 - e0));
+  }
+}
+
+void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings)
+{
+  // The tied body couples every pair of blocks with tie points (its condensed stiffness is
+  // dense over them).
+  for (std::size_t i = 0; i < tie_blocks.size(); ++i)
+    for (std::size_t j = i + 1; j < tie_blocks.size(); ++j)
+      couplings.emplace_back(tie_blocks[i], tie_blocks[j]);
+  std::sort(couplings.begin(), couplings.end());
+  couplings.erase(std::unique(couplings.begin(), couplings.end()), couplings.end());
+  if (couplings != coupling_pairs || matrix.n_blocks() != blocks.size())
+  {
+    coupling_pairs = std::move(couplings);
+    matrix = BlockSparseMatrix(blocks.size(), coupling_pairs);
+  }
+  for (Joint& j : joints)
+    j.coupling = coupling_of(j.block_a, j.block_b);
+}
+
+std::size_t System::coupling_of(std::size_t i, std::size_t j) const
+{
+  const auto key = std::make_pair(std::min(i, j), std::max(i, j));
+  return static_cast<std::size_t>(
+      std::lower_bound(coupling_pairs.begin(), coupling_pairs.end(), key) - coupling_pairs.begin());
+}
+
+ContactCounts System::contact_counts() const
+{
+  ContactCounts n;
+  for (const Contact& c : contacts)
+    switch (c.forces.state)
+    {
+    case ContactState::open:
+      ++n.open;
+      break;
+    case ContactState::slide:
+      ++n.slide;
+      break;
+    case ContactState::lock:
+      ++n.lock;
+      break;
+    }
+  return n;
+}
+
+std::vector<ContactSnapshot> System::contact_snapshot() const
+{
+  std::vector<ContactSnapshot> out;
+  out.reserve(contacts.size() + 2 * joints.size());
+  for (const Contact& c : contacts)
+  {
+    const std::vector<Point>& ev = blocks[c.edge_block].vertices;
+    const Vector2 t = (ev[(c.edge + 1) % ev.size()] - ev[c.edge]).normalized();
+    ContactSnapshot s;
+    s.id = c.id;
+    s.block_a = c.vertex_block;
+    s.block_b = c.edge_block;
+    s.state = c.forces.state == ContactState::open    ? ContactPointState::open
+              : c.forces.state == ContactState::slide ? ContactPointState::slide
+                                                      : ContactPointState::lock;
+    s.position = blocks[c.vertex_block].vertices[c.vertex];
+    s.normal = Vector2(t.y(), -t.x());
+    s.normal_force = c.forces.normal_force;
+    s.shear_force = c.forces.shear_force;
+    s.gap = c.end_gap;
+    s.slip = c.total_slip;
+    out.push_back(s);
+  }
+  for (const Joint& j : joints)
+    for (const JointPoint& p : j.points)
+    {
+      ContactSnapshot s;
+      s.id = j.id;
+      s.block_a = j.block_a;
+      s.block_b = j.block_b;
+      s.state = ContactPointState::bonded;
+      s.position = p.on_a.position;
+      s.normal = j.normal(small_displacement());
+      s.normal_force = -p.normal_force;
+      s.shear_force = p.shear_force;
+      s.gap = s.normal.dot(p.on_b.position - p.on_a.position);
+      out.push_back(s);
+    }
+  return out;
+}
+} // namespace ddafem::dda
