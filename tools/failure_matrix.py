@@ -2,7 +2,7 @@
 """The blocks-only tunnel matrix of issue 16 in the failure regime.
 
     /usr/bin/python3 tools/failure_matrix.py             # 72 runs + 3 big blocks-only + dt convergence
-    /usr/bin/python3 tools/failure_matrix.py --quick     # 2 runs, CI
+    /usr/bin/python3 tools/failure_matrix.py --quick     # 3 runs, CI: each must exit 0 and settle
     /usr/bin/python3 tools/failure_matrix.py --no-blocks # without the big blocks-only models
     /usr/bin/python3 tools/failure_matrix.py --part convergence   # one part; the others' rows are
                                                                   # kept from OUT/failure_matrix.json
@@ -66,7 +66,13 @@ COHESIONS = [0.0, 0.2e6, 1e6]  # Pa
 AMPLITUDES = [0.1, 0.5, 1.0]  # m/s
 K0S = [0.5, 1.0]
 TRUNCATIONS = ["vb1", "dashpot"]
-QUICK = [("circular", "vb1", 0.0, 0.5, 0.5), ("horseshoe", "dashpot", 0.2e6, 0.1, 1.0)]
+# --quick: two corners of the matrix, and the horseshoe with vb1 at 0.1 m/s, k0 1, no cohesion:
+# the run in which slip-reversal localisation without its gate (System::slides_long_enough)
+# restarted chattering contacts and fed the rock mass energy (179 blocks still moving at the
+# settle bound, docs/design.md, Integrators); it settles at 0.21 s. In --quick every run must
+# exit 0 and settle.
+QUICK = [("circular", "vb1", 0.0, 0.5, 0.5), ("horseshoe", "dashpot", 0.2e6, 0.1, 1.0),
+         ("horseshoe", "vb1", 0.0, 0.1, 1.0)]
 PARTS = ["matrix", "blocks", "convergence"]
 BLOCKS_SETTLE_MAX_DURATION = 0.3  # s: the big blocks-only runs' settle bound (module docstring)
 BLOCKS_TIMING = ("Timed first, one alone (amplitude 0.5, the scene's settle bound): 371 s of wall "
@@ -538,7 +544,7 @@ def main():
     parser.add_argument("--build", default=os.path.join(TOP, "build"),
                         help="the directory of the ddafem binary (copied before the runs)")
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--quick", action="store_true", help="2 runs (CI)")
+    parser.add_argument("--quick", action="store_true", help="3 runs that must settle (CI)")
     parser.add_argument("--no-blocks", action="store_true",
                         help="without the big blocks-only models (3 runs of minutes each)")
     parser.add_argument("--part", action="append", choices=PARTS,
@@ -628,6 +634,12 @@ def main():
     n_stopped = sum(1 for r in rows + convergence if r["exit"] is None)
     print(f"{n_runs - n_failed - n_stopped} of {n_runs} runs exit 0, {n_failed} non-zero, "
           f"{n_stopped} stopped at the wall-time cap; wrote {out}/failure_matrix.md")
+    unsettled = [r for r in rows if not (r["settle"] or {}).get("settled")]
+    if args.quick and unsettled:
+        for r in unsettled:
+            print(f"not settled: {r['scene']} {r['truncation']} c {r['cohesion_pa'] / 1e6:g} MPa "
+                  f"v {r['amplitude_m_s']:g} k0 {r['k0']:g}: {settle_text(r)}")
+        return 1
     return 1 if n_failed else 0
 
 
