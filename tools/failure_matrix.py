@@ -57,6 +57,7 @@ import time
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(TOP, "bench"))
 import speed_accuracy as SA  # noqa: E402
+import dt_check as DT_CHECK  # noqa: E402
 import verify_failure as VF  # noqa: E402
 
 SCENES = {"circular": os.path.join(TOP, "examples/tunnel/circular_sv.yaml"),
@@ -109,13 +110,6 @@ def blocks_job(amplitude, settle_max, timeout_s=None):
     return spec
 
 
-def scene_dt(ddafem, scene):
-    """The largest step `ddafem check` gives the scene (the tunnel's choice: VB I's bound)."""
-    out = subprocess.run([ddafem, "check", scene], capture_output=True, text=True).stdout
-    match = re.search(r"^\s*time: dt (\S+) s", out, re.M)
-    if not match:
-        raise SystemExit(f"`ddafem check {scene}` printed no time step")
-    return float(match.group(1))
 
 
 def convergence_jobs(dt):
@@ -143,7 +137,7 @@ def jobs(parts, quick, ddafem, settle_max, blocks_timeout=None):
     if "blocks" in parts:
         out += [blocks_job(a, settle_max, blocks_timeout) for a in AMPLITUDES]
     if "convergence" in parts:
-        out += convergence_jobs(scene_dt(ddafem, DEFAULT_SCENE))
+        out += convergence_jobs(DT_CHECK.scene_dt(ddafem, DEFAULT_SCENE, {}))
     return out
 
 
