@@ -20,6 +20,7 @@ import argparse
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -126,8 +127,7 @@ def main():
     results = SA.run_all(ddafem, jobs, out, args.jobs)
     for result, final in zip(results, ("dt", "dt_2")):  # run000, run001 -> dt, dt_2
         target = os.path.join(out, final)
-        if os.path.exists(target):
-            subprocess.run(["rm", "-rf", target], check=True)
+        shutil.rmtree(target, ignore_errors=True)
         os.rename(result["dir"], target)
     runs = [{"exit": r["exit"], "status": r["summary"].get("status", "no summary"),
              "steps": r["summary"].get("steps"), "wall_s": r["summary"].get("wall_time_s"),

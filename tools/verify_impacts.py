@@ -27,7 +27,7 @@ import concurrent.futures
 import json
 import math
 import os
-import subprocess
+import sys
 import tempfile
 import time
 
@@ -35,6 +35,8 @@ import h5py
 import numpy as np
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(TOP, "bench"))
+import speed_accuracy as SA  # noqa: E402
 G = 9.81
 HEIGHTS = [0.25, 1.0]  # m
 DTS = [3e-5, 1e-3]  # s
@@ -71,12 +73,11 @@ def drop(ddafem, height, dt, integrator):
         path = os.path.join(out, "drop.yaml")
         with open(path, "w") as f:
             f.write(scene(height, dt))
-        proc = subprocess.run([ddafem, "run", path, "-o", os.path.join(out, "r"), "--quiet",
-                               "--set", f"time.integrator={integrator}"],
-                              capture_output=True, text=True)
-        row = {"height_m": height, "dt": dt, "integrator": integrator, "exit": proc.returncode}
-        if proc.returncode != 0:
-            return {**row, "message": proc.stderr.strip()[-300:]}
+        run = SA.run(ddafem, {"scene": path, "settings": {"time.integrator": integrator},
+                              "allow_unstable": False}, os.path.join(out, "r"))
+        row = {"height_m": height, "dt": dt, "integrator": integrator, "exit": run["exit"]}
+        if run["exit"] != 0:
+            return {**row, "message": run["stderr"][-300:]}
         with h5py.File(os.path.join(out, "r", "histories.h5"), "r") as f:
             uy = f["monitors/block/displacement"][:, 1]
             vy = f["monitors/block/velocity"][:, 1]
