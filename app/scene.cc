@@ -1979,8 +1979,8 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   if (model.time.end_time < model.time.dt)
     throw time.error("end_time",
                      "expected end_time >= dt = " + format_number(model.time.dt) + " s");
-  for (const dda::Integrator i : {dda::Integrator::generalized_alpha, dda::Integrator::dda,
-                                  dda::Integrator::newmark_trapezoidal})
+  for (const dda::Integrator i : {dda::Integrator::generalized_alpha, dda::Integrator::bathe,
+                                  dda::Integrator::dda, dda::Integrator::newmark_trapezoidal})
     if (time.choice("integrator") == dda::integrator_name(i))
       model.time.integrator = i;
   model.time.spectral_radius = time.number("spectral_radius");
@@ -2073,6 +2073,10 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
       throw time.error("control", "blocks tied to a far field step with one dt (the far field "
                                   "is factorized and condensed for it): expected `fixed`");
     model.time.control = dda::TimeControl::fixed;
+    if (model.time.integrator == dda::Integrator::bathe)
+      throw time.error("integrator", "blocks tied to a far field step with the far field's "
+                                     "Newmark scheme, which has no composite form: expected "
+                                     "generalized_alpha, newmark_trapezoidal or dda");
     scene.interface = read_interface(top.section_reader("interface"), model, joint_names);
     if (top.has("in_situ_stress") && top.section_reader("interface").has("joint_material"))
       throw top.section_reader("interface")

@@ -1155,11 +1155,14 @@ SceneSchema::SceneSchema()
             .greater_than(0)
             .meaning("simulated duration; must be >= dt"),
         key("integrator", T::choice)
-            .choices({"generalized_alpha", "dda", "newmark_trapezoidal"})
+            .choices({"generalized_alpha", "bathe", "dda", "newmark_trapezoidal"})
             .default_yaml("generalized_alpha")
             .meaning("generalized_alpha (Chung & Hulbert 1993): second order, damps stiff "
                      "contact modes to spectral_radius per step (right for frictional sliding "
-                     "and for waves, docs/verification/failure.md); dda: Shi's first-order "
+                     "and for waves, docs/verification/failure.md); bathe: Bathe's composite "
+                     "scheme (a trapezoidal and a three-point backward Euler half step per dt, "
+                     "two solves per step; second order, stiff modes annihilated, the least "
+                     "period error; not with a far field); dda: Shi's first-order "
                      "scheme (damps waves, but not stiff contact modes: its spectral radius "
                      "returns to 1 as omega dt grows, and a rock mass at rest can gain energy, "
                      "docs/design.md, Integrators); newmark_trapezoidal: energy-conserving, "

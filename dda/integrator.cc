@@ -11,6 +11,8 @@ const char* integrator_name(Integrator integrator)
   {
   case Integrator::generalized_alpha:
     return "generalized_alpha";
+  case Integrator::bathe:
+    return "bathe";
   case Integrator::dda:
     return "dda";
   case Integrator::newmark_trapezoidal:
@@ -26,6 +28,7 @@ IntegratorCoefficients integrator_coefficients(Integrator integrator, double spe
   {
   case Integrator::dda:
     break;
+  case Integrator::bathe: // its first half step
   case Integrator::newmark_trapezoidal:
     c.beta = 0.25;
     c.gamma = 0.5;
@@ -40,6 +43,14 @@ IntegratorCoefficients integrator_coefficients(Integrator integrator, double spe
     break;
   }
   }
+  return c;
+}
+
+IntegratorCoefficients backward_euler_half_coefficients()
+{
+  IntegratorCoefficients c;
+  c.beta = 4.0 / 9.0;
+  c.gamma = 2.0 / 3.0;
   return c;
 }
 

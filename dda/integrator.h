@@ -4,6 +4,7 @@
 
 #include "dda/types.h"
 
+#include <algorithm>
 #include <utility>
 
 namespace ddafem::dda
@@ -14,6 +15,11 @@ enum class Integrator
   /// Chung & Hulbert's generalized-alpha: second order, high frequencies damped to the chosen
   /// spectral radius rho_inf (TimeSettings::spectral_radius) with the least low-frequency damping
   generalized_alpha,
+  /// Bathe's composite scheme (Bathe & Baig 2005; Bathe 2007, gamma = 1/2): a step of dt is a
+  /// trapezoidal half step of dt/2 then a three-point backward Euler half step of dt/2.
+  /// Second order; spectral radius 0 at high frequencies, less period error than
+  /// generalized-alpha at the same dt; two solves per step (TimeStepper takes the pairs)
+  bathe,
   /// Shi's scheme, beta = 1/2, gamma = 1: first order; dissipative at omega dt near 1 but not
   /// at high frequencies (spectral radius 1 as omega dt grows: a stiff contact's velocity
   /// flips sign each step instead of decaying)
@@ -38,6 +44,12 @@ struct IntegratorCoefficients
   double beta = 0.5, gamma = 1.0;
   double alpha_m = 0.0, alpha_f = 0.0;
 
+  /// The fraction of a jump in the force at the step's start that the step's end velocity
+  /// misses while the start state keeps the force of before the jump [-]: generalized-alpha's
+  /// alpha_f (it applies r_{n+1-alpha_f}), Newmark's 1 - gamma (v_{n+1} takes (1 - gamma) a_n:
+  /// 1/2 for the trapezoidal rule, 0 for DDA's scheme).
+  double start_force_lag() const { return alpha_f > 0.0 ? alpha_f : std::max(0.0, 1.0 - gamma); }
+
   /// The factor of M in the step's matrix K + factor M [1/s^2]: the equation above divided by
   /// (1 - alpha_f), so that every force term keeps its Newmark form (r_{n+1} = f - K d).
   double mass_factor(double dt) const
@@ -51,6 +63,33 @@ struct IntegratorCoefficients
 /// gamma = 1/2 - alpha_m + alpha_f, beta = (1 - alpha_m + alpha_f)^2 / 4 (rho is ignored by
 /// the Newmark schemes).
 IntegratorCoefficients integrator_coefficients(Integrator integrator, double spectral_radius);
+
+/// The coefficients of a composite step's second half (Integrator::bathe): Newmark with
+/// beta = 4/9, gamma = 2/3 over the half step h, from the start state of
+/// backward_euler_start. (integrator_coefficients(bathe) gives the first half's: trapezoidal.)
+IntegratorCoefficients backward_euler_half_coefficients();
+
+/// Bathe's second half step as a Newmark step. Over a step dt = 2h from u_n through u_{n+1/2},
+/// the three-point backward Euler formulas
+///   v_{n+1} = (u_n - 4 u_{n+1/2} + 3 u_{n+1}) / dt,  a_{n+1} = (v_n - 4 v_{n+1/2} + 3 v_{n+1}) /
+///   dt
+/// are, in the second half's displacement d = u_{n+1} - u_{n+1/2} and the first half's d1:
+///   v_{n+1} = 3 d / dt + V,  a_{n+1} = 9 d / dt^2 + A,
+///   V = -d1 / dt,  A = (v_n - 4 v_{n+1/2}) / dt - 3 d1 / dt^2.
+/// Newmark's updates with backward_euler_half_coefficients over h give the same d-terms, and
+/// the same V and A from the start state (v*, a*) returned: v* = -(V + 2 h A) / 5,
+/// a* = (18 V / h - 4 A) / 5. So every force that uses Newmark's velocity (dashpots, slip
+/// reversals) is right unchanged. T: a scalar or an Eigen vector; v in m/s, d in m (and the
+/// blocks' other unknowns alike).
+template <typename T>
+std::pair<T, T> backward_euler_start(double h, const T& start_velocity, const T& mid_velocity,
+                                     const T& first_displacement)
+{
+  const double dt = 2.0 * h;
+  const T v = -first_displacement / dt;
+  const T a = (start_velocity - 4.0 * mid_velocity) / dt - 3.0 * first_displacement / (dt * dt);
+  return {-(v + 2.0 * h * a) / 5.0, (18.0 / h * v - 4.0 * a) / 5.0};
+}
 
 /// One block's state between steps: velocity, acceleration and non-inertial force r.
 struct KinematicState

@@ -39,11 +39,15 @@ System::ReversalScan System::scan_slip_reversals(double dt) const
     const ContactFrame& f = frames[k];
     const Block& v = blocks[c.vertex_block];
     const Block& e = blocks[c.edge_block];
+    // The end velocity from the state the step's Newmark updates start from (Bathe's second
+    // half: an equivalent one), the reversal from the velocity the blocks had.
+    const KinematicState sv = step_start(c.vertex_block, dt), se = step_start(c.edge_block, dt);
     TangentialMotion m;
-    m.velocity = f.tangent.dot(f.t_vertex * v.velocity - f.t_edge * e.velocity);
-    m.acceleration = f.tangent.dot(f.t_vertex * v.acceleration - f.t_edge * e.acceleration);
+    m.velocity = f.tangent.dot(f.t_vertex * sv.velocity - f.t_edge * se.velocity);
+    m.acceleration = f.tangent.dot(f.t_vertex * sv.acceleration - f.t_edge * se.acceleration);
     m.slip = c.step_slip;
     const double v1 = end_velocity(step_integration, dt, m);
+    m.velocity = f.tangent.dot(f.t_vertex * v.velocity - f.t_edge * e.velocity);
     const SlipReversal r = slip_reversal(c.forces, c.trial, m.velocity, v1);
     // A reversal in the first 5% of the step cannot be ended before in a useful step (and
     // would shorten steps to nanoseconds when the iteration's slip and the velocities disagree).
@@ -56,11 +60,16 @@ System::ReversalScan System::scan_slip_reversals(double dt) const
     const bool turns = c.trial.state == ContactState::slide &&
                        std::signbit(c.forces.shear_force) != std::signbit(c.trial.shear_force);
     if (turns && slides_long_enough(c, dt) &&
-        slip_error(step_integration.alpha_f * std::abs(v1 - m.velocity), duration) >
-            reversal_tolerance)
+        slip_error(start_force_lag() * std::abs(v1 - m.velocity), duration) > reversal_tolerance)
       scan.friction_turns.push_back(k);
   }
   return scan;
+}
+
+double System::start_force_lag() const
+{
+  // Bathe's second half starts from velocities alone (backward_euler_start).
+  return second_half ? 0.0 : step_integration.start_force_lag();
 }
 
 void System::restart_at_friction_jumps(const std::vector<std::size_t>& turning)
@@ -72,8 +81,14 @@ void System::restart_at_friction_jumps(const std::vector<std::size_t>& turning)
                      [i](const StateBeforeJump& s) { return s.block == i; }))
       friction_jumps.push_back({i, b.acceleration, b.force});
     const Matrix6 m = mass_matrix(linearisation_moments(b), block_density(b));
-    b.force += jump;
-    b.acceleration += m.ldlt().solve(jump);
+    // The Newmark schemes restart the translation only: they do not damp the block's stiff
+    // rocking on its contacts, which the jump's moment would set off (its contacts' normal
+    // forces take that moment up at once in the rigid limit). Generalized-alpha damps it.
+    Vector6 applied = jump;
+    if (step_integration.alpha_f == 0.0)
+      applied.tail<4>().setZero();
+    b.force += applied;
+    b.acceleration += m.ldlt().solve(applied);
   };
   for (const std::size_t k : turning)
   {

@@ -300,6 +300,10 @@ void System::tie(TiedBody& body, const std::vector<MaterialPoint>& points)
 {
   if (timings.n_attempts > 0)
     throw InputError("tie(): the ties must be made before the first step");
+  if (model.time.integrator == Integrator::bathe)
+    throw InputError("time.integrator: bathe cannot tie blocks to a far field (the far field "
+                     "has no composite scheme): expected generalized_alpha, "
+                     "newmark_trapezoidal or dda");
   const double tol = 1e-6 * model_size(blocks);
   for (const MaterialPoint& p : points)
   {
@@ -350,10 +354,7 @@ StepStatus System::attempt_step(double dt)
   ++timings.n_attempts;
   if (mode == StageMode::static_equilibrium)
     set_at_rest();
-  step_integration = motion_starts && model.time.integrator == Integrator::generalized_alpha
-                         ? integrator_coefficients(Integrator::dda, 0.0)
-                         : integration;
-
+  choose_step_scheme(dt);                    // 0. the integrator's form of this step
   detect_contacts();                         // 1. candidates, 2. contacts
   const bool new_matrix = assemble_step(dt); // 3. assemble
   if (tied_body)
@@ -384,10 +385,12 @@ StepStatus System::attempt_step(double dt)
                        " after the step's start " + when;
       return status;
     }
-    // A step at which friction turns around is redone with generalized-alpha restarted at the
-    // jump. The redo repeats phases 1 and 2 too: they reset the trial contacts to the step's
-    // start (the restart leaves the geometry as it was), and it is taken on few steps.
-    if (!scan.friction_turns.empty() && step_integration.alpha_f > 0.0 && friction_jumps.empty())
+    // A step at which friction turns around is redone with the integrator restarted at the
+    // jump (generalized-alpha; the trapezoidal rule and Bathe's first half, whose end velocity
+    // takes the start's acceleration). The redo repeats phases 1 and 2 too: they reset the
+    // trial contacts to the step's start (the restart leaves the geometry as it was), and it
+    // is taken on few steps.
+    if (!scan.friction_turns.empty() && start_force_lag() > 0.0 && friction_jumps.empty())
     {
       restart_at_friction_jumps(scan.friction_turns);
       return attempt_step(dt);
@@ -509,6 +512,7 @@ std::string System::accept_step(double dt)
       return failure;
   }
   start = Clock::now();
+  record_half(dt, solution);
   update_blocks(dt, solution);
   for (Contact& c : trial_contacts)
   {
@@ -897,7 +901,7 @@ void System::assemble(double dt, bool with_matrix)
       matrix.diagonal(i).noalias() += elastic_stiffness(g.area, elasticity[b.material]);
     }
     auto f = rhs.segment<6>(6 * i);
-    f += inertia_force(step_integration, m, {b.velocity, b.acceleration, b.force}, dt);
+    f += inertia_force(step_integration, m, step_start(i, dt), dt);
     f += stress_force(g.area, b.stress) + body_force(g.area, density, model.gravity);
   }
 
@@ -926,11 +930,11 @@ void System::assemble(double dt, bool with_matrix)
     if (is_static)
       continue;
     const BoundaryEdge& e = boundary_edges[k];
-    const Block& b = blocks[e.block];
+    const KinematicState start = step_start(e.block, dt);
     const Matrix26 t = point_matrix(e.midpoint);
-    boundary_steps[k] = boundary_step(model.boundaries[e.boundary].type, e, boundary_normal(e),
-                                      block_mass(b), dt, step_integration.beta,
-                                      step_integration.gamma, t * b.velocity, t * b.acceleration);
+    boundary_steps[k] = boundary_step(
+        model.boundaries[e.boundary].type, e, boundary_normal(e), block_mass(blocks[e.block]), dt,
+        step_integration.beta, step_integration.gamma, t * start.velocity, t * start.acceleration);
     if (with_matrix)
       matrix.diagonal(e.block).noalias() += t.transpose() * boundary_steps[k].k * t;
     rhs.segment<6>(6 * e.block).noalias() +=
@@ -1079,8 +1083,7 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
     Block& b = blocks[i];
     const Vector6 di = d.segment<6>(6 * i);
     const Matrix6 m = mass_matrix(linearisation_moments(b), block_density(b));
-    const KinematicState end =
-        advance_state(step_integration, m, {b.velocity, b.acceleration, b.force}, di, dt);
+    const KinematicState end = advance_state(step_integration, m, step_start(i, dt), di, dt);
     b.velocity = end.velocity;
     b.acceleration = end.acceleration;
     b.force = end.force;

@@ -165,8 +165,8 @@ public:
   /// within the step with a slip error (slip_error of SlipReversal::speed_error) above
   /// `tolerance` [m]: a step applies the end state's shear force throughout, so the friction
   /// acted the wrong way for part of it, an error that repeated reversals add up (two-way
-  /// sliding). With generalized-alpha, a step in which such a contact's friction turns around
-  /// is redone from the right-hand limit of the start state (restart_at_friction_jumps). 0 (the
+  /// sliding). A step in which such a contact's friction turns around is redone from the
+  /// right-hand limit of the start state (restart_at_friction_jumps). 0 (the
   /// default) accepts every step as it is.
   void localize_slip_reversals(double tolerance) { reversal_tolerance = tolerance; }
 
@@ -348,15 +348,31 @@ private:
   /// Friction that turns around in a step jumps by Delta S = S_end - S_start [N] along the
   /// contact's tangent. Generalized-alpha's (1 - alpha_f) r_{n+1} + alpha_f r_n would apply the
   /// jump only in part and leave the velocity alpha_f dt Delta r / m behind for as long as the
-  /// new friction lasts (a first-order error at every reversal of two-way sliding). Restarts
-  /// the integrator at the jump instead, as at any discontinuous load: the start state of the
-  /// blocks on each side takes its right-hand limit, r_n + Delta r and a_n + M^-1 Delta r (the
-  /// displacements, hence every other force, are continuous). The state before is kept in
+  /// new friction lasts (a first-order error at every reversal of two-way sliding); Newmark's
+  /// v_{n+1} = v_n + dt ((1 - gamma) a_n + gamma a_{n+1}) leaves (1 - gamma) dt Delta a (the
+  /// trapezoidal rule, Bathe's first half). Restarts the integrator at the jump instead, as at
+  /// any discontinuous load: the start state of the blocks on each side takes its right-hand
+  /// limit, r_n + Delta r and a_n + M^-1 Delta r (the displacements, hence every other force,
+  /// are continuous); with the Newmark schemes, the translational part of Delta r only (see
+  /// slip_reversals.cc). The state before is kept in
   /// `friction_jumps` until the step is accepted or undo_friction_jumps() restores it.
   void restart_at_friction_jumps(const std::vector<std::size_t>& turning);
+  /// IntegratorCoefficients::start_force_lag of the step being tried (0 in Bathe's second
+  /// half, which starts from velocities alone).
+  double start_force_lag() const;
   void undo_friction_jumps();
   /// One attempt at a step (advance() without undoing an earlier attempt's friction jumps).
   StepStatus attempt_step(double dt);
+  /// Phase 0: the integrator's coefficients for a step of dt (sets step_integration and
+  /// second_half). Generalized-alpha and Bathe's scheme start motion with DDA's scheme; Bathe's
+  /// second half follows an accepted first half of the same dt, any other step opens a pair.
+  void choose_step_scheme(double dt);
+  /// Block i's state the step's Newmark updates start from: its own, or in a composite pair's
+  /// second half the equivalent start of backward_euler_start.
+  KinematicState step_start(std::size_t i, double dt) const;
+  /// After an accepted dynamic step of the displacements d: a Bathe pair's first half keeps
+  /// what its second needs (first_halves, open_half); any other step closes the pair.
+  void record_half(double dt, const Eigen::VectorXd& d);
   /// Phases 1 and 2 of a step: find_contact_candidates among the blocks not removed, then
   /// update_contacts.
   void detect_contacts();
@@ -470,6 +486,19 @@ private:
   };
   std::vector<StateBeforeJump> friction_jumps; ///< of the step being tried
   IntegratorCoefficients step_integration;     ///< of the step being tried
+  /// Integrator::bathe: whether the step being tried is a pair's second half (three-point
+  /// backward Euler), which it is when it follows a first half of the same dt
+  bool second_half = false;
+  /// Integrator::bathe: the dt of the last accepted step when it was a pair's first half [s];
+  /// 0 when the last step closed a pair (or was static)
+  double open_half = 0.0;
+  /// Integrator::bathe, per block: the velocity at the pair's start and the first half's
+  /// displacement (dda/integrator.h, backward_euler_start)
+  struct FirstHalf
+  {
+    Vector6 start_velocity = Vector6::Zero(), displacement = Vector6::Zero();
+  };
+  std::vector<FirstHalf> first_halves;
 
   std::vector<std::pair<std::size_t, std::size_t>> coupling_pairs; ///< the matrix's, sorted
   BlockSparseMatrix matrix;

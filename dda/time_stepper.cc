@@ -10,7 +10,8 @@ TimeStepper::TimeStepper(System& system_, const TimeSettings& settings, double d
     : system(system_), control(settings.control), dt_max(dt_max_ > 0.0 ? dt_max_ : settings.dt),
       dt_min(settings.dt_min > 0.0 ? std::min(settings.dt_min, dt_max) : 1e-4 * dt_max),
       cut_factor(settings.cut_factor), growth_factor(settings.growth_factor), dt(dt_max),
-      reversal_tolerance(control == TimeControl::adaptive ? settings.reversal_tolerance : 0.0)
+      reversal_tolerance(control == TimeControl::adaptive ? settings.reversal_tolerance : 0.0),
+      composite(settings.integrator == Integrator::bathe)
 {
   system.localize_slip_reversals(reversal_tolerance);
 }
@@ -32,22 +33,98 @@ double TimeStepper::reduced_dt(const StepStatus& status, double trial) const
   return trial * cut_factor;
 }
 
+StepStatus TimeStepper::advance(double trial)
+{
+  pair_broken = false;
+  if (!composite)
+    return system.advance(trial);
+  const StepStatus first = system.advance(0.5 * trial);
+  if (first.outcome != StepOutcome::success)
+    return first;
+  StepStatus second = system.advance(0.5 * trial);
+  // A raised penalty is retried at once (bounded by ContactSettings::max_penalty_factor); a
+  // reversal too early in the half to end before is taken within it.
+  while (second.outcome == StepOutcome::penetration_too_large && second.penalty_raised)
+  {
+    ++penalty_raise_count;
+    second = system.advance(0.5 * trial);
+  }
+  if (second.outcome == StepOutcome::slip_reversal && reversal_dt(second, 0.5 * trial) == 0.0)
+  {
+    system.localize_slip_reversals(0.0);
+    second = system.advance(0.5 * trial);
+    system.localize_slip_reversals(reversal_tolerance);
+  }
+  if (second.outcome != StepOutcome::success)
+  {
+    pair_broken = true;
+    broken_pair = second;
+    return first;
+  }
+  second.n_open_close_iterations += first.n_open_close_iterations;
+  second.n_state_changes += first.n_state_changes;
+  second.n_flips_ignored += first.n_flips_ignored;
+  second.max_displacement = std::max(second.max_displacement, first.max_displacement);
+  second.max_penetration = std::max(second.max_penetration, first.max_penetration);
+  return second;
+}
+
+StepStatus TimeStepper::after_broken_pair(const StepStatus& first_half, double trial)
+{
+  accepted_dt = 0.5 * trial;
+  StepStatus failure = broken_pair;
+  if (failure.outcome == StepOutcome::slip_reversal)
+  {
+    // End the next pair before the reversal, then go on with the dt of before.
+    if (resume_dt == 0.0)
+      resume_dt = dt;
+    dt = reversal_dt(failure, 0.5 * trial);
+    return first_half;
+  }
+  std::ostringstream m;
+  m << failure.message << " (the second half of a composite step; its first half stands)";
+  if (!can_retry_with_smaller_step(failure.outcome) || control == TimeControl::fixed)
+  {
+    if (control == TimeControl::fixed && can_retry_with_smaller_step(failure.outcome))
+      m << "; `time.control: fixed` keeps dt, expected a smaller `time.dt` or "
+        << "`time.control: adaptive`";
+    failure.message = m.str();
+    return failure;
+  }
+  const double next = reduced_dt(failure, trial);
+  if (next < dt_min * (1.0 - 1e-12))
+  {
+    m << "; dt cannot be cut below `time.dt_min` = " << dt_min << " s";
+    failure.message = m.str();
+    return failure;
+  }
+  dt = next;
+  ++cut_count;
+  ++cut_step_count;
+  return first_half;
+}
+
 StepStatus TimeStepper::step(double dt_limit)
 {
   last_cuts = 0;
   while (true)
   {
     const double trial = std::min(dt, dt_limit);
-    StepStatus status = system.advance(trial);
+    StepStatus status = advance(trial);
+    if (pair_broken)
+      return after_broken_pair(status, trial);
     if (status.outcome == StepOutcome::slip_reversal)
     {
-      const double shortened = reversal_dt(status, trial);
+      // A composite pair ends before a reversal found in its first half.
+      const double shortened = reversal_dt(status, composite ? 0.5 * trial : trial);
       if (shortened == 0.0)
       {
         // Too close to dt_min to end before it: take the reversal within this step.
         system.localize_slip_reversals(0.0);
-        status = system.advance(trial);
+        status = advance(trial);
         system.localize_slip_reversals(reversal_tolerance);
+        if (pair_broken)
+          return after_broken_pair(status, trial);
       }
       else
       {

@@ -20,6 +20,11 @@ namespace ddafem::dda
 ///   reversal_tolerance (System::localize_slip_reversals) is not a failure but an event: it is
 ///   redone to end just before the reversal, and the next step tries the dt of before again.
 /// - fixed: every step has the largest dt; any failure is final.
+/// With Bathe's composite scheme (Integrator::bathe) a step of dt is two System steps of dt/2,
+/// the pair's trapezoidal and backward Euler halves. When the second half fails, the first
+/// stands (a trapezoidal step of dt/2, a state the next pair starts from): step() returns it as
+/// the accepted step and the next step tries the dt the failure asks for (a final failure is
+/// returned with the model at the pair's middle).
 class TimeStepper
 {
 public:
@@ -54,6 +59,17 @@ private:
   std::size_t reversal_count = 0;
   double reversal_tolerance = 0.0; ///< [m]; 0: fixed control, no localisation
   double resume_dt = 0.0;          ///< after a step shortened at a reversal: the dt to go on with
+  bool composite = false;          ///< Integrator::bathe: a step is a pair of half steps
+  /// Composite: the failure of the last pair's second half when its first half stood
+  StepStatus broken_pair;
+  bool pair_broken = false;
+
+  /// The System's step of `trial` [s], or a composite pair of halves (sets pair_broken and
+  /// broken_pair when only the first half stands).
+  StepStatus advance(double trial);
+  /// After a composite pair of `trial` [s] whose first half stood: the dt of the next step from
+  /// the second half's failure (success), or that failure when no step can cure it.
+  StepStatus after_broken_pair(const StepStatus& first_half, double trial);
 
   /// The dt of the step that ends before a slip reversal found by a trial of `trial` [s]; 0 when
   /// that would be below dt_min (the reversal is then taken within the step).

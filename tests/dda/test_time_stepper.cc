@@ -201,3 +201,38 @@ TEST(TimeStepper, RaisesTheContactPenaltyOnDeepPenetration)
   EXPECT_GT(deepest, 1e-3); // the stiffened contacts still took the impact
   EXPECT_EQ(stepper.n_cuts(), 0u);
 }
+
+TEST(TimeStepper, BatheTakesPairsOfHalfStepsAndKeepsAFirstHalfWhoseSecondFails)
+{
+  // Thrown down at v so that the first half step (h = 5e-4 s) moves the block 4.99e-4 m, within
+  // the 5e-4 m bound, and the second, g h^2 = 2.45e-6 m more, beyond it.
+  constexpr double h = 0.5 * dt_max;
+  const double v = (4.99e-4 - 0.5 * g * h * h) / h;
+  ModelDescription m = thrown_block();
+  m.time.integrator = Integrator::bathe;
+  m.blocks[0].initial_velocity = Vector2(0.0, -v);
+  System s(m);
+  TimeStepper stepper(s, m.time);
+  // The first half stands as the accepted step; the second half's failure cuts the next dt
+  // by min(0.9, 1 / sqrt(r)) = 0.9 (r = 5.01e-4 / 5e-4).
+  StepStatus status = stepper.step();
+  ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
+  EXPECT_EQ(s.n_steps(), 1u);
+  EXPECT_DOUBLE_EQ(stepper.last_dt(), h);
+  EXPECT_DOUBLE_EQ(s.time(), h);
+  EXPECT_EQ(stepper.n_cuts(), 1u);
+  EXPECT_DOUBLE_EQ(stepper.next_dt(), 0.9 * dt_max);
+  // Then whole pairs (cut as the block speeds up): two System steps each, last_dt their sum,
+  // each half within the bound. Under gravity alone the composite scheme is exact.
+  for (int n = 0; n < 5; ++n)
+  {
+    const std::size_t before = s.n_steps();
+    const double start = s.time();
+    status = stepper.step();
+    ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
+    EXPECT_EQ(s.n_steps(), before + 2);
+    EXPECT_DOUBLE_EQ(stepper.last_dt(), s.time() - start);
+    EXPECT_LE(status.max_displacement, s.max_step_displacement());
+  }
+  EXPECT_NEAR(s.get_blocks()[0].velocity.y(), -v - g * s.time(), 1e-9);
+}

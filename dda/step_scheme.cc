@@ -1,0 +1,53 @@
+// The integrator's form of each step (System::choose_step_scheme): generalized-alpha and the
+// Newmark schemes take one form throughout; Bathe's composite scheme alternates a trapezoidal
+// first half and a three-point backward Euler second half (dda/integrator.h).
+#include "dda/system.h"
+
+#include <cmath>
+#include <tuple>
+
+namespace ddafem::dda
+{
+void System::choose_step_scheme(double dt)
+{
+  const Integrator integrator = model.time.integrator;
+  second_half = false;
+  // With a and r unknown, DDA's scheme (in which neither enters) starts the motion.
+  if (motion_starts &&
+      (integrator == Integrator::generalized_alpha || integrator == Integrator::bathe))
+    step_integration = integrator_coefficients(Integrator::dda, 0.0);
+  else if (integrator == Integrator::bathe && mode == StageMode::dynamic && open_half > 0.0 &&
+           std::abs(dt - open_half) <= 1e-12 * dt)
+  {
+    second_half = true;
+    step_integration = backward_euler_half_coefficients();
+  }
+  else
+    step_integration = integration;
+}
+
+KinematicState System::step_start(std::size_t i, double dt) const
+{
+  const Block& b = blocks[i];
+  if (!second_half)
+    return {b.velocity, b.acceleration, b.force};
+  const FirstHalf& h = first_halves[i];
+  KinematicState s;
+  std::tie(s.velocity, s.acceleration) =
+      backward_euler_start<Vector6>(dt, h.start_velocity, b.velocity, h.displacement);
+  return s; // alpha_f = 0: r_n does not enter
+}
+
+void System::record_half(double dt, const Eigen::VectorXd& d)
+{
+  const bool opens =
+      model.time.integrator == Integrator::bathe && mode == StageMode::dynamic && !second_half;
+  open_half = opens ? dt : 0.0;
+  if (!opens)
+    return;
+  first_halves.resize(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    first_halves[i] = {blocks[i].velocity, d.segment<6>(6 * i)};
+}
+
+} // namespace ddafem::dda
