@@ -18,7 +18,9 @@ enum class Integrator
   /// Bathe's composite scheme (Bathe & Baig 2005; Bathe 2007, gamma = 1/2): a step of dt is a
   /// trapezoidal half step of dt/2 then a three-point backward Euler half step of dt/2.
   /// Second order; spectral radius 0 at high frequencies, less period error than
-  /// generalized-alpha at the same dt; two solves per step (TimeStepper takes the pairs)
+  /// generalized-alpha at the same dt; two solves per step (TimeStepper takes the pairs). Its
+  /// trapezoidal half lets a block pushed along its base rock on its contacts (docs/design.md,
+  /// Integrators)
   bathe,
   /// Shi's scheme, beta = 1/2, gamma = 1: first order; dissipative at omega dt near 1 but not
   /// at high frequencies (spectral radius 1 as omega dt grows: a stiff contact's velocity

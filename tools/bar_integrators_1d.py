@@ -132,7 +132,7 @@ SCHEMES = {  # name: (stepper, solves per step, ddafem's integrator or None)
     "newmark_trapezoidal": (generalized_alpha(0.25, 0.5, 0.0, 0.0), 1, "newmark_trapezoidal"),
     "generalized_alpha 0.5": (chung_hulbert(0.5), 1, None),
     "generalized_alpha 0 (rho_inf)": (chung_hulbert(0.0), 1, None),
-    "bathe": (bathe, 2, None),
+    "bathe": (bathe, 2, "bathe"),
 }
 
 

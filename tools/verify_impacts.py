@@ -40,7 +40,7 @@ import speed_accuracy as SA  # noqa: E402
 G = 9.81
 HEIGHTS = [0.25, 1.0]  # m
 DTS = [3e-5, 1e-3]  # s
-INTEGRATORS = ["generalized_alpha", "dda", "newmark_trapezoidal"]
+INTEGRATORS = ["bathe", "generalized_alpha", "dda", "newmark_trapezoidal"]
 STIFFNESS = 2e11  # N/m
 
 
