@@ -28,14 +28,16 @@ IntegratorCoefficients integrator_coefficients(Integrator integrator, double spe
   {
   case Integrator::dda:
     break;
-  case Integrator::bathe: // its first half step
   case Integrator::newmark_trapezoidal:
     c.beta = 0.25;
     c.gamma = 0.5;
     break;
+  case Integrator::bathe: // its first half step
   case Integrator::generalized_alpha:
   {
-    const double rho = std::clamp(spectral_radius, 0.0, 1.0);
+    const double rho = std::clamp(integrator == Integrator::bathe ? bathe_first_half_spectral_radius
+                                                                  : spectral_radius,
+                                  0.0, 1.0);
     c.alpha_m = (2.0 * rho - 1.0) / (rho + 1.0);
     c.alpha_f = rho / (rho + 1.0);
     c.gamma = 0.5 - c.alpha_m + c.alpha_f;

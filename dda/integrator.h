@@ -16,11 +16,12 @@ enum class Integrator
   /// spectral radius rho_inf (TimeSettings::spectral_radius) with the least low-frequency damping
   generalized_alpha,
   /// Bathe's composite scheme (Bathe & Baig 2005; Bathe 2007, gamma = 1/2): a step of dt is a
-  /// trapezoidal half step of dt/2 then a three-point backward Euler half step of dt/2.
-  /// Second order; spectral radius 0 at high frequencies, less period error than
-  /// generalized-alpha at the same dt; two solves per step (TimeStepper takes the pairs). Its
-  /// trapezoidal half lets a block pushed along its base rock on its contacts (docs/design.md,
-  /// Integrators)
+  /// half step of dt/2 then a three-point backward Euler half step of dt/2. Bathe's first half
+  /// is trapezoidal, which lets a block pushed along its base rock on its contacts; ours is
+  /// generalized-alpha (bathe_first_half_spectral_radius) from its own a_n
+  /// (System::composite_acceleration). Second order; stiff modes fall about 4-fold per step;
+  /// less period error than generalized-alpha at the same dt; two solves per step
+  /// (TimeStepper takes the pairs); docs/design.md, Integrators
   bathe,
   /// Shi's scheme, beta = 1/2, gamma = 1: first order; dissipative at omega dt near 1 but not
   /// at high frequencies (spectral radius 1 as omega dt grows: a stiff contact's velocity
@@ -28,6 +29,10 @@ enum class Integrator
   dda,
   newmark_trapezoidal ///< beta = 1/4, gamma = 1/2: second order, conserves energy
 };
+
+/// rho_inf of Integrator::bathe's first half [-]: generalized-alpha with alpha_m = 0,
+/// alpha_f = 1/3 (docs/design.md, Integrators).
+constexpr double bathe_first_half_spectral_radius = 0.5;
 
 /// The integrator's name in scene files and outputs ("generalized_alpha", "dda",
 /// "newmark_trapezoidal").
@@ -68,7 +73,8 @@ IntegratorCoefficients integrator_coefficients(Integrator integrator, double spe
 
 /// The coefficients of a composite step's second half (Integrator::bathe): Newmark with
 /// beta = 4/9, gamma = 2/3 over the half step h, from the start state of
-/// backward_euler_start. (integrator_coefficients(bathe) gives the first half's: trapezoidal.)
+/// backward_euler_start. (integrator_coefficients(bathe) gives the first half's:
+/// generalized-alpha with bathe_first_half_spectral_radius.)
 IntegratorCoefficients backward_euler_half_coefficients();
 
 /// Bathe's second half step as a Newmark step. Over a step dt = 2h from u_n through u_{n+1/2},

@@ -3,6 +3,8 @@
 // first half and a three-point backward Euler second half (dda/integrator.h).
 #include "dda/system.h"
 
+#include <Eigen/Cholesky>
+
 #include <cmath>
 #include <tuple>
 
@@ -36,6 +38,19 @@ KinematicState System::step_start(std::size_t i, double dt) const
   std::tie(s.velocity, s.acceleration) =
       backward_euler_start<Vector6>(dt, h.start_velocity, b.velocity, h.displacement);
   return s; // alpha_f = 0: r_n does not enter
+}
+
+Vector6 System::composite_acceleration(std::size_t i, const Matrix6& m, const KinematicState& end)
+{
+  if (model.time.integrator != Integrator::bathe || mode != StageMode::dynamic)
+    return end.acceleration;
+  if (!second_half)
+  {
+    first_halves[i].mid_force = end.force;
+    return end.acceleration;
+  }
+  const double alpha_f = integration.alpha_f;
+  return m.ldlt().solve((1.0 - alpha_f) * end.force + alpha_f * first_halves[i].mid_force);
 }
 
 void System::record_half(double dt, const Eigen::VectorXd& d)

@@ -1085,7 +1085,7 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
     const Matrix6 m = mass_matrix(linearisation_moments(b), block_density(b));
     const KinematicState end = advance_state(step_integration, m, step_start(i, dt), di, dt);
     b.velocity = end.velocity;
-    b.acceleration = end.acceleration;
+    b.acceleration = composite_acceleration(i, m, end);
     b.force = end.force;
     b.apply_increment(di, elasticity[b.material], small_displacement());
   }

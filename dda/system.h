@@ -373,6 +373,11 @@ private:
   /// After an accepted dynamic step of the displacements d: a Bathe pair's first half keeps
   /// what its second needs (first_halves, open_half); any other step closes the pair.
   void record_half(double dt, const Eigen::VectorXd& d);
+  /// The acceleration block i keeps after a step that ended in `end` with mass matrix m: Newmark's,
+  /// except after Bathe's second half, where the next pair's generalized-alpha half needs its
+  /// own a_n, M^-1 ((1 - alpha_f) r_n + alpha_f r_{n-1/2}) with r_{n-1/2} the force at the pair's
+  /// middle (kept by the first half): with the true a_n the composite would be first order.
+  Vector6 composite_acceleration(std::size_t i, const Matrix6& m, const KinematicState& end);
   /// Phases 1 and 2 of a step: find_contact_candidates among the blocks not removed, then
   /// update_contacts.
   void detect_contacts();
@@ -497,6 +502,7 @@ private:
   struct FirstHalf
   {
     Vector6 start_velocity = Vector6::Zero(), displacement = Vector6::Zero();
+    Vector6 mid_force = Vector6::Zero(); ///< r at the pair's middle [N, N m]
   };
   std::vector<FirstHalf> first_halves;
 

@@ -108,20 +108,27 @@ def chung_hulbert(rho):
 
 
 def bathe(dt, end):
-    h = dt / 2
-    first = np.linalg.inv(np.diag(4 / h ** 2 * MASS) + STIFFNESS)
+    """Bathe's composite scheme as ddafem has it: a generalized-alpha half step (rho_inf 1/2:
+    alpha_m = 0, alpha_f = 1/3, beta = 4/9, gamma = 5/6) from its own a_n = M^-1 ((1 - alpha_f)
+    r_n + alpha_f r_{n-1/2}), then a three-point backward Euler half step."""
+    h, alpha_f, beta, gamma = dt / 2, 1 / 3, 4 / 9, 5 / 6
+    first = np.linalg.inv(np.diag(MASS / ((1 - alpha_f) * beta * h * h)) + STIFFNESS)
     second = np.linalg.inv(np.diag(9 / dt ** 2 * MASS) + STIFFNESS)
-    u, v, a = (np.zeros(len(MASS)) for _ in range(3))
+    u, v, a, r = (np.zeros(len(MASS)) for _ in range(4))
     out = [0.0]
     for step in range(1, int(round(end / dt)) + 1):
         t = (step - 1) * dt
-        d1 = first @ (load(t + h) - STIFFNESS @ u + MASS * (4 / h * v + a))
-        a_mid = 4 / h ** 2 * d1 - 4 / h * v - a
-        v_mid = v + h / 2 * (a + a_mid)
+        predictor = v / (beta * h) + (0.5 / beta - 1) * a
+        d1 = first @ (load(t + h) - STIFFNESS @ u + (MASS * predictor + alpha_f * r) / (1 - alpha_f))
+        a_mid = (d1 - h * v - h * h * (0.5 - beta) * a) / (beta * h * h)
+        v_mid = v + h * ((1 - gamma) * a + gamma * a_mid)
         u_mid = u + d1
+        r_mid = (MASS * a_mid - alpha_f * r) / (1 - alpha_f)
         history = -3 * d1 / dt ** 2 + (v - 4 * v_mid) / dt  # a_{n+1} = 9 d2 / dt^2 + history
         d2 = second @ (load(t + dt) - STIFFNESS @ u_mid - MASS * history)
-        u, v, a = u_mid + d2, (3 * d2 - d1) / dt, 9 * d2 / dt ** 2 + history
+        u, v = u_mid + d2, (3 * d2 - d1) / dt
+        r = MASS * (9 * d2 / dt ** 2 + history)
+        a = ((1 - alpha_f) * r + alpha_f * r_mid) / MASS
         out.append(record(u))
     return np.arange(len(out)) * dt, np.array(out)
 

@@ -185,14 +185,15 @@ TEST(Contacts, PushedBlockHoldsBelowFrictionPlusCohesion)
     EXPECT_TRUE(c.forces.intact) << "contact " << c.id << " lost its cohesion";
 }
 
-TEST(Contacts, PushedBlockSlidesBeyondFrictionPlusCohesionAndLosesCohesion)
+/// At 1.02 F_c the contacts slide once the ramp passes F_c (t = 0.246 s); cohesion is then gone
+/// and the block accelerates at a = (F - W tan(phi)) / m = (35.7 - 15.0) kN / 2650 kg =
+/// 7.81 m/s^2. Measured from the velocity gain between 0.3 s and 0.6 s (constant force); 2%
+/// covers the tilt of the block by the force's 5 mm lever and the integrator's transient.
+void expect_pushed_block_slides(Integrator integrator)
 {
-  // At 1.02 F_c the contacts slide once the ramp passes F_c (t = 0.246 s); cohesion is then gone
-  // and the block accelerates at a = (F - W tan(phi)) / m = (35.7 - 15.0) kN / 2650 kg =
-  // 7.81 m/s^2. Measured from the velocity gain between 0.3 s and 0.6 s (constant force); 2%
-  // covers the tilt of the block by the force's 5 mm lever and the integrator's transient.
   const double force = 1.02 * PushedBlock::critical_force();
   PushedBlock pushed(force);
+  pushed.model.time.integrator = integrator;
   System s(pushed.model);
   settle(s, pushed.model.time);
   run_to(s, pushed.model.time, 0.3);
@@ -203,11 +204,25 @@ TEST(Contacts, PushedBlockSlidesBeyondFrictionPlusCohesionAndLosesCohesion)
   const double expected =
       (force - PushedBlock::weight() * std::tan(PushedBlock::phi * M_PI / 180.0)) / mass;
   const double measured = (v2 - v1) / 0.3;
-  std::cout << "1.02 F_c: acceleration " << measured << " m/s^2, expected " << expected << "\n";
+  std::cout << integrator_name(integrator) << ", 1.02 F_c: acceleration " << measured
+            << " m/s^2, expected " << expected << "\n";
   EXPECT_NEAR(measured, expected, 0.02 * expected);
   EXPECT_EQ(s.contact_counts().slide, 2u);
   for (const Contact& c : s.get_contacts())
     EXPECT_FALSE(c.forces.intact) << "contact " << c.id << " kept its cohesion while sliding";
+}
+
+TEST(Contacts, PushedBlockSlidesBeyondFrictionPlusCohesionAndLosesCohesion)
+{
+  expect_pushed_block_slides(Integrator::generalized_alpha);
+}
+
+TEST(Contacts, PushedBlockSlidesAsWellWithBathesScheme)
+{
+  // With a trapezoidal first half (Bathe's own) the block rocks and hops on its corner contacts
+  // once cohesion breaks: 6.51 m/s^2 instead of 7.81 (docs/design.md, Integrators); the
+  // generalized-alpha half damps that.
+  expect_pushed_block_slides(Integrator::bathe);
 }
 
 // ---- impacts: free fall onto a base, two blocks colliding ---------------------------------------
