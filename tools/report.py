@@ -363,10 +363,13 @@ def write_report(run_dir, summary, figures, path):
              "- scene: `%s` (ddafem %s)" % (summary.get("scene", "?"), summary.get("version", "?")),
              "- status: **%s**%s" % (status, ": " + summary["failure"]
                                      if "failure" in summary else ""),
-             "- simulated %.4g s %s in %s steps (dt up to %.3g s, smallest %.3g s)"
+             "- simulated %.4g s %s in %s %s (dt up to %.3g s, smallest %.3g s), integrator %s"
              % (summary.get("time_reached_s", 0.0), simulated_of(summary),
-                summary.get("steps", "?"), summary.get("dt_s", float("nan")),
-                summary.get("time_step", {}).get("smallest_dt_s", float("nan"))),
+                summary.get("steps", "?"),
+                "half steps" if summary.get("integrator") == "bathe" else "steps",
+                summary.get("dt_s", float("nan")),
+                summary.get("time_step", {}).get("smallest_dt_s", float("nan")),
+                summary.get("integrator", "?")),
              "- time steps: %s dt cuts (%s steps cut), %s contact penalties raised, %s "
              "contact flips at almost no force let go, %s steps shortened to end at a slip "
              "reversal, %s open-close iterations"
