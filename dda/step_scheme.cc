@@ -1,6 +1,6 @@
 // The integrator's form of each step (System::choose_step_scheme): generalized-alpha and the
-// Newmark schemes take one form throughout; Bathe's composite scheme alternates a trapezoidal
-// first half and a three-point backward Euler second half (dda/integrator.h).
+// Newmark schemes take one form throughout; Bathe's composite scheme alternates a
+// generalized-alpha first half and a three-point backward Euler second half (dda/integrator.h).
 #include "dda/system.h"
 
 #include <Eigen/Cholesky>
