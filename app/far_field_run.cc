@@ -138,7 +138,7 @@ int run_far_field(const Scene& scene, const RunOptions& options, std::ostream& l
   };
   write_outputs(true);
 
-  run_support::Progress progress(!options.quiet && isatty(fileno(stderr)), n_steps);
+  run_support::Progress progress(!options.quiet && isatty(fileno(stderr)), d.end_time);
   double next_snapshot = scene.output.interval;
   fem::StepStatus failure;
   for (std::size_t step = 1; step <= n_steps; ++step)
@@ -203,8 +203,9 @@ int run_far_field(const Scene& scene, const RunOptions& options, std::ostream& l
   summary["warnings"] = nlohmann::json::array();
   summary["outputs"] = {
       {"histories", "histories.h5"}, {"far_field", "far_field.pvd"}, {"snapshots", n_snapshots}};
-  return run_support::finish_run(dir, summary, failed ? failure.message : std::string(), t.n_steps,
-                                 model.time(), wall, "far_field.pvd", log);
+  return run_support::finish_run(dir, summary, failed ? failure.message : std::string(),
+                                 std::to_string(t.n_steps) + " steps", model.time(), wall,
+                                 "far_field.pvd", log);
 }
 
 } // namespace ddafem

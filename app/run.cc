@@ -587,7 +587,6 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
                                      scene.expanded_yaml + "\n");
 
   const dda::TimeSettings& time = scene.model.time;
-  const auto n_steps = static_cast<std::size_t>(std::llround(time.end_time / time.dt));
   const TimeStepAdvice advice = suggest_time_step(scene);
   std::vector<std::string> warnings;
   for (const std::string& w : unstable_boundaries(system, time.dt))
@@ -662,7 +661,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
     output_time += elapsed(start);
   };
 
-  Progress progress(!options.quiet && isatty(fileno(stderr)), n_steps);
+  Progress progress(!options.quiet && isatty(fileno(stderr)), time.end_time);
   dda::StepStatus failure;
   nlohmann::json stage_records = nlohmann::json::array();
   bool initial_written = false;
@@ -707,7 +706,8 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
       write_state(true);
       initial_written = true;
     }
-    const std::size_t first_step = system.n_steps();
+    // Steps of this stage as the user sets dt: with bathe one step is two System half steps.
+    std::size_t stage_steps = 0;
     double next_snapshot = system.time() + scene.output.interval;
     const dda::DynamicStageResult result = dda::run_dynamic_stage(
         system, stage, time, *fall_reference,
@@ -718,7 +718,8 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
           const bool snapshot = run_support::snapshot_due(system.time(), scene.output.interval,
                                                           time.dt, next_snapshot) ||
                                 last;
-          if ((system.n_steps() - first_step) % scene.output.history_every == 0 || last || snapshot)
+          ++stage_steps;
+          if (stage_steps % scene.output.history_every == 0 || last || snapshot)
             write_state(snapshot);
           progress.update(system.n_steps(), system.time(), elapsed(wall_start));
         });
@@ -863,8 +864,10 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
     summary["outputs"]["far_field"] = "far_field.pvd";
     summary["outputs"]["ties"] = "ties.pvd";
   }
-  return run_support::finish_run(dir, summary, failed ? failure.message : std::string(),
-                                 system.n_steps(), system.time(), wall, "model.pvd", log);
+  const std::string steps = std::to_string(system.n_steps()) +
+                            (time.integrator == dda::Integrator::bathe ? " half steps" : " steps");
+  return run_support::finish_run(dir, summary, failed ? failure.message : std::string(), steps,
+                                 system.time(), wall, "model.pvd", log);
 }
 
 } // namespace ddafem

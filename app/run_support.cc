@@ -69,7 +69,7 @@ void add_monitor_channels(std::vector<HistoryChannel>& channels, const std::stri
 }
 
 int finish_run(const std::filesystem::path& dir, const nlohmann::json& summary,
-               const std::string& failure, std::size_t n_steps, double time, double wall,
+               const std::string& failure, const std::string& steps, double time, double wall,
                const std::string& view_file, std::ostream& log)
 {
   {
@@ -84,7 +84,7 @@ int finish_run(const std::filesystem::path& dir, const nlohmann::json& summary,
         << "results up to t = " << time << " s are in " << dir.string() << "\n";
     return 1;
   }
-  log << "completed " << n_steps << " steps to t = " << time << " s in " << format(wall, 3)
+  log << "completed " << steps << " to t = " << time << " s in " << format(wall, 3)
       << " s wall time\n"
       << "results: " << (dir / view_file).string() << " (ParaView), "
       << (dir / "histories.h5").string() << ", " << (dir / "summary.json").string() << "\n";
@@ -96,9 +96,11 @@ void Progress::update(std::size_t step, double time, double wall, bool force)
   if (!enabled || (!force && wall - last < 0.2))
     return;
   last = wall;
-  const double eta = step > 0 ? wall * static_cast<double>(n_steps - step) / step : 0.0;
-  std::fprintf(stderr, "\rstep %zu/%zu  t = %.6g s  wall %.1f s  ETA %.1f s   ", step, n_steps,
-               time, wall, eta);
+  if (time > 0.0 && time < end_time)
+    std::fprintf(stderr, "\rstep %zu  t = %.6g of %.6g s  wall %.1f s  ETA %.1f s   ", step, time,
+                 end_time, wall, wall * (end_time - time) / time);
+  else
+    std::fprintf(stderr, "\rstep %zu  t = %.6g s  wall %.1f s                 ", step, time, wall);
   std::fflush(stderr);
 }
 

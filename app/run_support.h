@@ -45,20 +45,23 @@ void add_monitor_channels(std::vector<HistoryChannel>& channels, const std::stri
 /// where the results so far are (returns exit code 1), else the step count, wall time and the
 /// result files with `view_file` (the PVD) first (returns 0).
 int finish_run(const std::filesystem::path& dir, const nlohmann::json& summary,
-               const std::string& failure, std::size_t n_steps, double time, double wall,
+               const std::string& failure, const std::string& steps, double time, double wall,
                const std::string& view_file, std::ostream& log);
 
-/// One-line progress display on a terminal, at most five updates a second.
+/// One-line progress display on a terminal, at most five updates a second. The estimate of the
+/// remaining wall time follows the simulated time [s] towards `end_time` (step counts do not
+/// tell: adaptive control cuts dt, and bathe takes two half steps per step); beyond it (a settle
+/// stage) it is not known.
 class Progress
 {
 public:
-  Progress(bool enabled_, std::size_t n_steps_) : enabled(enabled_), n_steps(n_steps_) {}
+  Progress(bool enabled_, double end_time_) : enabled(enabled_), end_time(end_time_) {}
   void update(std::size_t step, double time, double wall, bool force = false);
   void finish();
 
 private:
   bool enabled;
-  std::size_t n_steps;
+  double end_time;
   double last = -1.0;
 };
 
