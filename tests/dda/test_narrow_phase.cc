@@ -130,6 +130,22 @@ TEST(NarrowPhase, WedgePointingIntoTheEdgesPolygonGivesNoPair)
   EXPECT_TRUE(find_vertex_edge_pairs(inside_out, rectangle(0, 0, 1, 1), 0.01, 0.01).empty());
 }
 
+TEST(NarrowPhase, VertexBesideAnAcuteEndIsNoPenetrationOfThatEdge)
+{
+  // b: a triangle with a 26.6 deg corner at (0, 0): edge 0 (0, 0) -> (1, 0) (normal -y), edge 2
+  // (1, 0.5) -> (0, 0) (normal (-1, 2) / sqrt(5)). a's tip p = (0.006, 0.0035) is 6.95 mm from
+  // the corner (beyond d0 = 6 mm), 3.5 mm behind edge 0's line, but 0.5 mm / sqrt(1.25) =
+  // 0.447 mm in front of edge 2's: outside b, whose edge 2 it faces. Its legs (-1, -0.1) and
+  // (-1, -0.4) keep a above edge 2's line. The one pair: p on edge 2, ratio (0.994 + 0.24825) /
+  // 1.25 = 0.9938, distance 0.001 / sqrt(5); p on edge 0 at -3.5 mm (a tunnel's falling block
+  // met it: a new contact 3.8 mm deep between blocks 0.3 mm apart) is none.
+  const Point p(0.006, 0.0035);
+  const std::vector<Point> a{p, p + Vector2(-1.0, -0.1), p + Vector2(-1.0, -0.4)};
+  const std::vector<Point> b{{0, 0}, {1, 0}, {1, 0.5}};
+  expect_pairs_both_ways(a, b, 0.006, 0.01,
+                         {{0, 0, 2, 0.9938, 0.001 / std::sqrt(5.0), ContactKind::vertex_edge}});
+}
+
 TEST(NarrowPhase, AlignedStackedSquaresGiveOnePairPerCorner)
 {
   // a = [0, 1]^2, b = [0, 1] x [1.004, 2.004]: corners a2 = (1, 1) ~ b1 and a3 = (0, 1) ~ b0,
