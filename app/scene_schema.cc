@@ -1156,18 +1156,19 @@ SceneSchema::SceneSchema()
             .meaning("simulated duration; must be >= dt"),
         key("integrator", T::choice)
             .choices({"generalized_alpha", "bathe", "dda", "newmark_trapezoidal"})
-            .default_yaml("generalized_alpha")
-            .meaning("generalized_alpha (Chung & Hulbert 1993): second order, damps stiff "
-                     "contact modes to spectral_radius per step (right for frictional sliding "
-                     "and falls, docs/verification/failure.md; the bar's record error 1.55% at "
-                     "200 steps per period); bathe: Bathe's composite scheme, a generalized-alpha "
-                     "(rho_inf 1/2) and a three-point backward Euler half step per dt (two "
-                     "solves per step; the bar's record error 0.70%, sliding within 0.71%; but 1.4 "
-                     "to 3.5 times the wall time where blocks settle, docs/design.md, "
-                     "Integrators; not with a far field); dda: Shi's first-order scheme (damps "
-                     "waves, but not stiff contact modes: its spectral radius returns to 1 as "
-                     "omega dt grows); newmark_trapezoidal: energy-conserving, second order "
-                     "(penalty contacts ring: blocks bounce and slide too far)"),
+            .default_yaml("bathe")
+            .meaning(
+                "bathe (the default): Bathe's composite scheme, a generalized-alpha "
+                "(rho_inf 1/2) and a three-point backward Euler half step per dt, two solves "
+                "per step; right for frictional sliding and falls (within 0.71%) and for "
+                "waves (the bar's record error 0.70% at 200 steps per period), "
+                "docs/verification/failure.md; not with a far field, where newmark_trapezoidal is "
+                "the default. generalized_alpha "
+                "(Chung & Hulbert 1993): one solve per step, sliding within 0.51%, but the "
+                "bar's record error 1.55% at 200 steps per period; dda: Shi's first-order "
+                "scheme (damps waves, but not stiff contact modes: its spectral radius "
+                "returns to 1 as omega dt grows); newmark_trapezoidal: energy-conserving, "
+                "second order (penalty contacts ring: blocks bounce and slide too far)"),
         key("spectral_radius", T::number)
             .default_yaml("0.2")
             .at_least(0)
@@ -1358,7 +1359,8 @@ SceneSchema::SceneSchema()
         key("history_every", T::integer)
             .default_yaml("1")
             .at_least(1)
-            .meaning("time steps between rows of the monitor histories"),
+            .meaning("time steps between rows of the monitor histories (a step of bathe is "
+                     "its pair of half steps)"),
         key("vtu_compression", T::choice)
             .default_yaml("best_speed")
             .choices({"best_speed", "best_compression", "none"})

@@ -207,7 +207,7 @@ struct TimeSettings
 {
   double dt = 0.0;       ///< time step [s], > 0; the largest one with adaptive control
   double end_time = 0.0; ///< [s], >= dt
-  Integrator integrator = Integrator::generalized_alpha;
+  Integrator integrator = Integrator::bathe;
   /// generalized_alpha: the spectral radius at infinite frequency rho_inf [-] in [0, 1] (1: no
   /// algorithmic damping; smaller damps stiff contact modes faster)
   double spectral_radius = 0.2;

@@ -364,7 +364,7 @@ TEST_F(SceneTest, DefaultsAreApplied)
   EXPECT_TRUE(m.joint_materials.empty());
   EXPECT_EQ(m.default_joint_material, static_cast<std::size_t>(-1));
   EXPECT_EQ(m.gravity, dda::Vector2::Zero());
-  EXPECT_EQ(m.time.integrator, dda::Integrator::generalized_alpha);
+  EXPECT_EQ(m.time.integrator, dda::Integrator::bathe);
   EXPECT_EQ(m.time.spectral_radius, 0.2);
   EXPECT_EQ(m.solver, dda::SolverKind::block_ldlt);
   EXPECT_EQ(m.blocks[0].initial_velocity, dda::Vector2::Zero());
