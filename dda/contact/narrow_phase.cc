@@ -133,24 +133,27 @@ private:
     return legs[0].dot(n) >= -sin_tolerance && legs[1].dot(n) >= -sin_tolerance;
   }
 
-  /// Vertex v of polygon s behind edge e's line (the penetrating side) yet in front of the line
+  /// Vertex p of polygon s behind edge e's line (the penetrating side) yet in front of the line
   /// of an edge meeting e at a convex end: it lies outside the other polygon, beside that end, and
   /// its distance to e's line is no penetration. Near such an end (a wedge of 28 deg) a vertex just
   /// beyond d0 from it would otherwise be taken as millimetres deep in a block it does not touch.
-  bool beside_acute_end(std::size_t s, std::size_t v, std::size_t e) const
+  /// `edge` is edge e of the other polygon (the caller has it).
+  bool beside_acute_end(const Point& p, std::size_t s, std::size_t e, const Edge& edge) const
   {
-    const std::vector<Point>& other = *polygons[1 - s];
-    const Point& p = (*polygons[s])[v];
-    const Edge edge = edge_of(other, e);
     if ((p - edge.start).dot(edge.normal) >= 0.0)
       return false;
     // The edge before e meets it at e's start, the edge after at its end; a concave end does
     // not bound the polygon by its other edge.
+    const std::vector<Point>& other = *polygons[1 - s];
     const std::size_t n = other.size();
     for (const auto& [adjacent, shared] : {std::pair{previous(e, n), e}, {next(e, n), next(e, n)}})
-      if (shapes[1 - s][shared] == VertexShape::convex &&
-          (p - edge_of(other, adjacent).start).dot(edge_of(other, adjacent).normal) > 0.0)
+    {
+      if (shapes[1 - s][shared] != VertexShape::convex)
+        continue;
+      const Edge side = edge_of(other, adjacent);
+      if ((p - side.start).dot(side.normal) > 0.0)
         return true;
+    }
     return false;
   }
 
@@ -167,7 +170,7 @@ private:
       const Edge edge = edge_of(other, e);
       const double along = std::clamp((p - edge.start).dot(edge.tangent), 0.0, edge.length);
       if ((p - (edge.start + along * edge.tangent)).norm() > d0 || !enters(s, v, e) ||
-          beside_acute_end(s, v, e))
+          beside_acute_end(p, s, e, edge))
         continue;
       const bool parallel_leg = std::abs(legs[0].dot(edge.normal)) <= sin_tolerance ||
                                 std::abs(legs[1].dot(edge.normal)) <= sin_tolerance;
