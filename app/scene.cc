@@ -2052,12 +2052,9 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
                               "`far_field.static_stage`)");
   if (scene.far_field)
   {
-    // Blocks tied to a far field take the far field's trapezoidal rule unless the scene says
-    // otherwise: the far field has no generalized-alpha, the interface's energy closes with one
-    // integrator on both sides, and with generalized-alpha the coupled tunnels' fixed dt stops on
-    // the open-close iteration (coupled runs cannot cut dt yet).
-    if (!time.has("integrator"))
-      model.time.integrator = dda::Integrator::newmark_trapezoidal;
+    // Blocks tied to a far field keep their integrator (Bathe's by default: frictional sliding
+    // right); the far field takes the trapezoidal rule for each of the blocks' steps (each half
+    // of a composite step), or DDA's scheme with the blocks' (coupling/README.md).
     scene.far_field->dt = model.time.dt;
     scene.far_field->end_time = model.time.end_time;
     const MapReader f = top.section_reader("far_field");
@@ -2068,15 +2065,6 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   }
   if (scene.coupled())
   {
-    // The far field's effective matrix and its condensation onto the ties belong to one dt.
-    if (time.has("control") && model.time.control != dda::TimeControl::fixed)
-      throw time.error("control", "blocks tied to a far field step with one dt (the far field "
-                                  "is factorized and condensed for it): expected `fixed`");
-    model.time.control = dda::TimeControl::fixed;
-    if (model.time.integrator == dda::Integrator::bathe)
-      throw time.error("integrator", "blocks tied to a far field step with the far field's "
-                                     "Newmark scheme, which has no composite form: expected "
-                                     "generalized_alpha, newmark_trapezoidal or dda");
     scene.interface = read_interface(top.section_reader("interface"), model, joint_names);
     if (top.has("in_situ_stress") && top.section_reader("interface").has("joint_material"))
       throw top.section_reader("interface")

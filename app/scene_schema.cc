@@ -573,9 +573,7 @@ SceneSchema::SceneSchema()
        "the wave found it, the keyblocks' fall threshold), so that a keyblock reported as "
        "fallen fell and one reported as held stays.",
        {key("enabled", T::boolean)
-            .default_note("true for the blocks-only truncations (vb1, dashpot, blocks); false "
-                          "for hybrid and reference, whose blocks keep the far field's "
-                          "trapezoidal rule: its undamped contact modes never come to rest")
+            .default_yaml("true")
             .meaning("false: the run ends with the wave's window"),
         key("rest_speed", T::number)
             .unit("m/s")
@@ -789,10 +787,11 @@ SceneSchema::SceneSchema()
   all_sections.push_back(
       {"far_field",
        "A rectangular elastic continuum meshed with FE_Q elements (deal.II), in the scene's "
-       "`analysis.plane` and advanced with `time.dt` and `time.integrator` (the trapezoidal rule "
-       "is exact for energy; `dda` damps like the blocks). Monitors may lie in it. With `blocks` "
-       "the far field surrounds them (a `hole`, or a side they adjoin) and `interface` ties the "
-       "two into one implicit system per step.",
+       "`analysis.plane` and advanced with the trapezoidal rule (exact for energy) at `time.dt`, "
+       "or with `dda` (damps like the blocks). Monitors may lie in it. With `blocks` the far "
+       "field surrounds them (a `hole`, or a side they adjoin) and `interface` ties the two into "
+       "one implicit system per step of the blocks (per half step of Bathe's scheme), on the dt "
+       "levels time.dt / 2^k of adaptive control.",
        {key("material", T::string).required().meaning("name of a material in `materials`"),
         key("lower", T::vector2)
             .unit("m")
@@ -854,8 +853,8 @@ SceneSchema::SceneSchema()
             .meaning("a vertically incident plane wave entering through an `input` side"),
         key("integrator", T::choice)
             .choices({"dda", "newmark_trapezoidal"})
-            .default_note("time.integrator")
-            .meaning("the far field's Newmark scheme when it differs from the blocks'")}});
+            .default_note("dda with time.integrator dda, else newmark_trapezoidal")
+            .meaning("the far field's Newmark scheme")}});
 
   all_sections.push_back(
       {"interface",
@@ -1157,18 +1156,17 @@ SceneSchema::SceneSchema()
         key("integrator", T::choice)
             .choices({"generalized_alpha", "bathe", "dda", "newmark_trapezoidal"})
             .default_yaml("bathe")
-            .meaning(
-                "bathe (the default): Bathe's composite scheme, a generalized-alpha "
-                "(rho_inf 1/2) and a three-point backward Euler half step per dt, two solves "
-                "per step; right for frictional sliding and falls (within 0.71%) and for "
-                "waves (the bar's record error 0.70% at 200 steps per period), "
-                "docs/verification/failure.md; not with a far field, where newmark_trapezoidal is "
-                "the default. generalized_alpha "
-                "(Chung & Hulbert 1993): one solve per step, sliding within 0.51%, but the "
-                "bar's record error 1.55% at 200 steps per period; dda: Shi's first-order "
-                "scheme (damps waves, but not stiff contact modes: its spectral radius "
-                "returns to 1 as omega dt grows); newmark_trapezoidal: energy-conserving, "
-                "second order (penalty contacts ring: blocks bounce and slide too far)"),
+            .meaning("bathe (the default): Bathe's composite scheme, a generalized-alpha "
+                     "(rho_inf 1/2) and a three-point backward Euler half step per dt, two solves "
+                     "per step; right for frictional sliding and falls (within 0.71%) and for "
+                     "waves (the bar's record error 0.70% at 200 steps per period), "
+                     "docs/verification/failure.md; with a far field, the far field takes the "
+                     "trapezoidal rule on each half step. generalized_alpha "
+                     "(Chung & Hulbert 1993): one solve per step, sliding within 0.51%, but the "
+                     "bar's record error 1.55% at 200 steps per period; dda: Shi's first-order "
+                     "scheme (damps waves, but not stiff contact modes: its spectral radius "
+                     "returns to 1 as omega dt grows); newmark_trapezoidal: energy-conserving, "
+                     "second order (penalty contacts ring: blocks bounce and slide too far)"),
         key("spectral_radius", T::number)
             .default_yaml("0.2")
             .at_least(0)
@@ -1181,7 +1179,9 @@ SceneSchema::SceneSchema()
             .meaning("adaptive: dt is the largest step, cut by cut_factor when a step fails "
                      "(open-close iteration not converged, a vertex moving more than "
                      "contacts.max_displacement_ratio allows, too deep a penetration) and grown "
-                     "back by growth_factor; fixed: every step has dt and such a failure stops "
+                     "back by growth_factor (blocks tied to a far field: on the levels "
+                     "dt / 2^k, doubling after as many steps as growth_factor takes to double; "
+                     "coupling/README.md); fixed: every step has dt and such a failure stops "
                      "the run (wave problems)"),
         key("dt_min", T::number)
             .unit("s")

@@ -454,14 +454,10 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
                     ", the model's size over the near field's: it settles in about as many "
                     "steps as the near field alone";
   why.push_back("static stage: pseudo time step " + format(plan.static_dt) + " s" + static_reason);
-  if (t.settle.value_or(!plan.far_field))
+  if (t.settle.value_or(true))
     plan.settle = plan_settle_stage(t, plan, why);
-  else if (t.settle.has_value())
-    why.push_back("no settle stage (tunnel.settle.enabled false): the run ends with the window");
   else
-    why.push_back("no settle stage: blocks tied to a far field keep the trapezoidal rule, whose "
-                  "undamped contact modes never come to rest (tunnel.settle.enabled: true runs "
-                  "it to its bound)");
+    why.push_back("no settle stage (tunnel.settle.enabled false): the run ends with the window");
   return plan;
 }
 
@@ -670,10 +666,10 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
     time["dt"] = plan.dt;
   if (!time["end_time"])
     time["end_time"] = plan.end_time;
-  // Blocks step adaptively (cut on a failed step, grow back); blocks tied to a far field step
-  // with one dt.
+  // Blocks step adaptively (cut on a failed step, grow back; tied to a far field, on the
+  // levels dt / 2^k).
   if (!time["control"])
-    time["control"] = plan.far_field ? "fixed" : "adaptive";
+    time["control"] = "adaptive";
   root["time"] = time;
   YAML::Node output =
       given["output"] ? YAML::Clone(given["output"]) : YAML::Node(YAML::NodeType::Map);

@@ -269,19 +269,7 @@ std::string FarFieldTies::begin_step(const double dt, const Eigen::VectorXd& dis
     return {};
   }
   dynamic_started = true;
-  if (dt != flexibility_dt)
-  {
-    const auto t0 = Clock::now();
-    const auto n = static_cast<Eigen::Index>(2 * ties.size());
-    const std::vector<double> values = far_field.point_flexibility(dt);
-    const Eigen::MatrixXd gm =
-        Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-            values.data(), n, n);
-    flexibility = 0.5 * (gm + gm.transpose()); // symmetric up to the solver's round-off
-    flexibility_dt = dt;
-    bonded_terms_valid = false;
-    time_condensation += seconds_since(t0);
-  }
+  select_condensation(dt);
   std::vector<double> free;
   const fem::StepStatus status = far_field.prepare_step(dt, free);
   if (status.outcome != fem::StepOutcome::success)
@@ -294,6 +282,33 @@ std::string FarFieldTies::begin_step(const double dt, const Eigen::VectorXd& dis
   build_terms();
   time_ties += seconds_since(t0);
   return {};
+}
+
+void FarFieldTies::select_condensation(const double dt)
+{
+  if (!condensations.empty() && condensations.front()->dt == dt)
+    return;
+  bonded_terms_valid = false;
+  const auto kept = std::find_if(condensations.begin(), condensations.end(),
+                                 [dt](const auto& c) { return c->dt == dt; });
+  if (kept != condensations.end())
+  {
+    std::rotate(condensations.begin(), kept, kept + 1); // most recently used first
+    return;
+  }
+  const auto t0 = Clock::now();
+  const auto n = static_cast<Eigen::Index>(2 * ties.size());
+  const std::vector<double> values = far_field.point_flexibility(dt);
+  const Eigen::MatrixXd gm =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+          values.data(), n, n);
+  auto c = std::make_unique<Condensation>();
+  c->dt = dt;
+  c->flexibility = 0.5 * (gm + gm.transpose()); // symmetric up to the solver's round-off
+  condensations.insert(condensations.begin(), std::move(c));
+  if (condensations.size() > max_condensations)
+    condensations.pop_back();
+  time_condensation += seconds_since(t0);
 }
 
 void FarFieldTies::build_terms()
@@ -336,8 +351,11 @@ void FarFieldTies::build_terms()
   {
     if (!bonded_terms_valid)
     {
-      m_matrix = flexibility;
-      h = k_bonded - congruence(k_ties, flexibility);
+      Condensation& c = *condensations.front();
+      if (c.bonded_h.size() == 0)
+        c.bonded_h = k_bonded - congruence(k_ties, c.flexibility);
+      m_matrix = c.flexibility;
+      h = c.bonded_h;
       bonded_terms_valid = true;
     }
     r_w0 = w0;
@@ -348,10 +366,10 @@ void FarFieldTies::build_terms()
     const auto n = static_cast<Eigen::Index>(2 * m);
     Eigen::MatrixXd a = Eigen::MatrixXd::Identity(n, n);
     for (std::size_t k = 0; k < m; ++k)
-      a.middleCols<2>(2 * k) += flexibility.middleCols<2>(2 * k) * dk[k];
+      a.middleCols<2>(2 * k) += flexibility().middleCols<2>(2 * k) * dk[k];
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a);
     r_w0 = lu.solve(w0);
-    m_matrix = lu.solve(flexibility);
+    m_matrix = lu.solve(flexibility());
     m_matrix = 0.5 * (m_matrix + m_matrix.transpose()).eval();
     h = -congruence(k_ties, m_matrix);
     for (std::size_t k = 0; k < m; ++k)

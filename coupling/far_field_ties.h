@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -142,9 +143,22 @@ private:
   double length_tied = 0.0, length_of_part = 0.0;
   bool linear = true; ///< infinite strength: no state changes
 
-  Eigen::MatrixXd k_bonded;    ///< K, block diagonal (2 x 2 per tie) [N/m]
-  Eigen::MatrixXd flexibility; ///< G [m/N]
-  double flexibility_dt = 0.0;
+  Eigen::MatrixXd k_bonded; ///< K, block diagonal (2 x 2 per tie) [N/m]
+  /// The far field condensed onto the ties for one dt: coupled runs that cut dt step on levels
+  /// dt_max / 2^k and come back, so the last few are kept (most recently used first), each
+  /// (2m)^2 doubles twice.
+  struct Condensation
+  {
+    double dt = 0.0;
+    Eigen::MatrixXd flexibility; ///< G [m/N]
+    Eigen::MatrixXd bonded_h;    ///< H with every tie bonded, K - K G K [N/m]
+  };
+  static constexpr std::size_t max_condensations = 16;
+  std::vector<std::unique_ptr<Condensation>> condensations;
+  /// Makes the condensation for dt the current one (the first of condensations), building it
+  /// on first use.
+  void select_condensation(double dt);
+  const Eigen::MatrixXd& flexibility() const { return condensations.front()->flexibility; }
 
   // The step in progress.
   Eigen::VectorXd w0;              ///< free far-field displacements at the ties [m]
@@ -155,7 +169,7 @@ private:
   Eigen::MatrixXd m_matrix;        ///< M = R G [m/N]
   Eigen::MatrixXd h;               ///< H = K' - K' M K' [N/m]
   Eigen::VectorXd g;               ///< [N]
-  bool bonded_terms_valid = false; ///< h holds the all-bonded H of flexibility_dt
+  bool bonded_terms_valid = false; ///< h holds the current condensation's all-bonded H
 
   Eigen::VectorXd preload;      ///< P: constant forces on the blocks (x, y per tie) [N]
   bool held = false;            ///< static stage: the far field is held, the ties are fixed springs

@@ -300,10 +300,6 @@ void System::tie(TiedBody& body, const std::vector<MaterialPoint>& points)
 {
   if (timings.n_attempts > 0)
     throw InputError("tie(): the ties must be made before the first step");
-  if (model.time.integrator == Integrator::bathe)
-    throw InputError("time.integrator: bathe cannot tie blocks to a far field (the far field "
-                     "has no composite scheme): expected generalized_alpha, "
-                     "newmark_trapezoidal or dda");
   const double tol = 1e-6 * model_size(blocks);
   for (const MaterialPoint& p : points)
   {

@@ -174,6 +174,7 @@ public:
   /// itself from then on (see TiedBody). The body must outlive the System. Before the first
   /// step only; throws InputError for a point off its block.
   void tie(TiedBody& body, const std::vector<MaterialPoint>& points);
+  bool has_tied_body() const { return tied_body != nullptr; }
   std::size_t n_tie_points() const { return tie_points.size(); }
   /// The tie points' current positions [m].
   const std::vector<MaterialPoint>& get_tie_points() const { return tie_points; }

@@ -11,15 +11,36 @@ TimeStepper::TimeStepper(System& system_, const TimeSettings& settings, double d
       dt_min(settings.dt_min > 0.0 ? std::min(settings.dt_min, dt_max) : 1e-4 * dt_max),
       cut_factor(settings.cut_factor), growth_factor(settings.growth_factor), dt(dt_max),
       reversal_tolerance(control == TimeControl::adaptive ? settings.reversal_tolerance : 0.0),
-      composite(settings.integrator == Integrator::bathe)
+      composite(settings.integrator == Integrator::bathe),
+      ladder(control == TimeControl::adaptive && system_.has_tied_body())
 {
   system.localize_slip_reversals(reversal_tolerance);
+  if (ladder && growth_factor > 1.0)
+    regrow_steps = static_cast<std::size_t>(std::ceil(std::log(2.0) / std::log(growth_factor)));
+}
+
+double TimeStepper::on_ladder(const double x) const
+{
+  if (!ladder || x >= dt_max)
+    return std::min(x, dt_max);
+  const double k = std::ceil(std::log2(dt_max / x) - 1e-9);
+  return dt_max * std::exp2(-k);
+}
+
+double TimeStepper::grown_dt()
+{
+  if (!ladder)
+    return std::min(dt_max, dt * growth_factor);
+  if (++level_successes < regrow_steps || dt >= dt_max)
+    return dt;
+  level_successes = 0;
+  return std::min(dt_max, 2.0 * dt);
 }
 
 double TimeStepper::reversal_dt(const StepStatus& status, double trial) const
 {
   // End 5% short of the estimated reversal, so that the next step meets it at its very start.
-  const double shortened = 0.95 * status.reversal_fraction * trial;
+  const double shortened = on_ladder(0.95 * status.reversal_fraction * trial);
   return shortened < dt_min ? 0.0 : shortened;
 }
 
@@ -28,9 +49,9 @@ double TimeStepper::reduced_dt(const StepStatus& status, double trial) const
   if (status.outcome == StepOutcome::displacement_too_large && status.max_displacement > 0.0)
   {
     const double ratio = status.max_displacement / system.max_step_displacement();
-    return trial * std::min(0.9, 1.0 / std::sqrt(ratio));
+    return on_ladder(trial * std::min(0.9, 1.0 / std::sqrt(ratio)));
   }
-  return trial * cut_factor;
+  return on_ladder(trial * cut_factor);
 }
 
 StepStatus TimeStepper::advance(double trial)
@@ -99,6 +120,7 @@ StepStatus TimeStepper::after_broken_pair(const StepStatus& first_half, double t
     return failure;
   }
   dt = next;
+  level_successes = 0;
   ++cut_count;
   ++cut_step_count;
   return first_half;
@@ -145,7 +167,7 @@ StepStatus TimeStepper::step(double dt_limit)
         ++reversal_count;
       }
       else if (control == TimeControl::adaptive)
-        dt = std::min(dt_max, dt * growth_factor);
+        dt = grown_dt();
       resume_dt = 0.0;
       return status;
     }
@@ -172,6 +194,7 @@ StepStatus TimeStepper::step(double dt_limit)
       return status;
     }
     dt = next;
+    level_successes = 0;
     ++cut_count;
     ++last_cuts;
   }

@@ -19,6 +19,11 @@ namespace ddafem::dda
 ///   the cause. A step in which a sliding contact reverses its slip with a slip error above
 ///   reversal_tolerance (System::localize_slip_reversals) is not a failure but an event: it is
 ///   redone to end just before the reversal, and the next step tries the dt of before again.
+///   With a tied body (the far field, whose factorization and condensation belong to one dt)
+///   dt keeps to the levels dt_max / 2^k: a cut goes down to the level at or below the dt the
+///   failure asks for (a shortened step before a reversal too), and dt doubles after as many
+///   accepted steps at a level as growth_factor takes to double it. Only a step shortened to land
+///   on a stage's end leaves the ladder.
 /// - fixed: every step has the largest dt; any failure is final.
 /// With Bathe's composite scheme (Integrator::bathe) a step of dt is two System steps of dt/2,
 /// the pair's trapezoidal and backward Euler halves. When the second half fails, the first
@@ -60,6 +65,14 @@ private:
   double reversal_tolerance = 0.0; ///< [m]; 0: fixed control, no localisation
   double resume_dt = 0.0;          ///< after a step shortened at a reversal: the dt to go on with
   bool composite = false;          ///< Integrator::bathe: a step is a pair of half steps
+  bool ladder = false;             ///< adaptive with a tied body: dt on levels dt_max / 2^k
+  std::size_t regrow_steps = 1;    ///< ladder: accepted steps at a level before dt doubles
+  std::size_t level_successes = 0; ///< ladder: accepted steps since dt last changed
+
+  /// Ladder: the largest level dt_max / 2^k at or below `x` [s]; otherwise x.
+  double on_ladder(double x) const;
+  /// The dt after an accepted step of adaptive control.
+  double grown_dt();
   /// Composite: the failure of the last pair's second half when its first half stood
   StepStatus broken_pair;
   bool pair_broken = false;

@@ -188,14 +188,38 @@ public:
   SparseMatrix<double> stiffness;   ///< K, unconstrained
   SparsityPattern damping_sparsity; ///< the boundary couplings only
   SparseMatrix<double> damping;     ///< C (Lysmer and input parts), unconstrained
-  SparseMatrix<double> effective;   ///< K + gamma/(beta dt) C + 1/(beta dt^2) M, constrained
-  std::unique_ptr<EffectiveSolver> solver;
+  /// The effective matrix P = K + gamma/(beta dt) C + 1/(beta dt^2) M (+ the springs' N^T K N),
+  /// constrained, and its solver for one dt. Coupled runs that cut dt step on levels
+  /// dt_max / 2^k and come back: the last few are kept (most recently used first).
+  struct Factorization
+  {
+    double dt = 0.0;
+    SparseMatrix<double> matrix;
+    std::unique_ptr<EffectiveSolver> solver; ///< refers to `matrix`
+  };
+  static constexpr std::size_t max_factorizations = 16;
+  std::vector<std::unique_ptr<Factorization>> factorizations;
+  EffectiveSolver* solver = nullptr; ///< of factorizations.front(), or none yet
   double factorized_dt = 0.0;
+  /// Drops every factorization (the effective matrix changed).
+  void forget_factorizations();
 
   /// f(t) = input_scale * v_in(t) * input_shape: the Joyner-Chen traction 2 rho c v_in on the
   /// incident wave's component, integrated over the input parts.
   Vector<double> input_shape;
   double input_scale = 0.0;
+
+  /// The state a step starts from: what an abandoned step of the free-field column restores.
+  struct State
+  {
+    Vector<double> u, v, a, a_previous, force;
+    double t = 0.0;
+    bool initial_acceleration_done = false;
+    EnergyBalance energies;
+    std::size_t n_steps = 0;
+  };
+  State save_state() const;
+  void restore_state(const State& state);
 
   Vector<double> u, v, a;             ///< u: total displacement (static stage included)
   Vector<double> static_displacement; ///< u_s of the static stage (empty without one)
@@ -247,6 +271,8 @@ public:
   /// (in active-cell order), where it is evaluated in the column.
   std::unique_ptr<ElasticWaveModel> column;
   std::vector<std::unique_ptr<FEValues<2>>> column_probes;
+  State column_start;        ///< the column's state at the start of the step in progress
+  bool column_ahead = false; ///< the column has advanced into a step not finished yet
   void make_free_field_column();
   /// Adds integral(N^T (sigma_ff n + D v_ff)) over the free_field faces to f.
   void add_free_field_load(Vector<double>& f) const;
@@ -901,6 +927,8 @@ void ElasticWaveModel::Impl::factorize(const double dt)
 {
   const double c_mass = 1.0 / (beta * dt * dt);
   const double c_damping = gamma / (beta * dt);
+  auto f = std::make_unique<Factorization>();
+  SparseMatrix<double>& effective = f->matrix;
   effective.reinit(sparsity);
   effective.copy_from(stiffness);
   effective.add(c_mass + c_damping * description.rayleigh.alpha, mass);
@@ -918,10 +946,40 @@ void ElasticWaveModel::Impl::factorize(const double dt)
   // Constrained rows and columns (fixed, roller, hanging nodes) condensed out; their rows keep
   // a diagonal entry and a zero right-hand side, and distribute() restores them.
   constraints.condense(effective);
-  solver = make_effective_solver(description.solver, description.direct_solver,
-                                 description.solver_tolerance);
-  solver->initialize(effective);
+  f->solver = make_effective_solver(description.solver, description.direct_solver,
+                                    description.solver_tolerance);
+  f->solver->initialize(effective);
+  f->dt = dt;
+  factorizations.insert(factorizations.begin(), std::move(f));
+  if (factorizations.size() > max_factorizations)
+    factorizations.pop_back();
+  solver = factorizations.front()->solver.get();
   factorized_dt = dt;
+}
+
+void ElasticWaveModel::Impl::forget_factorizations()
+{
+  factorizations.clear();
+  solver = nullptr;
+  factorized_dt = 0.0;
+}
+
+ElasticWaveModel::Impl::State ElasticWaveModel::Impl::save_state() const
+{
+  return {u, v, a, a_previous, force, t, initial_acceleration_done, energies, timings.n_steps};
+}
+
+void ElasticWaveModel::Impl::restore_state(const State& s)
+{
+  u = s.u;
+  v = s.v;
+  a = s.a;
+  a_previous = s.a_previous;
+  force = s.force;
+  t = s.t;
+  initial_acceleration_done = s.initial_acceleration_done;
+  energies = s.energies;
+  timings.n_steps = s.n_steps;
 }
 
 void ElasticWaveModel::Impl::compute_initial_acceleration()
@@ -1016,12 +1074,20 @@ void ElasticWaveModel::Impl::ensure_factorized(const double dt)
     compute_initial_acceleration();
     timings.setup += seconds_since(start);
   }
-  if (dt != factorized_dt)
+  if (dt == factorized_dt)
+    return;
+  const auto kept = std::find_if(factorizations.begin(), factorizations.end(),
+                                 [dt](const auto& f) { return f->dt == dt; });
+  if (kept != factorizations.end())
   {
-    const auto start = Clock::now();
-    factorize(dt);
-    timings.setup += seconds_since(start);
+    std::rotate(factorizations.begin(), kept, kept + 1); // most recently used first
+    solver = factorizations.front()->solver.get();
+    factorized_dt = dt;
+    return;
   }
+  const auto start = Clock::now();
+  factorize(dt);
+  timings.setup += seconds_since(start);
 }
 
 std::vector<double> ElasticWaveModel::Impl::evaluate_at_springs(const Vector<double>& x) const
@@ -1051,15 +1117,15 @@ StepStatus ElasticWaveModel::Impl::prepare_step(const double dt)
 {
   require(dt > 0.0 && std::isfinite(dt), "advance: dt = " + str(dt) + ", expected > 0");
   StepStatus status;
-  // A step prepared but not finished (the DDA side cut dt) has already advanced the free-field
-  // column: it can only be prepared again with the same dt.
-  const bool column_advanced = pending.active && column;
-  if (column_advanced && dt != pending.dt)
+  // A step prepared but not finished (the DDA side cut dt) has advanced the free-field column:
+  // it goes back to the step's start and advances again with the new dt.
+  if (column)
   {
-    status.outcome = StepOutcome::solver_failure;
-    status.message = "far field: a step of " + str(pending.dt) + " s was abandoned and one of " +
-                     str(dt) + " s tried: free-field boundaries need a fixed time step";
-    return status;
+    if (column_ahead)
+      column->impl->restore_state(column_start);
+    else
+      column_start = column->impl->save_state();
+    column_ahead = false;
   }
   pending.active = false;
   try
@@ -1073,7 +1139,8 @@ StepStatus ElasticWaveModel::Impl::prepare_step(const double dt)
     input_force(t1, pending.force_new);
     if (column)
     {
-      const StepStatus column_status = column_advanced ? StepStatus{} : column->advance(dt);
+      const StepStatus column_status = column->advance(dt);
+      column_ahead = true;
       if (column_status.outcome != StepOutcome::success)
         return column_status;
       add_free_field_load(pending.force_new);
@@ -1128,6 +1195,7 @@ StepStatus ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_
               ExcMessage("finish_step(): " + std::to_string(point_loads.size()) +
                          " point loads for " + std::to_string(springs.size()) + " springs"));
   pending.active = false;
+  column_ahead = false;
   StepStatus status;
   const double dt = pending.dt;
   const double t1 = t + dt;
@@ -1419,7 +1487,7 @@ std::vector<double> ElasticWaveModel::add_point_springs(const BoundaryPart part,
     m.springs.push_back(std::move(sp));
   }
   m.spring_force.assign(2 * m.springs.size(), 0.0);
-  m.factorized_dt = 0.0; // the effective matrix gains N^T K N
+  m.forget_factorizations(); // the effective matrix gains N^T K N
   return distances;
 }
 

@@ -28,8 +28,8 @@ TEST(CoupledScene, HybridBarReadsBothSidesAndTheInterface)
   EXPECT_EQ(s.model.monitors[0].name, "M1");
   ASSERT_EQ(s.far_field->monitors.size(), 1u);
   EXPECT_EQ(s.far_field->monitors[0].name, "M2");
-  // One dt on both sides; the far field follows the blocks' integrator.
-  EXPECT_EQ(s.model.time.control, dda::TimeControl::fixed);
+  // Adaptive dt (on the levels dt / 2^k); the far field follows the blocks' DDA scheme.
+  EXPECT_EQ(s.model.time.control, dda::TimeControl::adaptive);
   EXPECT_EQ(s.far_field->integrator, fem::Integrator::dda);
   EXPECT_DOUBLE_EQ(s.far_field->dt, 1e-5);
 }

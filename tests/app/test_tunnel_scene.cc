@@ -250,14 +250,17 @@ TEST(TunnelScene, HybridSceneExpandsIntoBlocksFarFieldInterfaceAndStages)
   EXPECT_EQ(s.model.blocks.size(), s.tunnel->n_blocks);
   EXPECT_EQ(s.interface->part, fem::BoundaryPart::hole);
   EXPECT_DOUBLE_EQ(s.far_field->youngs_modulus, s.tunnel->rock_mass_modulus);
-  // No settle stage by default: the trapezoidal rule's contact modes would never rest.
-  ASSERT_EQ(s.model.stages.size(), 2u);
+  // Excavate, shake and settle (Bathe's scheme on the blocks: the settle stage comes to rest);
+  // adaptive dt on the ladder dt / 2^k.
+  ASSERT_EQ(s.model.stages.size(), 3u);
   EXPECT_EQ(s.model.stages[0].mode, dda::StageMode::static_equilibrium);
   EXPECT_EQ(s.model.stages[1].mode, dda::StageMode::dynamic);
-  EXPECT_FALSE(s.model.stages[1].settle.has_value());
-  const Scene settled = read_scene(stable_scene, {{"tunnel.settle.enabled", "true"}});
-  ASSERT_EQ(settled.model.stages.size(), 3u);
-  EXPECT_TRUE(settled.model.stages[2].settle.has_value());
+  EXPECT_TRUE(s.model.stages[2].settle.has_value());
+  EXPECT_EQ(s.model.time.control, dda::TimeControl::adaptive);
+  EXPECT_EQ(s.model.time.integrator, dda::Integrator::bathe);
+  EXPECT_EQ(s.far_field->integrator, fem::Integrator::newmark_trapezoidal);
+  const Scene unsettled = read_scene(stable_scene, {{"tunnel.settle.enabled", "false"}});
+  ASSERT_EQ(unsettled.model.stages.size(), 2u);
   EXPECT_EQ(s.model.monitors.size(), 5u);
   EXPECT_NE(s.expanded_yaml.find("in_situ_stress"), std::string::npos);
 }

@@ -239,3 +239,69 @@ TEST(TimeStepper, BatheTakesPairsOfHalfStepsAndKeepsAFirstHalfWhoseSecondFails)
   }
   EXPECT_NEAR(s.get_blocks()[0].velocity.y(), -v - g * s.time(), 1e-9);
 }
+
+namespace
+{
+/// A tied body that carries nothing (H = 0, g = 0) and records the dt of every step begun: what
+/// the far field would be factorized and condensed for.
+class RecordingBody final : public TiedBody
+{
+public:
+  std::vector<double> dts;
+  void begin_stage(StageMode) override {}
+  bool stiffness_is_block_diagonal() const override { return true; }
+  std::string begin_step(double dt, const Eigen::VectorXd&) override
+  {
+    dts.push_back(dt);
+    return {};
+  }
+  const Eigen::MatrixXd& stiffness() const override { return h; }
+  const Eigen::VectorXd& force() const override { return g; }
+  std::size_t update_trial_states(const Eigen::VectorXd&) override { return 0; }
+  std::string end_step(const Eigen::VectorXd&) override { return {}; }
+  double work_on_blocks() const override { return 0.0; }
+
+private:
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, 2);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(2);
+};
+} // namespace
+
+TEST(TimeStepper, TiedToABodyStepsOnTheLevelsOfTheLargestStep)
+{
+  // The thrown block tied to a body: every step the body sees is dt_max / 2^k. The first
+  // step's cut asks for 0.9 dt / sqrt(1.99) = 6.4e-4 s and gets the level below, 5e-4 s (the
+  // bound allows 5.01e-4 s); dt doubles after ceil(ln 2 / ln 1.2) = 4 accepted steps at a level.
+  const ModelDescription m = thrown_block();
+  System s(m);
+  RecordingBody body;
+  s.tie(body, {{0, Point(0.0, 0.5), Point(0.0, 0.5)}});
+  TimeStepper stepper(s, m.time);
+  StepStatus status = stepper.step();
+  ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
+  EXPECT_EQ(stepper.last_dt(), 0.5 * dt_max);
+  std::size_t steps_at_level = 0; // uncut steps at the level
+  double level = stepper.last_dt();
+  while (s.time() < 0.1)
+  {
+    status = stepper.step();
+    ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
+    EXPECT_LE(status.max_displacement, s.max_step_displacement());
+    // Up one level after 4 uncut steps at the one below (a cut step does not count).
+    const bool cut = stepper.n_last_step_cuts() > 0;
+    if (!cut && stepper.last_dt() > level)
+    {
+      EXPECT_EQ(stepper.last_dt(), 2.0 * level);
+      EXPECT_EQ(steps_at_level, 4u);
+    }
+    steps_at_level = cut ? 0 : stepper.last_dt() == level ? steps_at_level + 1 : 1;
+    level = stepper.last_dt();
+  }
+  for (const double dt : body.dts)
+  {
+    const double k = std::log2(dt_max / dt);
+    EXPECT_EQ(k, std::round(k)) << dt;
+  }
+  EXPECT_EQ(stepper.next_dt(), dt_max);
+  EXPECT_NEAR(s.get_blocks()[0].velocity.y(), v0 - g * s.time(), 1e-9);
+}
