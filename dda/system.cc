@@ -86,7 +86,7 @@ Point System::AttachedFixedPoint::target(double t) const
 }
 
 System::System(const ModelDescription& model_)
-    : model(model_), matrix(0, {}), base_matrix(0, {}),
+    : model(model_), matrix(0, {}), base_matrix(0, {}), tied_matrix(0, {}),
       solver(make_sparse_direct_solver(model_.solver))
 {
   integration = integrator_coefficients(model.time.integrator, model.time.spectral_radius);
@@ -684,17 +684,31 @@ StepStatus System::solve_with_open_close(const std::string& when, bool new_matri
   else
     matrix = base_matrix;
   base_rhs = rhs;
+  // A tied body's terms (dense over the tied blocks) change only when its ties change state:
+  // the iterations start from the matrix with them, rebuilt only then.
+  const auto add_ties_to_start = [&]
+  {
+    matrix = base_matrix;
+    rhs = base_rhs;
+    add_tie_terms();
+    tied_matrix = matrix;
+    tied_rhs = rhs;
+  };
+  if (tied_body)
+    add_ties_to_start();
+  bool ties_changed = false;
   StepStatus status;
   const unsigned max_iterations = std::max(1u, model.contacts.max_open_close_iterations);
   for (unsigned iteration = 1; iteration <= max_iterations; ++iteration)
   {
-    if (iteration > 1)
+    if (iteration > 1 && ties_changed)
+      add_ties_to_start();
+    else if (iteration > 1)
     {
-      matrix = base_matrix;
-      rhs = base_rhs;
+      matrix = tied_body ? tied_matrix : base_matrix;
+      rhs = tied_body ? tied_rhs : base_rhs;
     }
     add_contact_terms();
-    add_tie_terms();
     status.solve = solver.solve(matrix, rhs, solution, MatrixChange::unknown);
     ++status.n_open_close_iterations;
     ++timings.n_open_close_iterations;
@@ -705,8 +719,10 @@ StepStatus System::solve_with_open_close(const std::string& when, bool new_matri
       return status;
     }
     std::size_t n_changes = update_trial_states(iteration, status.n_flips_ignored);
-    if (tied_body)
-      n_changes += tied_body->update_trial_states(tie_increments(solution));
+    const std::size_t n_tie_changes =
+        tied_body ? tied_body->update_trial_states(tie_increments(solution)) : 0;
+    ties_changed = n_tie_changes > 0;
+    n_changes += n_tie_changes;
     status.n_state_changes += n_changes;
     if (n_changes == 0)
       return status;

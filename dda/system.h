@@ -511,6 +511,8 @@ private:
   BlockSparseMatrix matrix;
   BlockSparseMatrix base_matrix; ///< the step's matrix without contacts (when there are some)
   Eigen::VectorXd base_rhs;
+  BlockSparseMatrix tied_matrix; ///< base_matrix with a tied body's terms (open-close iteration)
+  Eigen::VectorXd tied_rhs;
   double matrix_dt = 0.0;          ///< dt the matrix was assembled for (small-displacement reuse)
   double matrix_mass_factor = 0.0; ///< and its factor of M [1/s^2]
   Eigen::VectorXd rhs;

@@ -148,8 +148,9 @@ enum class LinearSolver
 /// bench/fem_bench.py compares them).
 enum class DirectSolver
 {
-  klu,    ///< Trilinos Amesos KLU
-  umfpack ///< deal.II SparseDirectUMFPACK
+  cholmod, ///< SuiteSparse CHOLMOD, supernodal Cholesky (the matrix is SPD)
+  klu,     ///< Trilinos Amesos KLU
+  umfpack  ///< deal.II SparseDirectUMFPACK
 };
 
 /// How the absorbing (lysmer, input) parts are held while the static stage is solved.
@@ -206,7 +207,7 @@ struct FarFieldDescription
   HoleDescription hole;
   MeshFile mesh_file;
   LinearSolver solver = LinearSolver::direct;
-  DirectSolver direct_solver = DirectSolver::klu;
+  DirectSolver direct_solver = DirectSolver::cholmod;
   double solver_tolerance = 1e-12; ///< cg: residual relative to the right-hand side
   StaticStage static_stage;
   RayleighDamping rayleigh;
