@@ -376,8 +376,11 @@ void FarFieldTies::build_terms()
       h.block<2, 2>(2 * k, 2 * k) += k_ties[k];
     bonded_terms_valid = false;
   }
-  // f on the blocks = P - (K' (z - w) + F0) = g - H delta, z = c + delta.
-  const Eigen::VectorXd w_f = r_w0 + m_matrix * f_trial;
+  // f on the blocks = P - (K' (z - w) + F0) = g - H delta, z = c + delta. A linear interface's
+  // ties are bonded springs, F0 = 0.
+  if (linear)
+    f_trial.setZero();
+  const Eigen::VectorXd w_f = linear ? r_w0 : Eigen::VectorXd(r_w0 + m_matrix * f_trial);
   g = preload + block_diagonal_times(k_ties, w_f) - f_trial - h * start;
 }
 

@@ -9,6 +9,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <map>
 #include <sstream>
 
@@ -350,12 +351,15 @@ StepStatus System::attempt_step(double dt)
   ++timings.n_attempts;
   if (mode == StageMode::static_equilibrium)
     set_at_rest();
-  choose_step_scheme(dt);                    // 0. the integrator's form of this step
+  choose_step_scheme(dt); // 0. the integrator's form of this step
+  // A tied body begins its step (the far field's free response) on another thread while the
+  // blocks find their contacts and assemble: the two touch no common data.
+  std::future<std::string> tied = begin_tied_step(dt);
   detect_contacts();                         // 1. candidates, 2. contacts
   const bool new_matrix = assemble_step(dt); // 3. assemble
   if (tied_body)
   {
-    const std::string failure = begin_tied_step(dt);
+    const std::string failure = tied.get();
     if (!failure.empty())
       return {StepOutcome::solver_failure, failure + " " + when, {}};
   }
@@ -436,18 +440,24 @@ bool System::assemble_step(double dt)
   return new_matrix;
 }
 
-std::string System::begin_tied_step(double dt)
+std::future<std::string> System::begin_tied_step(double dt)
 {
+  if (!tied_body)
+    return {};
   Eigen::VectorXd displacements(2 * tie_points.size());
   for (std::size_t k = 0; k < tie_points.size(); ++k)
   {
     tie_matrices[k] = point_matrix(tie_points[k]);
     displacements.segment<2>(2 * k) = tie_points[k].position - tie_origins[k];
   }
-  const auto start = Clock::now();
-  const std::string failure = tied_body->begin_step(dt, displacements);
-  timings.tied_body += seconds_since(start);
-  return failure;
+  return std::async(std::launch::async,
+                    [this, dt, displacements = std::move(displacements)]
+                    {
+                      const auto start = Clock::now();
+                      std::string failure = tied_body->begin_step(dt, displacements);
+                      timings.tied_body += seconds_since(start);
+                      return failure;
+                    });
 }
 
 StepStatus System::solve_step(const std::string& when, bool new_matrix)

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <future>
 #include <map>
 #include <string>
 #include <tuple>
@@ -385,9 +386,10 @@ private:
   /// Phase 3: the step's matrix and right-hand side; true if the matrix was assembled anew
   /// (a small-displacement analysis keeps it while dt is unchanged).
   bool assemble_step(double dt);
-  /// The tied body (far field) starts its step: its condensed stiffness and force on the ties.
-  /// A failure message, empty if none.
-  std::string begin_tied_step(double dt);
+  /// The tied body (far field) starts its step on another thread: its condensed stiffness and
+  /// force on the ties. The future holds a failure message, empty if none (no future without a
+  /// tied body).
+  std::future<std::string> begin_tied_step(double dt);
   /// Phase 4: the solution, with the open-close iteration if there are contacts or ties.
   StepStatus solve_step(const std::string& when, bool new_matrix);
   /// Step control on the solution: sets the status's largest vertex displacement and
