@@ -392,7 +392,9 @@ Eigen::VectorXd FarFieldTies::far_field_displacements(const Eigen::VectorXd& z) 
   return r_w0 + m_matrix * (kz + f_trial);
 }
 
-std::size_t FarFieldTies::update_trial_states(const Eigen::VectorXd& delta)
+std::size_t FarFieldTies::update_trial_states(const Eigen::VectorXd& delta,
+                                              const unsigned iteration, const double negligible,
+                                              std::size_t& n_ignored)
 {
   if (linear || held)
     return 0;
@@ -400,6 +402,7 @@ std::size_t FarFieldTies::update_trial_states(const Eigen::VectorXd& delta)
   const Eigen::VectorXd z = start + delta;
   const Eigen::VectorXd r = z - far_field_displacements(z);
   std::size_t n_changes = 0;
+  bool any_change = false;
   for (std::size_t k = 0; k < ties.size(); ++k)
   {
     Tie& t = ties[k];
@@ -408,10 +411,17 @@ std::size_t FarFieldTies::update_trial_states(const Eigen::VectorXd& delta)
     // separation along the far field's outward normal -n.
     const dda::ContactForces next =
         dda::evaluate_contact(t.law, t.forces, -t.normal.dot(rk), t.tangent.dot(rk - t.stretch));
-    n_changes += dda::state_changed(t.trial, next) ? 1 : 0;
+    if (dda::state_changed(t.trial, next))
+    {
+      any_change = true;
+      if (dda::change_holds_iteration(iteration, t.trial, next, negligible))
+        ++n_changes;
+      else
+        ++n_ignored;
+    }
     t.trial = next;
   }
-  if (n_changes > 0)
+  if (any_change)
     build_terms();
   time_ties += seconds_since(t0);
   return n_changes;

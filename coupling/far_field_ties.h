@@ -97,7 +97,8 @@ public:
   std::string begin_step(double dt, const Eigen::VectorXd& displacements) override;
   const Eigen::MatrixXd& stiffness() const override { return h; }
   const Eigen::VectorXd& force() const override { return g; }
-  std::size_t update_trial_states(const Eigen::VectorXd& delta) override;
+  std::size_t update_trial_states(const Eigen::VectorXd& delta, unsigned iteration,
+                                  double negligible, std::size_t& n_ignored) override;
   std::string end_step(const Eigen::VectorXd& delta) override;
   double work_on_blocks() const override { return work_blocks; }
 

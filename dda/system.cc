@@ -729,9 +729,13 @@ StepStatus System::solve_with_open_close(const std::string& when, bool new_matri
       return status;
     }
     std::size_t n_changes = update_trial_states(iteration, status.n_flips_ignored);
+    const std::size_t ignored_before = status.n_flips_ignored;
     const std::size_t n_tie_changes =
-        tied_body ? tied_body->update_trial_states(tie_increments(solution)) : 0;
-    ties_changed = n_tie_changes > 0;
+        tied_body
+            ? tied_body->update_trial_states(tie_increments(solution), iteration,
+                                             negligible_contact_force(), status.n_flips_ignored)
+            : 0;
+    ties_changed = n_tie_changes > 0 || status.n_flips_ignored > ignored_before;
     n_changes += n_tie_changes;
     status.n_state_changes += n_changes;
     if (n_changes == 0)

@@ -42,9 +42,13 @@ public:
   virtual bool stiffness_is_block_diagonal() const { return false; }
   /// g of the ties' trial states [N].
   virtual const Eigen::VectorXd& force() const = 0;
-  /// Sets the ties' trial states from the trial increments `delta` (2m) [m]; returns the number
-  /// of ties whose state changed (H and g then change).
-  virtual std::size_t update_trial_states(const Eigen::VectorXd& delta) = 0;
+  /// Sets the ties' trial states from the trial increments `delta` (2m) [m] in open-close
+  /// iteration `iteration` (from 1); returns the number of ties whose state change holds the
+  /// iteration back (H and g change with every change). As for the blocks' contacts
+  /// (change_holds_iteration): from the third iteration on, a tie carrying at most `negligible`
+  /// [N] before and after changes without holding it back; those are counted in `n_ignored`.
+  virtual std::size_t update_trial_states(const Eigen::VectorXd& delta, unsigned iteration,
+                                          double negligible, std::size_t& n_ignored) = 0;
   /// Accepts the step with the increments of the converged trial: the body advances to t + dt.
   /// Returns an empty string, or why it failed (the System then reports a solver failure).
   virtual std::string end_step(const Eigen::VectorXd& delta) = 0;

@@ -257,7 +257,10 @@ public:
   }
   const Eigen::MatrixXd& stiffness() const override { return h; }
   const Eigen::VectorXd& force() const override { return g; }
-  std::size_t update_trial_states(const Eigen::VectorXd&) override { return 0; }
+  std::size_t update_trial_states(const Eigen::VectorXd&, unsigned, double, std::size_t&) override
+  {
+    return 0;
+  }
   std::string end_step(const Eigen::VectorXd&) override { return {}; }
   double work_on_blocks() const override { return 0.0; }
 
