@@ -124,7 +124,8 @@ def convergence_jobs(dt):
     step: adaptive control cuts below it where it must)."""
     out = []
     for divisor in (1, 2, 4):
-        spec = SA.spec("convergence", "vb1", f"default dt/{divisor}", DEFAULT_SCENE, {},
+        spec = SA.spec("convergence", "vb1", f"default dt/{divisor}", DEFAULT_SCENE,
+                       {"tunnel.truncation": "vb1"},
                        scene_name="circular", cohesion_pa=0.2e6, amplitude_m_s=0.5, k0=0.5,
                        est_s=40.0 * divisor, dt=dt / divisor, divisor=divisor)
         spec["settings"].pop("output.interval")
@@ -144,7 +145,7 @@ def jobs(parts, quick, ddafem, settle_max, blocks_timeout=None, truncations=None
     if "blocks" in parts:
         out += [blocks_job(a, settle_max, blocks_timeout) for a in AMPLITUDES]
     if "convergence" in parts:
-        out += convergence_jobs(DT_CHECK.scene_dt(ddafem, DEFAULT_SCENE, {}))
+        out += convergence_jobs(DT_CHECK.scene_dt(ddafem, DEFAULT_SCENE, {"tunnel.truncation": "vb1"}))
     return out
 
 

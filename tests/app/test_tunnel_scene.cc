@@ -286,13 +286,14 @@ TEST(TunnelScene, SettleStageFollowsTheWaveByDefault)
   EXPECT_DOUBLE_EQ(longer.model.stages[2].settle->rest_speed, 1e-4);
 }
 
-// The default scene is blocks only with VB I until coupled runs can cut dt (issue 17).
-TEST(TunnelScene, DefaultSceneIsBlocksOnlyWithRealisticJoints)
+// The default scene is the hybrid with realistic joints (issue 17: coupled runs cut dt).
+TEST(TunnelScene, DefaultSceneIsTheHybridWithRealisticJoints)
 {
   const Scene s = read_scene(default_scene);
   ASSERT_TRUE(s.tunnel.has_value());
-  EXPECT_FALSE(s.far_field.has_value());
-  EXPECT_EQ(s.tunnel->truncation, TunnelTruncation::vb1);
+  EXPECT_TRUE(s.coupled());
+  EXPECT_EQ(s.tunnel->truncation, TunnelTruncation::hybrid);
+  EXPECT_EQ(s.model.time.control, dda::TimeControl::adaptive);
   ASSERT_EQ(s.model.joint_materials.size(), 1u);
   const dda::JointMaterial& j = s.model.joint_materials[0];
   EXPECT_LE(j.cohesion, 0.2e6);
