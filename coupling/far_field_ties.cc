@@ -286,16 +286,11 @@ std::string FarFieldTies::begin_step(const double dt, const Eigen::VectorXd& dis
 
 void FarFieldTies::select_condensation(const double dt)
 {
-  if (!condensations.empty() && condensations.front()->dt == dt)
+  if (!condensations.empty() && condensations.front_key() == dt)
     return;
   bonded_terms_valid = false;
-  const auto kept = std::find_if(condensations.begin(), condensations.end(),
-                                 [dt](const auto& c) { return c->dt == dt; });
-  if (kept != condensations.end())
-  {
-    std::rotate(condensations.begin(), kept, kept + 1); // most recently used first
+  if (condensations.use(dt) != nullptr)
     return;
-  }
   const auto t0 = Clock::now();
   const auto n = static_cast<Eigen::Index>(2 * ties.size());
   const std::vector<double> values = far_field.point_flexibility(dt);
@@ -303,11 +298,8 @@ void FarFieldTies::select_condensation(const double dt)
       Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
           values.data(), n, n);
   auto c = std::make_unique<Condensation>();
-  c->dt = dt;
   c->flexibility = 0.5 * (gm + gm.transpose()); // symmetric up to the solver's round-off
-  condensations.insert(condensations.begin(), std::move(c));
-  if (condensations.size() > max_condensations)
-    condensations.pop_back();
+  condensations.insert(dt, std::move(c));
   time_condensation += seconds_since(t0);
 }
 
@@ -351,7 +343,7 @@ void FarFieldTies::build_terms()
   {
     if (!bonded_terms_valid)
     {
-      Condensation& c = *condensations.front();
+      Condensation& c = condensations.front();
       if (c.bonded_h.size() == 0)
         c.bonded_h = k_bonded - congruence(k_ties, c.flexibility);
       m_matrix = c.flexibility;

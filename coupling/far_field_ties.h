@@ -2,6 +2,7 @@
 // one implicit system per step, the far field condensed onto the tie points.
 #pragma once
 
+#include "common/recent_cache.h"
 #include "dda/contact/contact_law.h"
 #include "dda/system.h"
 #include "dda/tied_body.h"
@@ -150,16 +151,14 @@ private:
   /// (2m)^2 doubles twice.
   struct Condensation
   {
-    double dt = 0.0;
     Eigen::MatrixXd flexibility; ///< G [m/N]
     Eigen::MatrixXd bonded_h;    ///< H with every tie bonded, K - K G K [N/m]
   };
-  static constexpr std::size_t max_condensations = 16;
-  std::vector<std::unique_ptr<Condensation>> condensations;
+  ddafem::RecentCache<double, Condensation> condensations{16}; ///< by dt [s]
   /// Makes the condensation for dt the current one (the first of condensations), building it
   /// on first use.
   void select_condensation(double dt);
-  const Eigen::MatrixXd& flexibility() const { return condensations.front()->flexibility; }
+  const Eigen::MatrixXd& flexibility() const { return condensations.front().flexibility; }
 
   // The step in progress.
   Eigen::VectorXd w0;              ///< free far-field displacements at the ties [m]

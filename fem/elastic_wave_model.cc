@@ -3,6 +3,7 @@
 #include "fem/elastic_wave_model.h"
 
 #include "common/input_error.h"
+#include "common/recent_cache.h"
 #include "fem/far_field_mesh.h"
 #include "fem/linear_solvers.h"
 
@@ -193,12 +194,10 @@ public:
   /// dt_max / 2^k and come back: the last few are kept (most recently used first).
   struct Factorization
   {
-    double dt = 0.0;
     SparseMatrix<double> matrix;
     std::unique_ptr<EffectiveSolver> solver; ///< refers to `matrix`
   };
-  static constexpr std::size_t max_factorizations = 16;
-  std::vector<std::unique_ptr<Factorization>> factorizations;
+  ddafem::RecentCache<double, Factorization> factorizations{16}; ///< by dt [s]
   EffectiveSolver* solver = nullptr; ///< of factorizations.front(), or none yet
   double factorized_dt = 0.0;
   /// Drops every factorization (the effective matrix changed).
@@ -949,11 +948,7 @@ void ElasticWaveModel::Impl::factorize(const double dt)
   f->solver = make_effective_solver(description.solver, description.direct_solver,
                                     description.solver_tolerance);
   f->solver->initialize(effective);
-  f->dt = dt;
-  factorizations.insert(factorizations.begin(), std::move(f));
-  if (factorizations.size() > max_factorizations)
-    factorizations.pop_back();
-  solver = factorizations.front()->solver.get();
+  solver = factorizations.insert(dt, std::move(f)).solver.get();
   factorized_dt = dt;
 }
 
@@ -1076,12 +1071,9 @@ void ElasticWaveModel::Impl::ensure_factorized(const double dt)
   }
   if (dt == factorized_dt)
     return;
-  const auto kept = std::find_if(factorizations.begin(), factorizations.end(),
-                                 [dt](const auto& f) { return f->dt == dt; });
-  if (kept != factorizations.end())
+  if (Factorization* kept = factorizations.use(dt))
   {
-    std::rotate(factorizations.begin(), kept, kept + 1); // most recently used first
-    solver = factorizations.front()->solver.get();
+    solver = kept->solver.get();
     factorized_dt = dt;
     return;
   }
