@@ -274,86 +274,116 @@ std::unique_ptr<SparseDirectSolver> make_sparse_direct_solver(SolverKind kind)
 
 // ---- FactorizationReusingSolver --------------------------------------------------------------
 
-FactorizationReusingSolver::FactorizationReusingSolver(std::unique_ptr<SparseDirectSolver> solver_,
-                                                       double tolerance_, unsigned max_refinements_)
-    : solver(std::move(solver_)), tolerance(tolerance_), max_refinements(max_refinements_)
+FactorizationReusingSolver::FactorizationReusingSolver(SolverKind kind_, double tolerance_,
+                                                       unsigned max_refinements_,
+                                                       std::size_t max_kept)
+    : kind(kind_), tolerance(tolerance_), max_refinements(max_refinements_), kept(max_kept)
 {
 }
 
-SolveStatus FactorizationReusingSolver::factorize_and_solve(const BlockSparseMatrix& a,
+std::string FactorizationReusingSolver::name() const
+{
+  return kept.empty() ? make_sparse_direct_solver(kind)->name() : kept.front().solver->name();
+}
+
+SolveStatus FactorizationReusingSolver::factorize_and_solve(Factored& f, const BlockSparseMatrix& a,
                                                             const Eigen::VectorXd& b,
                                                             Eigen::VectorXd& x)
 {
   SolveStatus status;
-  if (!factored)
-    solver->analyze_pattern(a);
+  if (!f.matrix)
+    f.solver->analyze_pattern(a);
   ++factorization_count;
-  if (!solver->factorize(a))
+  if (!f.solver->factorize(a))
   {
-    factored.reset();
+    f.matrix.reset();
     status.success = false;
-    status.message = "the step matrix is singular or not positive definite (" + solver->name() +
+    status.message = "the step matrix is singular or not positive definite (" + f.solver->name() +
                      " factorization failed)";
     return status;
   }
-  factored = std::make_unique<BlockSparseMatrix>(a);
-  solver->solve(b, x);
+  f.matrix = std::make_unique<BlockSparseMatrix>(a);
+  f.solver->solve(b, x);
   ++solve_count;
   status.factorized = true;
   return status;
 }
 
-SolveStatus FactorizationReusingSolver::solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
-                                              Eigen::VectorXd& x, MatrixChange change)
+SolveStatus FactorizationReusingSolver::refine(Factored& f, const BlockSparseMatrix& a,
+                                               const Eigen::VectorXd& b, Eigen::VectorXd& x)
 {
+  // Conjugate gradients on A (symmetric positive definite) preconditioned by the factors of
+  // the old matrix: converges in a few iterations when A differs from it by a small or a
+  // low-rank change (geometry drift, contacts changing state).
   SolveStatus status;
-  const bool same_structure = factored && factored->same_structure(a);
-  if (!factored || factored->n_rows() != a.n_rows())
+  const double b_norm = b.norm();
+  const double target = tolerance * (b_norm > 0.0 ? b_norm : 1.0);
+  f.solver->solve(b, x);
+  ++solve_count;
+  Eigen::VectorXd r = b - a.multiply(x);
+  double r_norm = r.norm();
+  Eigen::VectorXd z, p, q;
+  double rz = 0.0;
+  for (unsigned k = 0; r_norm > target && k < max_refinements; ++k)
   {
-    factored.reset();
-    status = factorize_and_solve(a, b, x);
+    f.solver->solve(r, z);
+    ++solve_count;
+    const double rz_new = r.dot(z);
+    p = k == 0 ? z : Eigen::VectorXd(z + (rz_new / rz) * p);
+    rz = rz_new;
+    q = a.multiply(p);
+    const double alpha = rz / p.dot(q);
+    x += alpha * p;
+    r -= alpha * q;
+    r_norm = r.norm();
+    ++refinement_count;
+    ++status.n_refinements;
   }
-  else if (same_structure && (change == MatrixChange::unchanged || factored->same_values(a)))
+  status.relative_residual = b_norm > 0.0 ? r_norm / b_norm : r_norm;
+  if (!(r_norm <= target))
   {
-    solver->solve(b, x);
+    if (!f.matrix->same_structure(a))
+      f.matrix.reset(); // a new structure needs a new symbolic analysis
+    status = factorize_and_solve(f, a, b, x);
+  }
+  return status;
+}
+
+SolveStatus FactorizationReusingSolver::solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
+                                              Eigen::VectorXd& x, MatrixChange change,
+                                              const double key)
+{
+  // `unchanged` vouches for the previous call's matrix: the factors' own only if that call
+  // factorized it or found it equal to theirs, not if it refined with older factors.
+  const bool previous_was_factored =
+      !kept.empty() && kept.front_key() == key && last_call_used_own_factors;
+  Factored* f = kept.use(key);
+  if (f == nullptr)
+  {
+    auto made = std::make_unique<Factored>();
+    made->solver = make_sparse_direct_solver(kind);
+    f = &kept.insert(key, std::move(made));
+  }
+  SolveStatus status;
+  bool own_factors = true;
+  if (!f->matrix || f->matrix->n_rows() != a.n_rows())
+  {
+    f->matrix.reset();
+    status = factorize_and_solve(*f, a, b, x);
+  }
+  else if (f->matrix->same_structure(a) &&
+           ((previous_was_factored && change == MatrixChange::unchanged) ||
+            f->matrix->same_values(a)))
+  {
+    f->solver->solve(b, x);
     ++solve_count;
   }
   else
   {
-    // Conjugate gradients on A (symmetric positive definite) preconditioned by the factors of
-    // the old matrix: converges in a few iterations when A differs from it by a small or a
-    // low-rank change (geometry drift, contacts changing state).
-    const double b_norm = b.norm();
-    const double target = tolerance * (b_norm > 0.0 ? b_norm : 1.0);
-    solver->solve(b, x);
-    ++solve_count;
-    Eigen::VectorXd r = b - a.multiply(x);
-    double r_norm = r.norm();
-    Eigen::VectorXd z, p, q;
-    double rz = 0.0;
-    for (unsigned k = 0; r_norm > target && k < max_refinements; ++k)
-    {
-      solver->solve(r, z);
-      ++solve_count;
-      const double rz_new = r.dot(z);
-      p = k == 0 ? z : Eigen::VectorXd(z + (rz_new / rz) * p);
-      rz = rz_new;
-      q = a.multiply(p);
-      const double alpha = rz / p.dot(q);
-      x += alpha * p;
-      r -= alpha * q;
-      r_norm = r.norm();
-      ++refinement_count;
-      ++status.n_refinements;
-    }
-    status.relative_residual = b_norm > 0.0 ? r_norm / b_norm : r_norm;
-    if (!(r_norm <= target))
-    {
-      if (!same_structure)
-        factored.reset(); // a new structure needs a new symbolic analysis
-      status = factorize_and_solve(a, b, x);
-    }
+    status = refine(*f, a, b, x);
+    own_factors = status.factorized;
   }
+  last_call_used_own_factors = own_factors;
   if (status.success && !x.allFinite())
   {
     status.success = false;

@@ -2,6 +2,7 @@
 // solvers whose factorization is reused across steps.
 #pragma once
 
+#include "common/recent_cache.h"
 #include "dda/model_description.h"
 #include "dda/types.h"
 
@@ -97,27 +98,44 @@ enum class MatrixChange
 /// satisfies the residual tolerance of a fresh direct solve or the given one. The default 1e-9
 /// lies far below what matters physically: the geometry update changes A by about the step's
 /// strain increment (1e-8 to 1e-5 relative) and the discretisation error is of order 1e-2.
+///
+/// Matrices of different kinds (the inertia term c M of another dt, or of the other half step
+/// of Bathe's scheme) differ by far more than a few springs: the caller gives each kind a key
+/// (c [1/s^2]), and the factors of the last few keys are kept, most recently used first, each
+/// preconditioning only matrices of its own key. A run that alternates Bathe's two half steps,
+/// or cuts dt and regrows it on levels dt / 2^k, then factorizes once per key instead of at
+/// every change.
 class FactorizationReusingSolver
 {
 public:
-  explicit FactorizationReusingSolver(std::unique_ptr<SparseDirectSolver> solver,
-                                      double tolerance = 1e-9, unsigned max_refinements = 12);
+  explicit FactorizationReusingSolver(SolverKind kind, double tolerance = 1e-9,
+                                      unsigned max_refinements = 12, std::size_t max_kept = 8);
 
+  /// `key`: the kind of A (see above); `change` compares with the last call's matrix.
   SolveStatus solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                    MatrixChange change = MatrixChange::unknown);
+                    MatrixChange change = MatrixChange::unknown, double key = 0.0);
 
-  std::string name() const { return solver->name(); }
+  std::string name() const;
   std::size_t n_factorizations() const { return factorization_count; }
   std::size_t n_solves() const { return solve_count; }
   std::size_t n_refinements() const { return refinement_count; }
 
 private:
-  SolveStatus factorize_and_solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
+  /// One key's factors and the matrix they belong to (none until the first factorization).
+  struct Factored
+  {
+    std::unique_ptr<SparseDirectSolver> solver;
+    std::unique_ptr<BlockSparseMatrix> matrix;
+  };
+  SolveStatus factorize_and_solve(Factored& f, const BlockSparseMatrix& a, const Eigen::VectorXd& b,
                                   Eigen::VectorXd& x);
-  std::unique_ptr<SparseDirectSolver> solver;
+  SolveStatus refine(Factored& f, const BlockSparseMatrix& a, const Eigen::VectorXd& b,
+                     Eigen::VectorXd& x);
+  SolverKind kind;
   double tolerance;
   unsigned max_refinements;
-  std::unique_ptr<BlockSparseMatrix> factored; ///< copy of the matrix the factors belong to
+  RecentCache<double, Factored> kept;      ///< by key
+  bool last_call_used_own_factors = false; ///< A of the last call is the factored matrix
   std::size_t factorization_count = 0;
   std::size_t solve_count = 0;
   std::size_t refinement_count = 0;

@@ -87,8 +87,7 @@ Point System::AttachedFixedPoint::target(double t) const
 }
 
 System::System(const ModelDescription& model_)
-    : model(model_), matrix(0, {}), base_matrix(0, {}), tied_matrix(0, {}),
-      solver(make_sparse_direct_solver(model_.solver))
+    : model(model_), matrix(0, {}), base_matrix(0, {}), tied_matrix(0, {}), solver(model_.solver)
 {
   integration = integrator_coefficients(model.time.integrator, model.time.spectral_radius);
   for (const Material& m : model.materials)
@@ -327,6 +326,16 @@ void System::tie(TiedBody& body, const std::vector<MaterialPoint>& points)
     tie_row_ends[tie_slots[k]] = static_cast<Eigen::Index>(2 * (k + 1));
   for (std::size_t s = 1; s < tie_row_ends.size(); ++s)
     tie_row_ends[s] = std::max(tie_row_ends[s], tie_row_ends[s - 1]);
+  // Whether each tie block's points are consecutive, in the order of tie_blocks.
+  tie_slot_starts.assign(1, 0);
+  for (std::size_t k = 1; k <= points.size(); ++k)
+    if (k == points.size() || tie_slots[k] != tie_slots[k - 1])
+      tie_slot_starts.push_back(static_cast<Eigen::Index>(k));
+  const bool grouped = tie_slot_starts.size() == tie_blocks.size() + 1 &&
+                       std::is_sorted(tie_slots.begin(), tie_slots.end());
+  if (!grouped)
+    tie_slot_starts.clear();
+  tie_stacks.resize(grouped ? tie_blocks.size() : 0);
   tied_body = &body;
   tie_points = points;
   tie_origins.clear();
@@ -467,7 +476,8 @@ StepStatus System::solve_step(const std::string& when, bool new_matrix)
   if (trial_contacts.empty() && !tied_body)
   {
     status.solve = solver.solve(matrix, rhs, solution,
-                                new_matrix ? MatrixChange::unknown : MatrixChange::unchanged);
+                                new_matrix ? MatrixChange::unknown : MatrixChange::unchanged,
+                                matrix_mass_factor);
     if (!status.solve.success)
     {
       status.outcome = StepOutcome::solver_failure;
@@ -719,7 +729,7 @@ StepStatus System::solve_with_open_close(const std::string& when, bool new_matri
       rhs = tied_body ? tied_rhs : base_rhs;
     }
     add_contact_terms();
-    status.solve = solver.solve(matrix, rhs, solution, MatrixChange::unknown);
+    status.solve = solver.solve(matrix, rhs, solution, MatrixChange::unknown, matrix_mass_factor);
     ++status.n_open_close_iterations;
     ++timings.n_open_close_iterations;
     if (!status.solve.success)
@@ -793,6 +803,12 @@ void System::add_tie_terms()
     timings.tie_terms += seconds_since(start);
     return;
   }
+  if (!tie_slot_starts.empty())
+  {
+    add_tie_terms_by_block(h, g);
+    timings.tie_terms += seconds_since(start);
+    return;
+  }
   // (A + T^T H T) d = b + T^T g, grouped by block: Y = H T (2m rows, 6 columns per tie block),
   // the columns of slot s summing H(:, l) T_l over the tie points l on tie_blocks[s]; then
   // block (i, j) gains the sum over the tie points k on i of T_k^T Y(k, slot of j). The matrix
@@ -820,6 +836,40 @@ void System::add_tie_terms()
           tk.transpose() * tie_products.block<2, 6>(2 * k, static_cast<Eigen::Index>(6 * s));
   }
   timings.tie_terms += seconds_since(start);
+}
+
+void System::add_tie_terms_by_block(const Eigen::MatrixXd& h, const Eigen::VectorXd& g)
+{
+  // As add_tie_terms, with T_s the stacked T of tie block s's points (rows p_s .. p_{s+1}):
+  // Y(:, s) = H(:, points of s) T_s, and block (i, j) of tie blocks a <= b gains
+  // T_a^T Y(points of a, b); one product of whole blocks each instead of one per point.
+  const std::size_t n_slots = tie_blocks.size();
+  tie_products.resize(static_cast<Eigen::Index>(2 * tie_points.size()),
+                      static_cast<Eigen::Index>(6 * n_slots));
+  for (std::size_t s = 0; s < n_slots; ++s)
+  {
+    const Eigen::Index first = tie_slot_starts[s], n = tie_slot_starts[s + 1] - first;
+    Eigen::Matrix<double, Eigen::Dynamic, 6>& t_s = tie_stacks[s];
+    t_s.resize(2 * n, 6);
+    for (Eigen::Index k = 0; k < n; ++k)
+      t_s.middleRows<2>(2 * k) = tie_matrices[static_cast<std::size_t>(first + k)];
+    tie_products.block(0, static_cast<Eigen::Index>(6 * s), tie_row_ends[s], 6).noalias() =
+        h.block(0, 2 * first, tie_row_ends[s], 2 * n) * t_s;
+  }
+  for (std::size_t a = 0; a < n_slots; ++a)
+  {
+    const Eigen::Index first = tie_slot_starts[a], n = tie_slot_starts[a + 1] - first;
+    const Eigen::Matrix<double, Eigen::Dynamic, 6>& t_a = tie_stacks[a];
+    const std::size_t ba = tie_blocks[a];
+    rhs.segment<6>(static_cast<Eigen::Index>(6 * ba)).noalias() +=
+        t_a.transpose() * g.segment(2 * first, 2 * n);
+    matrix.diagonal(ba).noalias() +=
+        t_a.transpose() * tie_products.block(2 * first, static_cast<Eigen::Index>(6 * a), 2 * n, 6);
+    for (std::size_t b = a + 1; b < n_slots; ++b)
+      matrix.upper(coupling_of(ba, tie_blocks[b])).noalias() +=
+          t_a.transpose() *
+          tie_products.block(2 * first, static_cast<Eigen::Index>(6 * b), 2 * n, 6);
+  }
 }
 
 Eigen::VectorXd System::tie_increments(const Eigen::VectorXd& d) const

@@ -316,6 +316,9 @@ private:
   void add_contact_terms();
   /// The tied body's H and g on the blocks of the tie points (T at the step start).
   void add_tie_terms();
+  /// add_tie_terms with each tie block's points consecutive: products of whole blocks
+  /// (tie_slot_starts), about three times faster than point by point.
+  void add_tie_terms_by_block(const Eigen::MatrixXd& h, const Eigen::VectorXd& g);
   /// The tie points' displacement increments T d (2m) of a solution.
   Eigen::VectorXd tie_increments(const Eigen::VectorXd& d) const;
   /// Sets each trial from the solution; returns the number of state changes that hold the
@@ -457,6 +460,11 @@ private:
   Eigen::MatrixXd tie_products;
   /// The rows of Y that add_tie_terms reads in the columns of each tie block
   std::vector<Eigen::Index> tie_row_ends;
+  /// When each tie block's points are consecutive (FarFieldTies places them so): the first
+  /// point of each tie block, and one past the last (size tie_blocks + 1); else empty.
+  std::vector<Eigen::Index> tie_slot_starts;
+  /// T of each tie block's points stacked (2 n x 6), for add_tie_terms_by_block
+  std::vector<Eigen::Matrix<double, Eigen::Dynamic, 6>> tie_stacks;
   std::vector<Contact> contacts;       ///< of the last accepted step
   std::vector<Contact> trial_contacts; ///< of the step being tried
   std::vector<ContactFrame> frames;    ///< of trial_contacts

@@ -245,13 +245,50 @@ TEST(BlockCholesky, WorksInFactorizationReusingSolver)
   std::mt19937 rng(11);
   BlockSparseMatrix a(60, grid_couplings(10, 6));
   fill_random(a, rng);
-  FactorizationReusingSolver solver(make_sparse_direct_solver(SolverKind::block_ldlt));
+  FactorizationReusingSolver solver(SolverKind::block_ldlt);
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(a.n_rows()));
   Eigen::VectorXd x;
   const SolveStatus status = solver.solve(a, b, x);
   ASSERT_TRUE(status.success) << status.message;
   EXPECT_LT((a.multiply(x) - b).norm() / b.norm(), 1e-12);
   EXPECT_EQ(solver.name(), "block_ldlt");
+}
+
+// Bathe's two half steps (or two dt levels) alternate two matrices that differ in c M: each key
+// keeps its own factors, so the alternation factorizes twice, not at every change; a small
+// change within a key refines on that key's factors.
+TEST(FactorizationReusingSolver, KeepsTheFactorsOfEachKey)
+{
+  std::mt19937 rng(5);
+  BlockSparseMatrix a(40, grid_couplings(8, 5));
+  fill_random(a, rng);
+  BlockSparseMatrix heavier = a; // + c M: a large change of the diagonal
+  for (std::size_t i = 0; i < heavier.n_blocks(); ++i)
+    heavier.diagonal(i) += 50.0 * heavier.diagonal(i).trace() * Matrix6::Identity();
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(static_cast<Eigen::Index>(a.n_rows()), 1, 2);
+  FactorizationReusingSolver solver(SolverKind::block_ldlt);
+  Eigen::VectorXd x;
+  for (int k = 0; k < 5; ++k)
+  {
+    ASSERT_TRUE(solver.solve(a, b, x, MatrixChange::unknown, 16.0).success);
+    EXPECT_LT((a.multiply(x) - b).norm() / b.norm(), 1e-9);
+    ASSERT_TRUE(solver.solve(heavier, b, x, MatrixChange::unknown, 9.0).success);
+    EXPECT_LT((heavier.multiply(x) - b).norm() / b.norm(), 1e-9);
+  }
+  EXPECT_EQ(solver.n_factorizations(), 2u);
+  // A small change under key 16: conjugate gradients on a's factors, no factorization.
+  BlockSparseMatrix drifted = a;
+  drifted.diagonal(3) *= 1.0 + 1e-6;
+  const SolveStatus status = solver.solve(drifted, b, x, MatrixChange::unknown, 16.0);
+  ASSERT_TRUE(status.success);
+  EXPECT_FALSE(status.factorized);
+  EXPECT_GT(status.n_refinements, 0u);
+  EXPECT_EQ(solver.n_factorizations(), 2u);
+  // `unchanged` after a refined solve: the factors are a's, not drifted's; the answer must
+  // still be drifted's to the tolerance.
+  const Eigen::VectorXd b2 = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(a.n_rows()));
+  ASSERT_TRUE(solver.solve(drifted, b2, x, MatrixChange::unchanged, 16.0).success);
+  EXPECT_LT((drifted.multiply(x) - b2).norm() / b2.norm(), 1e-9);
 }
 
 } // namespace
