@@ -411,6 +411,37 @@ TEST(FrictionalInterface, PullLargerThanTheWeightOpensTheTies)
   EXPECT_LT(std::abs(b.ties->tie_energy()), held);
 }
 
+/// The open-close remedy of the blocks' contacts holds for the ties too (they change state in
+/// the same iteration): from the third iteration on, a tie that carries at most `negligible`
+/// before and after changes without holding the iteration back (counted as ignored); a tie
+/// carrying more, or any tie in iterations 1 and 2, holds it back. A trial lifting the settled
+/// block by 1 mm opens every tie, each of which carried its share of m g.
+TEST(FrictionalInterface, TiesCarryingAlmostNothingChangeWithoutHoldingTheIteration)
+{
+  BlockOnSlab b(interface(true), {});
+  ASSERT_TRUE(b.run_until(settled));
+  const std::size_t m = b.ties->n_ties();
+  ASSERT_GT(m, 1u);
+  for (const Tie& t : b.ties->get_ties())
+    ASSERT_GT(t.forces.normal_force, 0.0); // each carries part of the weight
+  Eigen::VectorXd lift = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(2 * m));
+  for (std::size_t k = 0; k < m; ++k)
+    lift(static_cast<Eigen::Index>(2 * k + 1)) = 1e-3; // [m], up
+  const Eigen::VectorXd at_rest = Eigen::VectorXd::Zero(lift.size());
+  // (iteration, negligible [N]) -> (changes that hold the iteration, changes ignored)
+  const auto trial = [&](unsigned iteration, double negligible)
+  {
+    EXPECT_EQ(b.ties->begin_step(dt, at_rest), ""); // trial states from the accepted ones
+    std::size_t ignored = 0;
+    const std::size_t holding = b.ties->update_trial_states(lift, iteration, negligible, ignored);
+    return std::make_pair(holding, ignored);
+  };
+  EXPECT_EQ(trial(3, 0.0), std::make_pair(m, std::size_t{0}));           // they carried m g / n
+  EXPECT_EQ(trial(3, 10.0 * weight), std::make_pair(std::size_t{0}, m)); // negligible
+  EXPECT_EQ(trial(2, 10.0 * weight), std::make_pair(m, std::size_t{0})); // too early to ignore
+  EXPECT_EQ(b.ties->counts().open, 0u); // trials only: the accepted states are unchanged
+}
+
 /// The default interface (infinite strength) under the load that slides the frictional one
 /// and a pull of 1.5 m g: the ties hold in shear and tension, linear springs.
 TEST(FrictionalInterface, BondedInterfaceNeverSlidesNorOpens)
