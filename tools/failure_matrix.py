@@ -8,6 +8,8 @@
                                                                   # kept from OUT/failure_matrix.json
     /usr/bin/python3 tools/failure_matrix.py --part blocks --blocks-timeout 840  # as in the table
     /usr/bin/python3 tools/failure_matrix.py --render-only        # the .md from the .json again
+    /usr/bin/python3 tools/failure_matrix.py --part matrix --truncations reference \
+        --resume runs.jsonl   # hours of runs: stop any time, the same command goes on
 
 Runs the circular tunnel (examples/tunnel/circular_sv.yaml, SV) and the horseshoe
 (examples/tunnel/horseshoe_p.yaml, P) with frictional-cohesive joints that a rock engineer would
@@ -360,7 +362,9 @@ def load_text(part, info):
             f"{info['cores']} cores, 1-minute load average {load['first']:.2f} at the start, "
             f"mean {load['mean']:.2f}, max {load['max']:.2f} ({load['samples']} samples every 15 s, "
             f"this script's own {info['jobs']} runs among it; "
-            f"{info.get('note', '')})")
+            f"{info.get('note', '')})"
+            + (f"; {info['resumed']} runs resumed from earlier invocations (--resume), binaries "
+               f"{', '.join(info['binaries'])}" if info.get("resumed") else ""))
 
 
 def write_markdown(path, data):
@@ -543,6 +547,38 @@ def timed_run():
     return run
 
 
+def run_key(spec):
+    """What identifies a run across invocations (--resume)."""
+    return json.dumps([spec["case"], spec["method"], spec["variant"], spec["settings"]],
+                      sort_keys=True)
+
+
+def resumable_run(run, path, binary_sha256):
+    """`run` that appends each finished run's result to the JSON-lines file PATH (one line per
+    run, with the binary's sha256), so that an interrupted matrix can go on where it stopped."""
+    lock = threading.Lock()
+
+    def wrapped(binary, spec, out):
+        result = run(binary, spec, out)
+        with lock, open(path, "a") as f:
+            f.write(json.dumps({"key": run_key(spec), "binary_sha256": binary_sha256,
+                                "result": result}) + "\n")
+        return result
+    return wrapped
+
+
+def load_resumed(path):
+    """{run key: (binary sha256, result)} of the runs PATH holds (none if it does not exist)."""
+    done = {}
+    if path and os.path.exists(path):
+        with open(path) as f:
+            for line in f:
+                if line.strip():
+                    entry = json.loads(line)
+                    done[entry["key"]] = (entry["binary_sha256"], entry["result"])
+    return done
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--build", default=os.path.join(TOP, "build"),
@@ -573,6 +609,11 @@ def main():
     parser.add_argument("--render-only", action="store_true",
                         help="rewrite OUT/failure_matrix.md from OUT/failure_matrix.json, no runs")
     parser.add_argument("--raw", help="also write the runs' specs and summaries to this JSON file")
+    parser.add_argument("--resume", metavar="FILE",
+                        help="JSON-lines file of finished runs: each run is appended as it ends, "
+                             "and the runs it already holds are not run again (a matrix of hours "
+                             "can be interrupted and continued, possibly with a newer binary: "
+                             "each row records the sha256 of the binary that ran it)")
     args = parser.parse_args()
     parts = args.part or (["convergence"] if args.convergence_only else
                           [p for p in PARTS if p != "blocks" or not args.no_blocks])
@@ -601,8 +642,20 @@ def main():
             binary_sha256 = hashlib.sha256(f.read()).hexdigest()
         specs = jobs(parts, args.quick, ddafem, args.blocks_settle_max_duration,
                      args.blocks_timeout, args.truncations, args.scenes)
+        done = load_resumed(args.resume)
+        to_run = [sp for sp in specs if run_key(sp) not in done]
+        if args.resume:
+            SA.run = resumable_run(SA.run, args.resume, binary_sha256)
+            print(f"{len(specs) - len(to_run)} of {len(specs)} runs already in {args.resume}; "
+                  f"running {len(to_run)}", flush=True)
         with LoadSampler() as sampler:
-            results = SA.run_all(ddafem, specs, root, args.jobs)
+            ran = SA.run_all(ddafem, to_run, root, args.jobs)
+        for result in ran:
+            result["binary_sha256"] = binary_sha256
+        by_key = {run_key(r): r for r in ran}
+        for key, (sha, result) in done.items():
+            by_key.setdefault(key, {**result, "binary_sha256": sha})
+        results = [by_key[run_key(sp)] for sp in specs]
     if args.raw:
         with open(args.raw, "w") as f:
             json.dump(results, f)
@@ -610,7 +663,9 @@ def main():
     info = {"elapsed_s": elapsed, "jobs": args.jobs, "cores": os.cpu_count(),
             "binary_sha256": binary_sha256,
             "load": sampler.record(), "version": version,
-            "note": "run together with " + ", ".join(parts) if len(parts) > 1 else "run alone"}
+            "note": "run together with " + ", ".join(parts) if len(parts) > 1 else "run alone",
+            "resumed": len(specs) - len(to_run),
+            "binaries": sorted({r.get("binary_sha256", binary_sha256)[:12] for r in results})}
     new_rows = [row(r) for r in results if r["case"] in ("matrix", "blocks")]
     run_truncations = set(args.truncations or TRUNCATIONS)
     run_scenes = set(args.scenes or SCENES)
