@@ -27,10 +27,15 @@ double TimeStepper::on_ladder(const double x) const
   return dt_max * std::exp2(-k);
 }
 
-double TimeStepper::grown_dt()
+double TimeStepper::grown_dt(const StepStatus& accepted)
 {
   if (!ladder)
     return std::min(dt_max, dt * growth_factor);
+  // A vertex's step displacement grows about as dt: doubling dt when the accepted step used
+  // more than 0.45 of the limit only moves it past the limit and cuts back (a block falling
+  // freely would climb and be cut every few steps); stay on the level while it would.
+  if (2.0 * accepted.max_displacement > 0.9 * system.max_step_displacement())
+    return dt;
   if (++level_successes < regrow_steps || dt >= dt_max)
     return dt;
   level_successes = 0;
@@ -167,7 +172,7 @@ StepStatus TimeStepper::step(double dt_limit)
         ++reversal_count;
       }
       else if (control == TimeControl::adaptive)
-        dt = grown_dt();
+        dt = grown_dt(status);
       resume_dt = 0.0;
       return status;
     }

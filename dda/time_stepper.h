@@ -72,7 +72,7 @@ private:
   /// Ladder: the largest level dt_max / 2^k at or below `x` [s]; otherwise x.
   double on_ladder(double x) const;
   /// The dt after an accepted step of adaptive control.
-  double grown_dt();
+  double grown_dt(const StepStatus& accepted);
   /// Composite: the failure of the last pair's second half when its first half stood
   StepStatus broken_pair;
   bool pair_broken = false;
