@@ -667,6 +667,13 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   bool initial_written = false;
   std::size_t n_cuts = 0, n_cut_steps = 0, n_penalty_raises = 0, n_flips_ignored = 0;
   std::size_t n_reversals = 0;
+  nlohmann::json cuts_by_cause = nlohmann::json::object();
+  const auto add_cuts = [&](const std::map<dda::StepOutcome, std::size_t>& causes)
+  {
+    for (const auto& [outcome, n] : causes)
+      cuts_by_cause[dda::outcome_name(outcome)] =
+          cuts_by_cause.value(dda::outcome_name(outcome), std::size_t{0}) + n;
+  };
   double smallest_dt = time.dt;
   std::optional<std::vector<dda::Vector2>> fall_reference; // per block [m]
   for (const dda::Stage& stage : stages)
@@ -679,6 +686,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
       n_cuts += result.n_cuts;
       n_cut_steps += result.n_cut_steps;
       n_penalty_raises += result.n_penalty_raises;
+      add_cuts(result.cuts_by_cause);
       smallest_dt = std::min(smallest_dt, result.smallest_dt);
       for (const dda::ReleasedBlock& r : result.released)
       {
@@ -728,6 +736,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
     n_penalty_raises += result.n_penalty_raises;
     n_flips_ignored += result.n_flips_ignored;
     n_reversals += result.n_reversals;
+    add_cuts(result.cuts_by_cause);
     smallest_dt = std::min(smallest_dt, result.smallest_dt);
     stage_records.push_back(dynamic_stage_record(stage, result, system, keyblocks));
     failure = result.failure;
@@ -763,6 +772,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
       {"smallest_dt_s", smallest_dt},
       {"attempts", system.get_timings().n_attempts},
       {"cuts", n_cuts},
+      {"cuts_by_cause", cuts_by_cause},
       {"steps_cut", n_cut_steps},
       {"penalty_raises", n_penalty_raises},
       {"flips_ignored", n_flips_ignored},

@@ -579,7 +579,8 @@ SceneSchema::SceneSchema()
             .unit("m/s")
             .default_yaml("1e-3")
             .greater_than(0)
-            .meaning("a block is at rest while its vertices move no faster than this"),
+            .meaning("a block is at rest while its vertices move no faster than this (blocks "
+                     "tied to the far field move with it and are not judged)"),
         key("rest_duration", T::number)
             .unit("s")
             .default_note("max(0.1, 1 / tunnel.wave.frequency)")
@@ -1180,7 +1181,8 @@ SceneSchema::SceneSchema()
                      "(open-close iteration not converged, a vertex moving more than "
                      "contacts.max_displacement_ratio allows, too deep a penetration) and grown "
                      "back by growth_factor (blocks tied to a far field: on the levels "
-                     "dt / 2^k, doubling after as many steps as growth_factor takes to double; "
+                     "dt / 2^k, doubling after as many steps as growth_factor takes to double, "
+                     "or after every step back up to a dt that failed on a contact event; "
                      "coupling/README.md); fixed: every step has dt and such a failure stops "
                      "the run (wave problems)"),
         key("dt_min", T::number)

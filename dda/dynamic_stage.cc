@@ -20,8 +20,11 @@ double block_speed(const Block& block)
 SettleDetector::SettleDetector(const System& system, const SettleCriterion& criterion_,
                                std::vector<Vector2> reference_)
     : criterion(criterion_), reference(std::move(reference_)),
-      quiet(system.get_blocks().size(), 0.0), has_fallen(system.get_blocks().size(), false)
+      quiet(system.get_blocks().size(), 0.0), has_fallen(system.get_blocks().size(), false),
+      tied(system.get_blocks().size(), false)
 {
+  for (const MaterialPoint& p : system.get_tie_points())
+    tied[p.block] = true;
   const Vector2 g = system.get_model().gravity;
   if (g.norm() > 0.0)
     down = g.normalized();
@@ -35,6 +38,8 @@ bool SettleDetector::observe(const System& system, double dt)
   moving_speed = 0.0;
   for (std::size_t i = 0; i < blocks.size(); ++i)
   {
+    if (tied[i])
+      continue;
     const double speed = block_speed(blocks[i]);
     quiet[i] = speed <= criterion.rest_speed ? quiet[i] + dt : 0.0;
     if (criterion.fall_distance > 0.0 && down.squaredNorm() > 0.0 && !has_fallen[i] &&
@@ -52,7 +57,7 @@ std::vector<std::size_t> SettleDetector::moving() const
 {
   std::vector<std::size_t> ids;
   for (std::size_t i = 0; i < quiet.size(); ++i)
-    if (!has_fallen[i] && quiet[i] < criterion.rest_duration)
+    if (!tied[i] && !has_fallen[i] && quiet[i] < criterion.rest_duration)
       ids.push_back(i);
   return ids;
 }
@@ -101,6 +106,7 @@ DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const T
   result.n_cuts = stepper.n_cuts();
   result.n_cut_steps = stepper.n_cut_steps();
   result.n_penalty_raises = stepper.n_penalty_raises();
+  result.cuts_by_cause = stepper.cuts_by_cause();
   result.n_reversals = stepper.n_reversals();
   if (detector)
   {

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <vector>
 
 namespace ddafem::dda
@@ -26,7 +27,9 @@ public:
                  std::vector<Vector2> reference);
 
   /// After an accepted step of `dt` [s]: whether every block is now at rest (speed at most
-  /// rest_speed for rest_duration without a break) or has fallen.
+  /// rest_speed for rest_duration without a break) or has fallen. Blocks tied to a body (the far
+  /// field) move as it does, its residual vibration included, and cannot fall: they are not
+  /// judged (the body's dashpots are what brings them to rest).
   bool observe(const System& system, double dt);
 
   /// Blocks neither at rest nor fallen at the last observe, ascending.
@@ -42,6 +45,7 @@ private:
   Vector2 down = Vector2::Zero(); ///< unit vector along gravity; zero without gravity
   std::vector<double> quiet;      ///< per block: time spent at rest without a break [s]
   std::vector<bool> has_fallen;
+  std::vector<bool> tied; ///< per block: carries a tie point, not judged
   double moving_speed = 0.0;
 };
 
@@ -52,8 +56,9 @@ struct DynamicStageResult
   std::size_t n_steps = 0;
   std::size_t n_cuts = 0, n_cut_steps = 0, n_penalty_raises = 0, n_flips_ignored = 0;
   std::size_t n_reversals = 0; ///< steps shortened at a slip reversal (TimeStepper::n_reversals)
-  double smallest_dt = 0.0;    ///< of the accepted steps [s]
-  double end_time = 0.0;       ///< the time the stage was to reach [s] (settle: its bound)
+  std::map<StepOutcome, std::size_t> cuts_by_cause; ///< TimeStepper::cuts_by_cause
+  double smallest_dt = 0.0;                         ///< of the accepted steps [s]
+  double end_time = 0.0; ///< the time the stage was to reach [s] (settle: its bound)
   /// Settle stages: every block came to rest or fell before the bound.
   bool settled = false;
   std::vector<std::size_t> moving; ///< settle: blocks still moving at the end

@@ -92,6 +92,7 @@ StaticStageResult run_static_stage(System& system, const Stage& stage, const Tim
   result.n_cuts = stepper.n_cuts();
   result.n_cut_steps = stepper.n_cut_steps();
   result.n_penalty_raises = stepper.n_penalty_raises();
+  result.cuts_by_cause = stepper.cuts_by_cause();
   return result;
 }
 

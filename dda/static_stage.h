@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <map>
 #include <vector>
 
 namespace ddafem::dda
@@ -86,10 +87,11 @@ struct StaticStageResult
   double ratio = 0.0;    ///< StepStatus::unbalanced_force_ratio of the last step [-]
   std::size_t block = 0; ///< the block with that ratio
   std::vector<ReleasedBlock> released;
-  StepStatus failure;                      ///< of the failed step (step_failed)
-  std::size_t n_cuts = 0, n_cut_steps = 0; ///< of the pseudo time step (TimeStepper)
-  std::size_t n_penalty_raises = 0;        ///< TimeStepper::n_penalty_raises
-  double smallest_dt = 0.0;                ///< of the accepted pseudo steps [s]
+  StepStatus failure;                               ///< of the failed step (step_failed)
+  std::size_t n_cuts = 0, n_cut_steps = 0;          ///< of the pseudo time step (TimeStepper)
+  std::size_t n_penalty_raises = 0;                 ///< TimeStepper::n_penalty_raises
+  std::map<StepOutcome, std::size_t> cuts_by_cause; ///< TimeStepper::cuts_by_cause
+  double smallest_dt = 0.0;                         ///< of the accepted pseudo steps [s]
 };
 
 /// Starts a static stage of `system` (System::begin_stage) and steps it with a pseudo time step

@@ -70,6 +70,9 @@ enum class StepOutcome
 /// Whether a smaller dt can cure the outcome.
 bool can_retry_with_smaller_step(StepOutcome outcome);
 
+/// The outcome's name as summaries spell it ("not_converged", ...).
+const char* outcome_name(StepOutcome outcome);
+
 struct StepStatus
 {
   StepOutcome outcome = StepOutcome::success;

@@ -1,6 +1,7 @@
 // Dynamic and settle stages (issue 16): a settle stage runs until every block is at rest or has
 // fallen, bounded by its max_duration.
 #include "dda/dynamic_stage.h"
+#include "tests/dda/recording_body.h"
 
 #include <gtest/gtest.h>
 
@@ -96,6 +97,26 @@ TEST(DynamicStage, SlidingBlockRunsToTheBound)
   ASSERT_EQ(r.moving, std::vector<std::size_t>{1});
   const double v = g * std::sin(20.0 * M_PI / 180.0) * 0.3;
   EXPECT_NEAR(r.moving_speed, v, 0.02 * v);
+}
+
+// The same slope with the sliding block tied to a body (one that carries nothing, so it slides
+// as before): a tied block moves as the body does and is not judged, so the stage ends once the
+// base has rested for 0.1 s.
+TEST(DynamicStage, TiedBlocksAreNotJudged)
+{
+  const ModelDescription m = block_on_base({-2.0, 0.0}, 20.0, 0.0);
+  System s(m);
+  test_models::RecordingBody body;
+  s.tie(body, {{1, Point(-2.0, 0.5), Point(-2.0, 0.5)}}); // its left edge
+  s.begin_stage(StageMode::dynamic);
+  const DynamicStageResult r =
+      run_dynamic_stage(s, settle_stage(0.0, 0.3), m.time, no_displacement(s));
+  EXPECT_EQ(r.failure.outcome, StepOutcome::success) << r.failure.message;
+  EXPECT_TRUE(r.settled);
+  EXPECT_TRUE(r.moving.empty());
+  EXPECT_GE(s.time(), 0.1 - 1e-9);                // rest_duration
+  EXPECT_LT(s.time(), 0.15);                      // long before the bound
+  EXPECT_GT(block_speed(s.get_blocks()[1]), 0.3); // still sliding: g sin 20 x 0.1 s = 0.34 m/s
 }
 
 // A block with nothing below falls; once its centroid is 0.1 m lower it has fallen and is not

@@ -9,6 +9,7 @@
 // EXPECT_DOUBLE_EQ (4 ulps) on them.
 #include "dda/system.h"
 #include "dda/time_stepper.h"
+#include "tests/dda/recording_body.h"
 
 #include <gtest/gtest.h>
 
@@ -240,36 +241,6 @@ TEST(TimeStepper, BatheTakesPairsOfHalfStepsAndKeepsAFirstHalfWhoseSecondFails)
   EXPECT_NEAR(s.get_blocks()[0].velocity.y(), -v - g * s.time(), 1e-9);
 }
 
-namespace
-{
-/// A tied body that carries nothing (H = 0, g = 0) and records the dt of every step begun: what
-/// the far field would be factorized and condensed for.
-class RecordingBody final : public TiedBody
-{
-public:
-  std::vector<double> dts;
-  void begin_stage(StageMode) override {}
-  bool stiffness_is_block_diagonal() const override { return true; }
-  std::string begin_step(double dt, const Eigen::VectorXd&) override
-  {
-    dts.push_back(dt);
-    return {};
-  }
-  const Eigen::MatrixXd& stiffness() const override { return h; }
-  const Eigen::VectorXd& force() const override { return g; }
-  std::size_t update_trial_states(const Eigen::VectorXd&, unsigned, double, std::size_t&) override
-  {
-    return 0;
-  }
-  std::string end_step(const Eigen::VectorXd&) override { return {}; }
-  double work_on_blocks() const override { return 0.0; }
-
-private:
-  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, 2);
-  Eigen::VectorXd g = Eigen::VectorXd::Zero(2);
-};
-} // namespace
-
 TEST(TimeStepper, TiedToABodyStepsOnTheLevelsOfTheLargestStep)
 {
   // The thrown block tied to a body: every step the body sees is dt_max / 2^k. The first
@@ -279,7 +250,7 @@ TEST(TimeStepper, TiedToABodyStepsOnTheLevelsOfTheLargestStep)
   // would be cut again): the block stays at 5e-4 s while it is fast and is never cut again.
   const ModelDescription m = thrown_block();
   System s(m);
-  RecordingBody body;
+  test_models::RecordingBody body;
   s.tie(body, {{0, Point(0.0, 0.5), Point(0.0, 0.5)}});
   TimeStepper stepper(s, m.time);
   StepStatus status = stepper.step();
@@ -312,4 +283,39 @@ TEST(TimeStepper, TiedToABodyStepsOnTheLevelsOfTheLargestStep)
   }
   EXPECT_EQ(stepper.next_dt(), dt_max);
   EXPECT_NEAR(s.get_blocks()[0].velocity.y(), v0 - g * s.time(), 1e-9);
+}
+
+TEST(TimeStepper, TiedToABodyClimbsBackOneLevelPerStepAfterAContactEvent)
+{
+  // A block at rest tied to a body whose ties chatter for a moment: every open-close iteration of
+  // the step begun at t = 0.01 s changes a tie's state, unless the step is at most dt_max / 4. The
+  // step fails (not converged) and is cut to the level at or below 0.3 dt_max, 2.5e-4 s, which
+  // passes; the event is over. As after any cut, the next step keeps the level; then dt climbs
+  // back one level per step, 5e-4 then 1e-3 s (growing after 4 steps at each level would have
+  // taken 8 steps).
+  ModelDescription m = thrown_block();
+  m.blocks[0].initial_velocity = Vector2::Zero();
+  m.gravity = Vector2::Zero();
+  System s(m);
+  test_models::RecordingBody body;
+  body.chatters = [&s](double dt)
+  { return std::abs(s.time() - 0.01) < 1e-6 && dt > 0.25 * dt_max * (1.0 + 1e-12); };
+  s.tie(body, {{0, Point(0.0, 0.5), Point(0.0, 0.5)}});
+  TimeStepper stepper(s, m.time);
+  std::vector<double> accepted;
+  while (s.time() < 0.02 - 1e-12)
+  {
+    const double start = s.time();
+    const StepStatus status = stepper.step();
+    ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
+    if (start > 0.01 - 1e-6)
+      accepted.push_back(stepper.last_dt());
+  }
+  const std::vector<double> expected = {0.25 * dt_max, 0.25 * dt_max, 0.5 * dt_max, dt_max, dt_max};
+  ASSERT_GE(accepted.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    EXPECT_EQ(accepted[i], expected[i]) << "step " << i << " after the event";
+  EXPECT_EQ(stepper.n_cuts(), 1u);
+  ASSERT_EQ(stepper.cuts_by_cause().size(), 1u);
+  EXPECT_EQ(stepper.cuts_by_cause().at(StepOutcome::not_converged), 1u);
 }
