@@ -17,6 +17,20 @@
 
 namespace ddafem::dda
 {
+const char* solver_name(SolverKind kind)
+{
+  switch (kind)
+  {
+  case SolverKind::eigen_ldlt:
+    return "eigen_ldlt";
+  case SolverKind::amesos_klu:
+    return "amesos_klu";
+  case SolverKind::block_ldlt:
+    return "block_ldlt";
+  }
+  return "unknown";
+}
+
 // ---- BlockSparseMatrix ----------------------------------------------------------------------
 
 BlockSparseMatrix::BlockSparseMatrix(std::size_t n_blocks,
@@ -130,7 +144,7 @@ public:
 
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override { x = ldlt.solve(b); }
 
-  std::string name() const override { return "eigen_ldlt"; }
+  std::string name() const override { return solver_name(SolverKind::eigen_ldlt); }
 
 private:
   std::ptrdiff_t slot(std::size_t row, std::size_t col) const
@@ -204,7 +218,7 @@ public:
       x[i] = (*x_vec)[0][i];
   }
 
-  std::string name() const override { return "amesos_klu"; }
+  std::string name() const override { return solver_name(SolverKind::amesos_klu); }
 
 private:
   /// Writes the values of a into the CRS matrix (inserting on the first call).
@@ -283,7 +297,7 @@ FactorizationReusingSolver::FactorizationReusingSolver(SolverKind kind_, double 
 
 std::string FactorizationReusingSolver::name() const
 {
-  return kept.empty() ? make_sparse_direct_solver(kind)->name() : kept.front().solver->name();
+  return solver_name(kind);
 }
 
 SolveStatus FactorizationReusingSolver::factorize_and_solve(Factored& f, const BlockSparseMatrix& a,

@@ -319,9 +319,6 @@ private:
   void add_contact_terms();
   /// The tied body's H and g on the blocks of the tie points (T at the step start).
   void add_tie_terms();
-  /// add_tie_terms with each tie block's points consecutive: products of whole blocks
-  /// (tie_slot_starts), about three times faster than point by point.
-  void add_tie_terms_by_block(const Eigen::MatrixXd& h, const Eigen::VectorXd& g);
   /// The tie points' displacement increments T d (2m) of a solution.
   Eigen::VectorXd tie_increments(const Eigen::VectorXd& d) const;
   /// Sets each trial from the solution; returns the number of state changes that hold the
@@ -458,15 +455,16 @@ private:
   std::vector<Point> tie_origins;
   std::vector<Matrix26> tie_matrices;  ///< T of each tie point at the step start
   std::vector<std::size_t> tie_blocks; ///< blocks with tie points, sorted
-  std::vector<std::size_t> tie_slots;  ///< each tie point's block's index in tie_blocks
-  /// Y = H T of add_tie_terms: 2m rows, 6 columns per tie block in the order of tie_blocks
+  /// Consecutive tie points on one block: points first .. first + count - 1
+  struct TieRun
+  {
+    std::size_t block = 0;
+    Eigen::Index first = 0, count = 0;
+  };
+  std::vector<TieRun> tie_runs;
+  /// Y = H T of add_tie_terms: 2m rows, 6 columns per run of tie_runs
   Eigen::MatrixXd tie_products;
-  /// The rows of Y that add_tie_terms reads in the columns of each tie block
-  std::vector<Eigen::Index> tie_row_ends;
-  /// When each tie block's points are consecutive (FarFieldTies places them so): the first
-  /// point of each tie block, and one past the last (size tie_blocks + 1); else empty.
-  std::vector<Eigen::Index> tie_slot_starts;
-  /// T of each tie block's points stacked (2 n x 6), for add_tie_terms_by_block
+  /// T of each run's points stacked (2 count x 6)
   std::vector<Eigen::Matrix<double, Eigen::Dynamic, 6>> tie_stacks;
   std::vector<Contact> contacts;       ///< of the last accepted step
   std::vector<Contact> trial_contacts; ///< of the step being tried

@@ -198,8 +198,8 @@ public:
     std::unique_ptr<EffectiveSolver> solver; ///< refers to `matrix`
   };
   ddafem::RecentCache<double, Factorization> factorizations{16}; ///< by dt [s]
-  EffectiveSolver* solver = nullptr; ///< of factorizations.front(), or none yet
-  double factorized_dt = 0.0;
+  /// The solver of the dt last ensured (ensure_factorized), the cache's front.
+  EffectiveSolver& solver() const { return *factorizations.front().solver; }
   /// Drops every factorization (the effective matrix changed).
   void forget_factorizations();
 
@@ -948,15 +948,12 @@ void ElasticWaveModel::Impl::factorize(const double dt)
   f->solver = make_effective_solver(description.solver, description.direct_solver,
                                     description.solver_tolerance);
   f->solver->initialize(effective);
-  solver = factorizations.insert(dt, std::move(f)).solver.get();
-  factorized_dt = dt;
+  factorizations.insert(dt, std::move(f));
 }
 
 void ElasticWaveModel::Impl::forget_factorizations()
 {
   factorizations.clear();
-  solver = nullptr;
-  factorized_dt = 0.0;
 }
 
 ElasticWaveModel::Impl::State ElasticWaveModel::Impl::save_state() const
@@ -1069,14 +1066,8 @@ void ElasticWaveModel::Impl::ensure_factorized(const double dt)
     compute_initial_acceleration();
     timings.setup += seconds_since(start);
   }
-  if (dt == factorized_dt)
+  if (factorizations.use(dt))
     return;
-  if (Factorization* kept = factorizations.use(dt))
-  {
-    solver = kept->solver.get();
-    factorized_dt = dt;
-    return;
-  }
   const auto start = Clock::now();
   factorize(dt);
   timings.setup += seconds_since(start);
@@ -1165,9 +1156,9 @@ StepStatus ElasticWaveModel::Impl::prepare_step(const double dt)
     pending.u_new.add(dt, v, dt * dt * (0.5 + beta), a);
     pending.u_new.add(-dt * dt * beta, a_previous);
     constraints.set_zero(pending.u_new);
-    solver->solve(rhs, pending.u_new);
+    solver().solve(rhs, pending.u_new);
     constraints.distribute(pending.u_new);
-    timings.linear_iterations += solver->last_iterations();
+    timings.linear_iterations += solver().last_iterations();
     timings.solve += seconds_since(start);
     pending.dt = dt;
     pending.active = true;
@@ -1201,10 +1192,10 @@ StepStatus ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_
       Vector<double> rhs(u.size()), x(u.size());
       add_spring_loads(point_loads, rhs);
       condense_rhs(rhs);
-      solver->solve(rhs, x);
+      solver().solve(rhs, x);
       constraints.distribute(x);
       u_new += x;
-      timings.linear_iterations += solver->last_iterations();
+      timings.linear_iterations += solver().last_iterations();
     }
     timings.solve += seconds_since(start);
 
@@ -1530,7 +1521,7 @@ std::vector<double> ElasticWaveModel::point_flexibility(const double dt)
     }
     m.condense_rhs(rhs);
     x = 0.0;
-    m.solver->solve(rhs, x);
+    m.solver().solve(rhs, x);
     m.constraints.distribute(x);
     for (std::size_t b = 0; b < dofs.size(); ++b)
       response[j][b] = x(dofs[b]);
@@ -1597,10 +1588,11 @@ std::size_t ElasticWaveModel::n_constraints() const
 }
 std::string ElasticWaveModel::solver_name() const
 {
-  return impl->solver ? impl->solver->name()
-                      : make_effective_solver(impl->description.solver,
-                                              impl->description.direct_solver, 1e-10)
-                            ->name();
+  return !impl->factorizations.empty()
+             ? impl->solver().name()
+             : make_effective_solver(impl->description.solver, impl->description.direct_solver,
+                                     1e-10)
+                   ->name();
 }
 double ElasticWaveModel::p_wave_speed() const
 {
