@@ -1181,8 +1181,7 @@ SceneSchema::SceneSchema()
                      "(open-close iteration not converged, a vertex moving more than "
                      "contacts.max_displacement_ratio allows, too deep a penetration) and grown "
                      "back by growth_factor (blocks tied to a far field: on the levels "
-                     "dt / 2^k, doubling after as many steps as growth_factor takes to double, "
-                     "or after every step back up to a dt that failed on a contact event; "
+                     "dt / 2^k, doubling after as many steps as growth_factor takes to double; "
                      "coupling/README.md); fixed: every step has dt and such a failure stops "
                      "the run (wave problems)"),
         key("dt_min", T::number)

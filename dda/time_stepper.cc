@@ -36,18 +36,6 @@ double TimeStepper::grown_dt(const StepStatus& accepted)
   // freely would climb and be cut every few steps); stay on the level while it would.
   if (2.0 * accepted.max_displacement > 0.9 * system.max_step_displacement())
     return dt;
-  if (before_cut > 0.0)
-  {
-    // Back up after contact events (the open-close iteration not converged, too deep a
-    // penetration): they belong to their moment (a contact chattering as a vertex passes), so
-    // the levels below the dt that failed are climbed one per accepted step. A vertex too fast
-    // for the step is not such an event: the displacement rule above climbs from it.
-    level_successes = 0;
-    const double next = std::min(2.0 * dt, before_cut);
-    if (next >= before_cut)
-      before_cut = 0.0;
-    return next;
-  }
   if (++level_successes < regrow_steps || dt >= dt_max)
     return dt;
   level_successes = 0;
@@ -138,8 +126,6 @@ StepStatus TimeStepper::after_broken_pair(const StepStatus& first_half, double t
   }
   dt = next;
   level_successes = 0;
-  if (ladder && before_cut == 0.0 && failure.outcome != StepOutcome::displacement_too_large)
-    before_cut = trial;
   ++cut_count;
   ++cut_causes[failure.outcome];
   ++cut_step_count;
@@ -215,8 +201,6 @@ StepStatus TimeStepper::step(double dt_limit)
     }
     dt = next;
     level_successes = 0;
-    if (ladder && before_cut == 0.0 && status.outcome != StepOutcome::displacement_too_large)
-      before_cut = trial;
     ++cut_count;
     ++cut_causes[status.outcome];
     ++last_cuts;

@@ -23,10 +23,8 @@ namespace ddafem::dda
 ///   With a tied body (the far field, whose factorization and condensation belong to one dt)
 ///   dt keeps to the levels dt_max / 2^k: a cut goes down to the level at or below the dt the
 ///   failure asks for (a shortened step before a reversal too), and dt doubles after as many
-///   accepted steps at a level as growth_factor takes to double it, except below the dt whose
-///   failure was a contact event (open-close iteration not converged, too deep a penetration):
-///   those levels are climbed one per accepted step after the step that needed the cuts. Only a
-///   step shortened to land on a stage's end leaves the ladder.
+///   accepted steps at a level as growth_factor takes to double it. Only a step shortened to land
+///   on a stage's end leaves the ladder.
 /// - fixed: every step has the largest dt; any failure is final.
 /// With Bathe's composite scheme (Integrator::bathe) a step of dt is two System steps of dt/2,
 /// the pair's trapezoidal and backward Euler halves. When the second half fails, the first
@@ -74,7 +72,6 @@ private:
   bool ladder = false;             ///< adaptive with a tied body: dt on levels dt_max / 2^k
   std::size_t regrow_steps = 1;    ///< ladder: accepted steps at a level before dt doubles
   std::size_t level_successes = 0; ///< ladder: accepted steps since dt last changed
-  double before_cut = 0.0; ///< ladder: the dt whose failure began the cuts not yet climbed back [s]
 
   /// Ladder: the largest level dt_max / 2^k at or below `x` [s]; otherwise x.
   double on_ladder(double x) const;

@@ -285,14 +285,15 @@ TEST(TimeStepper, TiedToABodyStepsOnTheLevelsOfTheLargestStep)
   EXPECT_NEAR(s.get_blocks()[0].velocity.y(), v0 - g * s.time(), 1e-9);
 }
 
-TEST(TimeStepper, TiedToABodyClimbsBackOneLevelPerStepAfterAContactEvent)
+TEST(TimeStepper, TiedToABodyRegrowsOnTheLadderAfterAContactEvent)
 {
   // A block at rest tied to a body whose ties chatter for a moment: every open-close iteration of
   // the step begun at t = 0.01 s changes a tie's state, unless the step is at most dt_max / 4. The
   // step fails (not converged) and is cut to the level at or below 0.3 dt_max, 2.5e-4 s, which
-  // passes; the event is over. As after any cut, the next step keeps the level; then dt climbs
-  // back one level per step, 5e-4 then 1e-3 s (growing after 4 steps at each level would have
-  // taken 8 steps).
+  // passes. dt then doubles after 4 accepted steps at a level (growth_factor 1.2), the cut step
+  // not counted: 5 steps at 2.5e-4 s, 4 at 5e-4 s, then 1e-3 s again. (Climbing one level per
+  // step instead made the default tunnel 40% cheaper, but the reference's residuals at dt and
+  // dt/2 then differed by more than the largest of them: coupling/README.md.)
   ModelDescription m = thrown_block();
   m.blocks[0].initial_velocity = Vector2::Zero();
   m.gravity = Vector2::Zero();
@@ -302,8 +303,8 @@ TEST(TimeStepper, TiedToABodyClimbsBackOneLevelPerStepAfterAContactEvent)
   { return std::abs(s.time() - 0.01) < 1e-6 && dt > 0.25 * dt_max * (1.0 + 1e-12); };
   s.tie(body, {{0, Point(0.0, 0.5), Point(0.0, 0.5)}});
   TimeStepper stepper(s, m.time);
-  std::vector<double> accepted;
-  while (s.time() < 0.02 - 1e-12)
+  std::vector<double> accepted; // of the steps begun at the event and after
+  while (s.time() < 0.03 - 1e-12)
   {
     const double start = s.time();
     const StepStatus status = stepper.step();
@@ -311,10 +312,12 @@ TEST(TimeStepper, TiedToABodyClimbsBackOneLevelPerStepAfterAContactEvent)
     if (start > 0.01 - 1e-6)
       accepted.push_back(stepper.last_dt());
   }
-  const std::vector<double> expected = {0.25 * dt_max, 0.25 * dt_max, 0.5 * dt_max, dt_max, dt_max};
+  std::vector<double> expected(5, 0.25 * dt_max);
+  expected.insert(expected.end(), 4, 0.5 * dt_max);
+  expected.insert(expected.end(), 2, dt_max);
   ASSERT_GE(accepted.size(), expected.size());
   for (std::size_t i = 0; i < expected.size(); ++i)
-    EXPECT_EQ(accepted[i], expected[i]) << "step " << i << " after the event";
+    EXPECT_EQ(accepted[i], expected[i]) << "step " << i << " from the event";
   EXPECT_EQ(stepper.n_cuts(), 1u);
   ASSERT_EQ(stepper.cuts_by_cause().size(), 1u);
   EXPECT_EQ(stepper.cuts_by_cause().at(StepOutcome::not_converged), 1u);
