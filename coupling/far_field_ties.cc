@@ -506,7 +506,7 @@ TieCounts FarFieldTies::counts() const
 
 double FarFieldTies::work_on_far_field() const
 {
-  return far_field.energy().work_of_springs;
+  return far_field.work_of_springs();
 }
 
 } // namespace ddafem::coupling

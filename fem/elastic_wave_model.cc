@@ -1642,6 +1642,11 @@ EnergyBalance ElasticWaveModel::energy() const
   return e;
 }
 
+double ElasticWaveModel::work_of_springs() const
+{
+  return impl->energies.work_of_springs;
+}
+
 std::string ElasticWaveModel::write_snapshot(const std::string& directory,
                                              const std::string& basename,
                                              const VtuCompression compression)

@@ -114,7 +114,10 @@ public:
   /// rooted: m^2], the displacement relative to any static stage; Gauss quadrature of degree + 2
   /// points per direction.
   double l2_error(const VectorField& exact_displacement) const;
+  /// The energy budget; kinetic and strain energy from two products with the global matrices.
   EnergyBalance energy() const;
+  /// EnergyBalance::work_of_springs alone, without energy()'s products [J].
+  double work_of_springs() const;
 
   // ---- point springs: the far field's side of the DDA coupling (coupling/) ----------------
   // Spring k ties the far field's displacement N_k u at the point X_k to an outside body.
