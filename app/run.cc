@@ -665,14 +665,13 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   dda::StepStatus failure;
   nlohmann::json stage_records = nlohmann::json::array();
   bool initial_written = false;
-  std::size_t n_cuts = 0, n_cut_steps = 0, n_penalty_raises = 0, n_flips_ignored = 0;
+  std::size_t n_cut_steps = 0, n_penalty_raises = 0, n_flips_ignored = 0;
   std::size_t n_reversals = 0;
-  nlohmann::json cuts_by_cause = nlohmann::json::object();
+  std::map<dda::StepOutcome, std::size_t> cuts_by_cause; // of every stage's TimeStepper
   const auto add_cuts = [&](const std::map<dda::StepOutcome, std::size_t>& causes)
   {
     for (const auto& [outcome, n] : causes)
-      cuts_by_cause[dda::outcome_name(outcome)] =
-          cuts_by_cause.value(dda::outcome_name(outcome), std::size_t{0}) + n;
+      cuts_by_cause[outcome] += n;
   };
   double smallest_dt = time.dt;
   std::optional<std::vector<dda::Vector2>> fall_reference; // per block [m]
@@ -683,7 +682,6 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
       const dda::StaticStageResult result = dda::run_static_stage(
           system, stage, time,
           [&] { progress.update(system.n_steps(), system.time(), elapsed(wall_start)); });
-      n_cuts += result.n_cuts;
       n_cut_steps += result.n_cut_steps;
       n_penalty_raises += result.n_penalty_raises;
       add_cuts(result.cuts_by_cause);
@@ -731,7 +729,6 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
             write_state(snapshot);
           progress.update(system.n_steps(), system.time(), elapsed(wall_start));
         });
-    n_cuts += result.n_cuts;
     n_cut_steps += result.n_cut_steps;
     n_penalty_raises += result.n_penalty_raises;
     n_flips_ignored += result.n_flips_ignored;
@@ -766,13 +763,20 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
   summary["end_time_s"] = time.end_time;
   summary["steps"] = system.n_steps();
   summary["dt_s"] = time.dt;
+  std::size_t n_cuts = 0;
+  nlohmann::json cuts_by_cause_json = nlohmann::json::object();
+  for (const auto& [outcome, n] : cuts_by_cause)
+  {
+    n_cuts += n;
+    cuts_by_cause_json[dda::outcome_name(outcome)] = n;
+  }
   summary["time_step"] = {
       {"control", time.control == dda::TimeControl::fixed ? "fixed" : "adaptive"},
       {"dt_max_s", time.dt},
       {"smallest_dt_s", smallest_dt},
       {"attempts", system.get_timings().n_attempts},
       {"cuts", n_cuts},
-      {"cuts_by_cause", cuts_by_cause},
+      {"cuts_by_cause", cuts_by_cause_json},
       {"steps_cut", n_cut_steps},
       {"penalty_raises", n_penalty_raises},
       {"flips_ignored", n_flips_ignored},

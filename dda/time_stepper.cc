@@ -19,6 +19,14 @@ TimeStepper::TimeStepper(System& system_, const TimeSettings& settings, double d
     regrow_steps = static_cast<std::size_t>(std::ceil(std::log(2.0) / std::log(growth_factor)));
 }
 
+std::size_t TimeStepper::n_cuts() const
+{
+  std::size_t n = 0;
+  for (const auto& [outcome, count] : cut_causes)
+    n += count;
+  return n;
+}
+
 double TimeStepper::on_ladder(const double x) const
 {
   if (!ladder || x >= dt_max)
@@ -126,7 +134,6 @@ StepStatus TimeStepper::after_broken_pair(const StepStatus& first_half, double t
   }
   dt = next;
   level_successes = 0;
-  ++cut_count;
   ++cut_causes[failure.outcome];
   ++cut_step_count;
   return first_half;
@@ -201,7 +208,6 @@ StepStatus TimeStepper::step(double dt_limit)
     }
     dt = next;
     level_successes = 0;
-    ++cut_count;
     ++cut_causes[status.outcome];
     ++last_cuts;
   }

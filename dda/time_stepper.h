@@ -44,9 +44,9 @@ public:
   double next_dt() const { return dt; }          ///< what the next step tries [s]
   double last_dt() const { return accepted_dt; } ///< of the last accepted step [s]
   double smallest_dt() const { return dt_min; }
-  std::size_t n_cuts() const { return cut_count; } ///< failed attempts retried with a smaller dt
-  /// n_cuts by the failure that asked for them
+  /// Failed attempts retried with a smaller dt, by the failure that asked for them
   const std::map<StepOutcome, std::size_t>& cuts_by_cause() const { return cut_causes; }
+  std::size_t n_cuts() const; ///< failed attempts retried with a smaller dt
   std::size_t n_cut_steps() const { return cut_step_count; } ///< steps that needed a cut
   std::size_t n_last_step_cuts() const { return last_cuts; } ///< cuts of the last step
   /// Retries of the same dt after a contact's penalty was raised
@@ -60,7 +60,6 @@ private:
   double dt_max, dt_min, cut_factor, growth_factor;
   double dt;
   double accepted_dt = 0.0;
-  std::size_t cut_count = 0;
   std::map<StepOutcome, std::size_t> cut_causes;
   std::size_t cut_step_count = 0;
   std::size_t last_cuts = 0;
