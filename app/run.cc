@@ -86,6 +86,8 @@ std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
   channels.push_back({"energy/work_of_ties", 1, "J",
                       "ties to the far field on the blocks since t = 0 (the energy that crossed "
                       "the interface into the blocks; 0 without a far field)"});
+  channels.push_back(
+      {"energy/removed", 1, "J", "kinetic energy of fallen blocks removed as debris since t = 0"});
   channels.push_back({"energy/dissipated", 1, "J",
                       "initial + work - stored: algorithmic damping of the integrator, friction "
                       "and contact impacts"});
@@ -119,7 +121,7 @@ std::vector<double> history_row(const dda::System& system, const LastStep& last)
   }
   const dda::EnergyBalance e = system.energy();
   row.insert(row.end(), {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
-                         e.work_of_boundaries, e.work_of_ties, e.dissipated});
+                         e.work_of_boundaries, e.work_of_ties, e.removed, e.dissipated});
   const dda::ContactCounts n = system.contact_counts();
   row.insert(row.end(),
              {static_cast<double>(n.open), static_cast<double>(n.slide),
@@ -735,6 +737,8 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
     n_reversals += result.n_reversals;
     add_cuts(result.cuts_by_cause);
     smallest_dt = std::min(smallest_dt, result.smallest_dt);
+    for (const auto& [block, when] : result.removed)
+      keyblocks.mark_removed(block);
     stage_records.push_back(dynamic_stage_record(stage, result, system, keyblocks));
     failure = result.failure;
     if (failure.outcome != dda::StepOutcome::success)
@@ -863,6 +867,7 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
                          {"work_of_supports", e.work_of_supports},
                          {"work_of_boundaries", e.work_of_boundaries},
                          {"work_of_ties", e.work_of_ties},
+                         {"removed", e.removed},
                          {"initial", e.initial},
                          {"dissipated", e.dissipated}};
   if (!keyblocks.empty())

@@ -1095,6 +1095,7 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
     t.settle_rest_duration = settle.number("rest_duration");
   if (settle.has("max_duration"))
     t.settle_max_duration = settle.number("max_duration");
+  t.settle_remove_fallen = settle.boolean("remove_fallen");
 
   try
   {
@@ -1606,6 +1607,11 @@ dda::SettleCriterion read_settle_criterion(const MapReader& r)
   c.rest_duration = r.number("rest_duration");
   c.fall_distance = r.number("fall_distance");
   c.max_duration = r.number("max_duration");
+  c.remove_fallen = r.boolean("remove_fallen");
+  if (c.remove_fallen && c.fall_distance <= 0.0)
+    throw r.error("remove_fallen",
+                  "fallen blocks are removed once they have fallen: expected fall_distance > 0 "
+                  "with remove_fallen true");
   return c;
 }
 

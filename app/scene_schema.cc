@@ -592,7 +592,12 @@ SceneSchema::SceneSchema()
                           "across the opening")
             .greater_than(0)
             .meaning("the stage ends after this long even if blocks still move (listed in "
-                     "summary.json, not a failure)")}});
+                     "summary.json, not a failure)"),
+        key("remove_fallen", T::boolean)
+            .default_yaml("true")
+            .meaning("a fallen block is removed as debris once it has left its place (no part "
+                     "of it is still where it was when the wave came): its tumble on the floor "
+                     "of the opening and its impacts there are not followed; false: they are")}});
 
   all_sections.push_back(
       {"tunnel.wave",
@@ -1327,6 +1332,12 @@ SceneSchema::SceneSchema()
             .greater_than(0)
             .meaning("settle stages: the stage ends after this long even if blocks still move "
                      "(summary.json lists them; not a failure)"),
+        key("remove_fallen", T::boolean)
+            .default_yaml("false")
+            .meaning("settle stages: a fallen block is removed as debris once it has left "
+                     "its place (along the direction it moved since the first dynamic stage "
+                     "began, its vertices' interval no longer overlaps the one they covered "
+                     "then): its tumble and impacts are not followed; needs fall_distance > 0"),
         key("release", T::choice)
             .choices({"fall", "remove"})
             .default_yaml("fall")

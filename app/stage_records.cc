@@ -84,6 +84,11 @@ nlohmann::json dynamic_stage_record(const dda::Stage& stage, const dda::DynamicS
   record["moving"] = result.moving;
   record["moving_speed_m_s"] = result.moving_speed;
   record["fallen"] = fallen;
+  record["remove_fallen"] = c.remove_fallen;
+  nlohmann::json removed = nlohmann::json::array();
+  for (const auto& [block, when] : result.removed)
+    removed.push_back({{"block", block}, {"time_s", when}});
+  record["removed"] = removed;
   return record;
 }
 

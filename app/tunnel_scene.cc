@@ -222,6 +222,7 @@ dda::SettleCriterion plan_settle_stage(const TunnelDescription& t, const TunnelP
   c.rest_duration =
       t.settle_rest_duration > 0.0 ? t.settle_rest_duration : std::max(0.1, 1.0 / t.wave_frequency);
   c.fall_distance = FallCriterion{}.fall_fraction * size;
+  c.remove_fallen = t.settle_remove_fallen;
   const double fall_time = std::sqrt(2.0 * size / t.gravity);
   c.max_duration =
       t.settle_max_duration > 0.0 ? t.settle_max_duration : c.rest_duration + 2.0 * fall_time;
@@ -231,7 +232,10 @@ dda::SettleCriterion plan_settle_stage(const TunnelDescription& t, const TunnelP
       " m (1% of the opening's " + format(size) + " m), at most " + format(c.max_duration) + " s" +
       (t.settle_max_duration > 0.0
            ? std::string(" (tunnel.settle.max_duration)")
-           : " = rest + twice the " + format(fall_time) + " s of a fall across the opening"));
+           : " = rest + twice the " + format(fall_time) + " s of a fall across the opening") +
+      (c.remove_fallen ? "; a fallen block is removed as debris once it has left its place "
+                         "(tunnel.settle.remove_fallen)"
+                       : ""));
   return c;
 }
 
@@ -657,6 +661,7 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
     stage_settle["rest_duration"] = plan.settle->rest_duration;
     stage_settle["fall_distance"] = plan.settle->fall_distance;
     stage_settle["max_duration"] = plan.settle->max_duration;
+    stage_settle["remove_fallen"] = plan.settle->remove_fallen;
     stages.push_back(stage_settle);
   }
   root["stages"] = stages;

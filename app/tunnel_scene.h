@@ -82,6 +82,7 @@ struct TunnelDescription
   double settle_rest_speed = 1e-3;   ///< [m/s]
   double settle_rest_duration = 0.0; ///< [s]; 0: chosen
   double settle_max_duration = 0.0;  ///< [s]; 0: chosen
+  bool settle_remove_fallen = true;  ///< SettleCriterion::remove_fallen
 };
 
 /// A grid of equal rectangular blocks (a `blocks` entry with a `grid`).

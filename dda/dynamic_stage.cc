@@ -3,6 +3,7 @@
 #include "dda/submatrices.h"
 
 #include <algorithm>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -71,6 +72,31 @@ std::vector<std::size_t> SettleDetector::fallen() const
   return ids;
 }
 
+std::vector<std::size_t> SettleDetector::out_of_place(const System& system) const
+{
+  std::vector<std::size_t> ids;
+  const std::vector<Block>& blocks = system.get_blocks();
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+  {
+    const Vector2 moved = blocks[i].displacement() - reference[i];
+    if (!has_fallen[i] || system.is_removed(i) || moved.squaredNorm() == 0.0)
+      continue;
+    // Along the direction it moved (a separating axis): the nearest of its vertices now has
+    // passed the farthest of where they were (at t = 0, shifted by the reference displacement).
+    const Vector2 u = moved.normalized();
+    double farthest_before = -std::numeric_limits<double>::infinity();
+    for (const Point& x : blocks[i].initial_vertices)
+      farthest_before = std::max(farthest_before, x.dot(u));
+    farthest_before += reference[i].dot(u);
+    double nearest_now = std::numeric_limits<double>::infinity();
+    for (const Point& x : blocks[i].vertices)
+      nearest_now = std::min(nearest_now, x.dot(u));
+    if (nearest_now >= farthest_before)
+      ids.push_back(i);
+  }
+  return ids;
+}
+
 DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const TimeSettings& time,
                                      const std::vector<Vector2>& fall_reference,
                                      const AfterDynamicStep& after_step)
@@ -96,7 +122,15 @@ DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const T
     result.n_flips_ignored += status.n_flips_ignored;
     result.smallest_dt = std::min(result.smallest_dt, stepper.last_dt());
     if (detector)
+    {
       result.settled = detector->observe(system, stepper.last_dt());
+      if (stage.settle->remove_fallen)
+        for (const std::size_t i : detector->out_of_place(system))
+        {
+          system.remove_block(i);
+          result.removed.emplace_back(i, system.time());
+        }
+    }
     if (after_step)
       after_step(stepper, status, result.settled || at_end());
     if (result.settled)

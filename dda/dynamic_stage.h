@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <utility>
 #include <vector>
 
 namespace ddafem::dda
@@ -36,6 +37,10 @@ public:
   std::vector<std::size_t> moving() const;
   /// Blocks that have fallen (once fallen, always), ascending.
   std::vector<std::size_t> fallen() const;
+  /// Fallen blocks not yet removed that have left their place: along the direction the block
+  /// moved since the reference, the interval of its vertices no longer overlaps the interval
+  /// they covered then (SettleCriterion::remove_fallen), ascending.
+  std::vector<std::size_t> out_of_place(const System& system) const;
   /// The largest block_speed of the blocks neither at rest nor fallen [m/s] (0 if none).
   double largest_moving_speed() const { return moving_speed; }
 
@@ -63,7 +68,9 @@ struct DynamicStageResult
   bool settled = false;
   std::vector<std::size_t> moving; ///< settle: blocks still moving at the end
   std::vector<std::size_t> fallen; ///< settle: blocks fallen
-  double moving_speed = 0.0;       ///< settle: the fastest moving block's speed at the end [m/s]
+  /// settle with remove_fallen: the fallen blocks removed as debris and when [s].
+  std::vector<std::pair<std::size_t, double>> removed;
+  double moving_speed = 0.0; ///< settle: the fastest moving block's speed at the end [m/s]
 };
 
 /// Called after every accepted step with the stepper, the step's status and whether it is the
@@ -72,7 +79,9 @@ using AfterDynamicStep = std::function<void(const TimeStepper&, const StepStatus
 
 /// Runs a dynamic stage of `system` (begin_stage(dynamic) first) with the scene's time control:
 /// to stage.end_time, or for a settle stage (stage.settle) until SettleDetector::observe says
-/// every block is at rest or has fallen, at most settle->max_duration after the stage's start.
+/// every block is at rest or has fallen, at most settle->max_duration after the stage's start;
+/// with settle->remove_fallen, blocks out of place are removed after the step that takes them
+/// there (before `after_step`).
 /// `fall_reference`: SettleDetector's reference. A failed step ends the stage with its status
 /// (nothing throws).
 DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const TimeSettings& time,

@@ -281,6 +281,11 @@ struct SettleCriterion
   double fall_distance = 0.0;
   /// The stage ends after this long even if blocks still move [s] (a result, not a failure).
   double max_duration = 2.0;
+  /// Fallen blocks that have left their place (no part of the block is still where it was when
+  /// the first dynamic stage began, SettleDetector::out_of_place) are removed as debris
+  /// (System::remove_block): their tumble on the floor of the opening is not followed, neither
+  /// its steps nor its impacts on the blocks still standing. Needs fall_distance > 0.
+  bool remove_fallen = false;
 };
 
 /// A stage of the analysis. Stages run in sequence; each starts from the state the previous one

@@ -641,6 +641,11 @@ void System::hold_block(std::size_t i)
 
 void System::remove_block(std::size_t i)
 {
+  Block& b = blocks[i];
+  removed_energy +=
+      0.5 * b.velocity.dot(mass_matrix(linearisation_moments(b), block_density(b)) * b.velocity);
+  b.velocity.setZero();
+  b.acceleration.setZero();
   removed[i] = true;
   matrix_dt = 0.0;
   joints.erase(std::remove_if(joints.begin(), joints.end(),
@@ -1150,6 +1155,12 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
     b.velocity = end.velocity;
     b.acceleration = composite_acceleration(i, m, end);
     b.force = end.force;
+    if (removed[i]) // held by a penalty: the little it moves is not motion to carry on
+    {
+      b.velocity.setZero();
+      b.acceleration.setZero();
+      b.force.setZero();
+    }
     b.apply_increment(di, elasticity[b.material], small_displacement());
   }
 
@@ -1265,9 +1276,10 @@ EnergyBalance System::energy() const
   e.work_of_supports = work_of_supports;
   e.work_of_boundaries = work_of_boundaries;
   e.work_of_ties = tied_body ? tied_body->work_on_blocks() : 0.0;
+  e.removed = removed_energy;
   e.initial = initial_energy;
   e.dissipated = e.initial + e.work_of_loads + e.work_of_supports + e.work_of_boundaries +
-                 e.work_of_ties - e.stored();
+                 e.work_of_ties - e.removed - e.stored();
   return e;
 }
 

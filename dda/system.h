@@ -38,8 +38,11 @@ struct EnergyBalance
   /// Done by the ties to a tied body (the far field) on the blocks since t = 0: the energy that
   /// crossed the interface into the blocks (negative when it left them).
   double work_of_ties = 0.0;
+  /// Kinetic energy that left with blocks removed in motion (fallen debris, see
+  /// SettleCriterion::remove_fallen), since t = 0.
+  double removed = 0.0;
   double initial = 0.0;    ///< kinetic + strain + spring at t = 0
-  double dissipated = 0.0; ///< initial + works - (kinetic + strain + spring)
+  double dissipated = 0.0; ///< initial + works - removed - (kinetic + strain + spring)
 
   double stored() const { return kinetic + strain + spring; }
 };
@@ -200,6 +203,7 @@ public:
   void hold_block(std::size_t i);
   /// Makes block i inert for the rest of the run: held as by hold_block in every stage, its
   /// bonded joints removed and no contacts with it, so that it puts no force on the others.
+  /// A moving block is stopped: its kinetic energy leaves the model (EnergyBalance::removed).
   void remove_block(std::size_t i);
   bool is_held(std::size_t i) const { return held[i] || removed[i]; }
   bool is_removed(std::size_t i) const { return removed[i]; }
@@ -534,6 +538,7 @@ private:
   double work_of_loads = 0.0;
   double work_of_supports = 0.0;
   double work_of_boundaries = 0.0;
+  double removed_energy = 0.0; ///< kinetic energy of blocks removed in motion [J]
   double initial_energy = 0.0;
   double largest_energy_input = 0.0; ///< max over time of work_of_loads + work_of_supports
   PhaseTimings timings;

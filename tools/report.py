@@ -286,6 +286,10 @@ def settle_result(s):
     if fallen:
         result += "; fallen: " + ", ".join("block %d (%.3g kg)" % (f["block"], f["mass_kg"])
                                            for f in fallen)
+    removed = s.get("removed", [])
+    if removed:
+        result += "; removed as debris once out of place: " + ", ".join(
+            "block %d at t = %.4g s" % (r["block"], r["time_s"]) for r in removed)
     return result
 
 

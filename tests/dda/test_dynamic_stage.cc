@@ -135,6 +135,57 @@ TEST(DynamicStage, FallenBlockIsNotWaitedFor)
   EXPECT_NEAR(s.time(), std::sqrt(2.0 * 0.1 / g), 2e-3); // within two steps
 }
 
+// The frictionless 20 degree slope keeps the stage going while a second block falls with
+// nothing below. With remove_fallen it is removed as debris once it has left its place: along
+// gravity (20 degrees off the vertical) the unit square is cos 20 + sin 20 = 1.282 m wide, so
+// it goes when it has fallen that far, at sqrt(2 x 1.282 / g) = 0.511 s, taking its kinetic
+// energy m g 1.282 m with it (EnergyBalance::removed), and stays there, still, to the end.
+TEST(DynamicStage, FallenBlockIsRemovedOnceOutOfPlace)
+{
+  ModelDescription m = block_on_base({-2.0, 0.0}, 20.0, 0.0);
+  BlockDescription debris;
+  debris.vertices = {{6, 0}, {7, 0}, {7, 1}, {6, 1}};
+  m.blocks.push_back(debris);
+  System s(m);
+  s.begin_stage(StageMode::dynamic);
+  Stage stage = settle_stage(0.5, 0.6); // the slider moves 0.2 m along gravity by 0.6 s
+  stage.settle->remove_fallen = true;
+  const DynamicStageResult r = run_dynamic_stage(s, stage, m.time, no_displacement(s));
+  EXPECT_EQ(r.failure.outcome, StepOutcome::success) << r.failure.message;
+  EXPECT_FALSE(r.settled); // the slider slides to the bound
+  ASSERT_EQ(r.removed.size(), 1u);
+  EXPECT_EQ(r.removed[0].first, 2u);
+  const double width = std::cos(20.0 * M_PI / 180.0) + std::sin(20.0 * M_PI / 180.0);
+  const double t_out = std::sqrt(2.0 * width / g);
+  EXPECT_GE(r.removed[0].second, t_out - 1e-9);
+  EXPECT_LT(r.removed[0].second, t_out + 2e-3); // the step that takes it there
+  const double t_r = r.removed[0].second, mass = 2650.0;
+  EXPECT_NEAR(s.energy().removed, 0.5 * mass * g * g * t_r * t_r, 1e-3 * mass * g * width);
+  const Block& b = s.get_blocks()[2];
+  EXPECT_TRUE(s.is_removed(2));
+  EXPECT_EQ(b.velocity.norm(), 0.0);
+  EXPECT_NEAR(b.displacement().norm(), 0.5 * g * t_r * t_r, 1e-6);
+  EXPECT_NEAR(s.time(), 0.6, 1e-9);
+}
+
+// Without remove_fallen the same block falls on to the bound.
+TEST(DynamicStage, FallenBlockIsKeptWithoutRemoveFallen)
+{
+  ModelDescription m = block_on_base({-2.0, 0.0}, 20.0, 0.0);
+  BlockDescription debris;
+  debris.vertices = {{6, 0}, {7, 0}, {7, 1}, {6, 1}};
+  m.blocks.push_back(debris);
+  System s(m);
+  s.begin_stage(StageMode::dynamic);
+  const DynamicStageResult r =
+      run_dynamic_stage(s, settle_stage(0.5, 0.6), m.time, no_displacement(s));
+  EXPECT_EQ(r.failure.outcome, StepOutcome::success) << r.failure.message;
+  EXPECT_TRUE(r.removed.empty());
+  EXPECT_FALSE(s.is_removed(2));
+  EXPECT_NEAR(s.get_blocks()[2].displacement().norm(), 0.5 * g * 0.36, 1e-3);
+  EXPECT_EQ(s.energy().removed, 0.0);
+}
+
 // A dynamic stage without settle runs to its end_time.
 TEST(DynamicStage, DynamicStageRunsToItsEnd)
 {
