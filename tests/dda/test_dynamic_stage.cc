@@ -47,6 +47,17 @@ Stage settle_stage(double fall_distance, double max_duration)
   return s;
 }
 
+/// The frictionless 20 degree slope of block_on_base with a block sliding on it and a unit
+/// square (block 2) with nothing below it.
+ModelDescription slope_and_falling_block()
+{
+  ModelDescription m = block_on_base({-2.0, 0.0}, 20.0, 0.0);
+  BlockDescription debris;
+  debris.vertices = {{6, 0}, {7, 0}, {7, 1}, {6, 1}};
+  m.blocks.push_back(debris);
+  return m;
+}
+
 std::vector<Vector2> no_displacement(const System& s)
 {
   return std::vector<Vector2>(s.get_blocks().size(), Vector2::Zero());
@@ -142,10 +153,7 @@ TEST(DynamicStage, FallenBlockIsNotWaitedFor)
 // energy m g 1.282 m with it (EnergyBalance::removed), and stays there, still, to the end.
 TEST(DynamicStage, FallenBlockIsRemovedOnceOutOfPlace)
 {
-  ModelDescription m = block_on_base({-2.0, 0.0}, 20.0, 0.0);
-  BlockDescription debris;
-  debris.vertices = {{6, 0}, {7, 0}, {7, 1}, {6, 1}};
-  m.blocks.push_back(debris);
+  const ModelDescription m = slope_and_falling_block();
   System s(m);
   s.begin_stage(StageMode::dynamic);
   Stage stage = settle_stage(0.5, 0.6); // the slider moves 0.2 m along gravity by 0.6 s
@@ -171,10 +179,7 @@ TEST(DynamicStage, FallenBlockIsRemovedOnceOutOfPlace)
 // Without remove_fallen the same block falls on to the bound.
 TEST(DynamicStage, FallenBlockIsKeptWithoutRemoveFallen)
 {
-  ModelDescription m = block_on_base({-2.0, 0.0}, 20.0, 0.0);
-  BlockDescription debris;
-  debris.vertices = {{6, 0}, {7, 0}, {7, 1}, {6, 1}};
-  m.blocks.push_back(debris);
+  const ModelDescription m = slope_and_falling_block();
   System s(m);
   s.begin_stage(StageMode::dynamic);
   const DynamicStageResult r =
