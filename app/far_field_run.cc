@@ -1,5 +1,6 @@
 // `check` and `run` of far-field-only scenes (deal.II continuum, issue 5).
 #include "app/run.h"
+#include "app/run_outputs.h"
 #include "app/run_support.h"
 #include "common/history_writer.h"
 #include "fem/elastic_wave_model.h"
@@ -39,12 +40,7 @@ std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& d
 std::vector<double> far_field_row(const fem::ElasticWaveModel& model, std::size_t n_monitors)
 {
   std::vector<double> row;
-  for (std::size_t k = 0; k < n_monitors; ++k)
-  {
-    const fem::MonitorSample s = model.sample_monitor(k);
-    row.insert(row.end(), {s.displacement[0], s.displacement[1], s.velocity[0], s.velocity[1],
-                           s.stress[0], s.stress[1], s.stress[2]});
-  }
+  append_far_field_monitors(row, model, n_monitors);
   const fem::EnergyBalance e = model.energy();
   row.insert(row.end(), {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots,
                          e.work_of_rayleigh, e.dissipated});
@@ -108,6 +104,54 @@ std::string check_far_field(const Scene& scene)
   return out.str();
 }
 
+namespace
+{
+/// summary.json of a far-field run (without its warnings and outputs): `failure` empty when it
+/// completed; wall and output times [s].
+nlohmann::json far_field_summary(const Scene& scene, const fem::ElasticWaveModel& model,
+                                 const std::string& failure, double wall, double output_time)
+{
+  const fem::FarFieldDescription& d = *scene.far_field;
+  const bool failed = !failure.empty();
+  const fem::Timings& t = model.timings();
+  const fem::EnergyBalance e = model.energy();
+  nlohmann::json summary;
+  summary["scene"] = scene.file;
+  summary["name"] = scene.name;
+  summary["version"] = DDAFEM_VERSION;
+  summary["status"] = failed ? "numerical_failure" : "completed";
+  if (failed)
+    summary["failure"] = failure;
+  summary["time_reached_s"] = model.time();
+  summary["end_time_s"] = d.end_time;
+  summary["steps"] = t.n_steps;
+  summary["dt_s"] = d.dt;
+  summary["integrator"] = d.integrator == fem::Integrator::dda ? "dda" : "newmark_trapezoidal";
+  summary["solver"] = {{"name", model.solver_name()},
+                       {"factorizations", 1},
+                       {"linear_iterations", t.linear_iterations}};
+  summary["model"] = {{"far_field_cells", model.n_cells()},
+                      {"far_field_dofs", model.n_dofs()},
+                      {"element_size_m", model.element_size()},
+                      {"smallest_element_size_m", model.smallest_element_size()},
+                      {"degree", d.degree},
+                      {"blocks", 0}};
+  summary["wall_time_s"] = wall;
+  summary["peak_memory_mb"] = run_support::peak_memory_mb();
+  summary["timings_s"] = far_field_timings(t);
+  summary["timings_s"]["output"] = output_time;
+  summary["energy_J"] = {{"kinetic", e.kinetic},
+                         {"strain", e.strain},
+                         {"work_of_input", e.work_of_input},
+                         {"work_of_dashpots", e.work_of_dashpots},
+                         {"work_of_rayleigh", e.work_of_rayleigh},
+                         {"initial", e.initial},
+                         {"dissipated", e.dissipated}};
+  return summary;
+}
+
+} // namespace
+
 int run_far_field(const Scene& scene, const RunOptions& options, std::ostream& log)
 {
   const auto wall_start = Clock::now();
@@ -162,50 +206,15 @@ int run_far_field(const Scene& scene, const RunOptions& options, std::ostream& l
     write_outputs(true);
   history.flush();
 
-  const fem::Timings& t = model.timings();
-  const fem::EnergyBalance e = model.energy();
   const double wall = elapsed(wall_start);
-  nlohmann::json summary;
-  summary["scene"] = scene.file;
-  summary["name"] = scene.name;
-  summary["version"] = DDAFEM_VERSION;
-  summary["status"] = failed ? "numerical_failure" : "completed";
-  if (failed)
-    summary["failure"] = failure.message;
-  summary["time_reached_s"] = model.time();
-  summary["end_time_s"] = d.end_time;
-  summary["steps"] = t.n_steps;
-  summary["dt_s"] = d.dt;
-  summary["integrator"] = d.integrator == fem::Integrator::dda ? "dda" : "newmark_trapezoidal";
-  summary["solver"] = {{"name", model.solver_name()},
-                       {"factorizations", 1},
-                       {"linear_iterations", t.linear_iterations}};
-  summary["model"] = {{"far_field_cells", model.n_cells()},
-                      {"far_field_dofs", model.n_dofs()},
-                      {"element_size_m", model.element_size()},
-                      {"smallest_element_size_m", model.smallest_element_size()},
-                      {"degree", d.degree},
-                      {"blocks", 0}};
-  summary["wall_time_s"] = wall;
-  summary["peak_memory_mb"] = run_support::peak_memory_mb();
-  summary["timings_s"] = {{"setup", t.setup},
-                          {"assemble", t.assemble},
-                          {"solve", t.solve},
-                          {"update", t.update},
-                          {"output", output_time}};
-  summary["energy_J"] = {{"kinetic", e.kinetic},
-                         {"strain", e.strain},
-                         {"work_of_input", e.work_of_input},
-                         {"work_of_dashpots", e.work_of_dashpots},
-                         {"work_of_rayleigh", e.work_of_rayleigh},
-                         {"initial", e.initial},
-                         {"dissipated", e.dissipated}};
+  nlohmann::json summary =
+      far_field_summary(scene, model, failed ? failure.message : "", wall, output_time);
   summary["warnings"] = nlohmann::json::array();
   summary["outputs"] = {
       {"histories", "histories.h5"}, {"far_field", "far_field.pvd"}, {"snapshots", n_snapshots}};
   return run_support::finish_run(dir, summary, failed ? failure.message : std::string(),
-                                 std::to_string(t.n_steps) + " steps", model.time(), wall,
-                                 "far_field.pvd", log);
+                                 std::to_string(model.timings().n_steps) + " steps", model.time(),
+                                 wall, "far_field.pvd", log);
 }
 
 } // namespace ddafem

@@ -2,6 +2,8 @@
 
 #include "app/keyblocks.h"
 #include "app/rock_mass_scene.h"
+#include "app/run_outputs.h"
+#include "app/run_summary.h"
 #include "app/run_support.h"
 #include "app/stage_records.h"
 
@@ -69,161 +71,6 @@ SmallestBlock smallest_block(const Scene& scene)
       s.shortest_edge = std::min(s.shortest_edge, (v[(k + 1) % v.size()] - v[k]).norm());
   }
   return s;
-}
-
-std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
-{
-  std::vector<HistoryChannel> channels;
-  for (const dda::Monitor& m : model.monitors)
-    run_support::add_monitor_channels(channels, m.name, "of the material point", "of its block");
-  channels.push_back({"energy/kinetic", 1, "J", "sum of v^T M v / 2"});
-  channels.push_back({"energy/strain", 1, "J", "elastic energy of the blocks"});
-  channels.push_back({"energy/spring", 1, "J", "joint and fixed-point penalty springs"});
-  channels.push_back({"energy/work_of_loads", 1, "J", "point loads and gravity since t = 0"});
-  channels.push_back({"energy/work_of_supports", 1, "J", "prescribed support motion since t = 0"});
-  channels.push_back({"energy/work_of_boundaries", 1, "J",
-                      "viscous boundaries on the model since t = 0 (negative: absorbed)"});
-  channels.push_back({"energy/work_of_ties", 1, "J",
-                      "ties to the far field on the blocks since t = 0 (the energy that crossed "
-                      "the interface into the blocks; 0 without a far field)"});
-  channels.push_back(
-      {"energy/removed", 1, "J", "kinetic energy of fallen blocks removed as debris since t = 0"});
-  channels.push_back({"energy/dissipated", 1, "J",
-                      "initial + work - stored: algorithmic damping of the integrator, friction "
-                      "and contact impacts"});
-  channels.push_back({"contacts/open", 1, "", "number of open contacts"});
-  channels.push_back({"contacts/slide", 1, "", "number of sliding contacts"});
-  channels.push_back({"contacts/lock", 1, "", "number of locked contacts"});
-  channels.push_back({"contacts/bonded_joints", 1, "", "number of intact bonded joints"});
-  channels.push_back({"steps/dt", 1, "s", "time step of the last step"});
-  channels.push_back(
-      {"steps/open_close_iterations", 1, "", "open-close iterations of the last step"});
-  channels.push_back({"steps/cuts", 1, "", "dt cuts before the last step was accepted"});
-  return channels;
-}
-
-/// What the last accepted step did, for the histories.
-struct LastStep
-{
-  double dt = 0.0;
-  unsigned n_open_close_iterations = 0;
-  std::size_t n_cuts = 0;
-};
-
-std::vector<double> history_row(const dda::System& system, const LastStep& last)
-{
-  std::vector<double> row;
-  for (std::size_t k = 0; k < system.get_model().monitors.size(); ++k)
-  {
-    const dda::MonitorSample s = system.sample_monitor(k);
-    row.insert(row.end(), {s.displacement.x(), s.displacement.y(), s.velocity.x(), s.velocity.y(),
-                           s.stress[0], s.stress[1], s.stress[2]});
-  }
-  const dda::EnergyBalance e = system.energy();
-  row.insert(row.end(), {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
-                         e.work_of_boundaries, e.work_of_ties, e.removed, e.dissipated});
-  const dda::ContactCounts n = system.contact_counts();
-  row.insert(row.end(),
-             {static_cast<double>(n.open), static_cast<double>(n.slide),
-              static_cast<double>(n.lock), static_cast<double>(system.get_joints().size()), last.dt,
-              static_cast<double>(last.n_open_close_iterations), static_cast<double>(last.n_cuts)});
-  return row;
-}
-
-/// The far field and the interface of a coupled run (after the blocks' channels).
-void add_coupled_channels(std::vector<HistoryChannel>& channels, const fem::FarFieldDescription& d)
-{
-  for (const fem::Monitor& m : d.monitors)
-    run_support::add_monitor_channels(channels, m.name, "of the far field at the point",
-                                      "of the far field at the point");
-  const std::string ff = "far_field/energy/";
-  channels.push_back({ff + "kinetic", 1, "J", "v^T M v / 2 of the far field"});
-  channels.push_back({ff + "strain", 1, "J", "u^T K u / 2 of the far field"});
-  channels.push_back({ff + "work_of_input", 1, "J", "incident-wave tractions since t = 0"});
-  channels.push_back(
-      {ff + "work_of_dashpots", 1, "J", "Lysmer dashpots since t = 0 (negative: absorbed)"});
-  channels.push_back(
-      {ff + "work_of_rayleigh", 1, "J", "Rayleigh damping since t = 0 (negative: absorbed)"});
-  channels.push_back({ff + "work_of_ties", 1, "J",
-                      "ties on the far field since t = 0: the energy that crossed the interface "
-                      "into it"});
-  channels.push_back({ff + "dissipated", 1, "J", "initial + work - stored: the integrator's"});
-  channels.push_back({"interface/tie_energy", 1, "J",
-                      "held in or dissipated by the tie springs: -(work of the ties on the "
-                      "blocks without their preloads' + on the far field)"});
-  channels.push_back({"interface/ties", 4, "", "number of ties (intact, locked, sliding, open)"});
-}
-
-void append_coupled_row(std::vector<double>& row, const fem::ElasticWaveModel& far_field,
-                        const coupling::FarFieldTies& ties, std::size_t n_monitors)
-{
-  for (std::size_t k = 0; k < n_monitors; ++k)
-  {
-    const fem::MonitorSample s = far_field.sample_monitor(k);
-    row.insert(row.end(), {s.displacement[0], s.displacement[1], s.velocity[0], s.velocity[1],
-                           s.stress[0], s.stress[1], s.stress[2]});
-  }
-  const fem::EnergyBalance e = far_field.energy();
-  row.insert(row.end(), {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots,
-                         e.work_of_rayleigh, e.work_of_springs, e.dissipated, ties.tie_energy()});
-  const coupling::TieCounts n = ties.counts();
-  row.insert(row.end(), {static_cast<double>(n.intact), static_cast<double>(n.lock),
-                         static_cast<double>(n.slide), static_cast<double>(n.open)});
-}
-
-/// The ties as contact points for VTU: state (bonded while intact), normal out of the block,
-/// forces (normal compression positive, shear along the edge tangent), opening and slip.
-std::vector<dda::ContactSnapshot> tie_snapshot(const coupling::FarFieldTies& ties,
-                                               const dda::System& system)
-{
-  std::vector<dda::ContactSnapshot> out;
-  const std::vector<dda::MaterialPoint>& points = system.get_tie_points();
-  for (std::size_t k = 0; k < ties.n_ties(); ++k)
-  {
-    const coupling::Tie& t = ties.get_ties()[k];
-    dda::ContactSnapshot c;
-    c.id = k;
-    c.block_a = c.block_b = t.block;
-    switch (t.forces.state)
-    {
-    case dda::ContactState::lock:
-      c.state = t.forces.intact ? dda::ContactPointState::bonded : dda::ContactPointState::lock;
-      break;
-    case dda::ContactState::slide:
-      c.state = dda::ContactPointState::slide;
-      break;
-    case dda::ContactState::open:
-      c.state = dda::ContactPointState::open;
-      break;
-    }
-    c.position = points[k].position;
-    c.normal = t.normal;
-    const dda::Vector2 f = ties.total_force(k); // preload included
-    c.normal_force = t.normal.dot(f);
-    c.shear_force = t.tangent.dot(f);
-    c.gap = -t.normal.dot(t.stretch);
-    c.slip = t.tangent.dot(t.stretch);
-    out.push_back(c);
-  }
-  return out;
-}
-
-/// DIR/model.pvd: every snapshot's parts (blocks, far field, contacts, ties) at one time, so
-/// that ParaView opens the whole model from one file.
-void write_model_pvd(const std::filesystem::path& dir,
-                     const std::vector<std::pair<double, std::vector<std::string>>>& snapshots)
-{
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\"?>\n"
-         "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-         "  <Collection>\n";
-  out.precision(17);
-  for (const auto& [time, files] : snapshots)
-    for (std::size_t part = 0; part < files.size(); ++part)
-      out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"" << part << "\" file=\""
-          << files[part] << "\"/>\n";
-  out << "  </Collection>\n</VTKFile>\n";
-  run_support::write_text_file(dir / "model.pvd", out.str());
 }
 
 /// The tied blocks with their joints as one continuum, against the far field's material.
@@ -448,27 +295,12 @@ TimeStepAdvice suggest_time_step(const Scene& scene)
   return advice;
 }
 
-std::string check_scene(const Scene& scene)
+namespace
 {
-  if (scene.far_field && !scene.coupled())
-    return check_far_field(scene);
-  dda::System system(scene.model); // finds joints; throws InputError on engine-level issues
-  std::unique_ptr<fem::ElasticWaveModel> far_field;
-  std::unique_ptr<coupling::FarFieldTies> ties;
-  if (scene.coupled())
-  {
-    far_field = std::make_unique<fem::ElasticWaveModel>(*scene.far_field);
-    ties = std::make_unique<coupling::FarFieldTies>(system, *far_field, *scene.interface);
-  }
+/// Blocks, joints, DOFs, mass, the smallest block, materials and joint materials.
+void describe_blocks(const Scene& scene, const dda::System& system, std::ostream& out)
+{
   const dda::ModelDescription& model = scene.model;
-  std::ostringstream out;
-  out << "scene: " << scene.name << " (" << scene.file << ")\n";
-  if (scene.tunnel)
-  {
-    out << "  tunnel, truncation " << name_of(scene.tunnel->truncation) << ": what it chose\n";
-    for (const std::string& reason : scene.tunnel->reasons)
-      out << "    " << reason << "\n";
-  }
   double total_mass = 0.0;
   for (const dda::BlockDescription& b : model.blocks)
     total_mass += model.materials[b.material].density * std::abs(dda::signed_area(b.vertices));
@@ -476,7 +308,6 @@ std::string check_scene(const Scene& scene)
   for (const dda::Joint& j : system.get_joints())
     n_joint_points += j.points.size();
   const SmallestBlock small = smallest_block(scene);
-
   out << "  analysis: plane " << (model.plane_mode == dda::PlaneMode::stress ? "stress" : "strain")
       << "\n";
   out << "  blocks: " << model.blocks.size() << ", bonded joints: " << system.get_joints().size()
@@ -498,6 +329,12 @@ std::string check_scene(const Scene& scene)
         << format(j.shear_ratio * j.normal_stiffness) << " N/m, phi " << j.friction_angle
         << " deg, c " << format(j.cohesion) << " Pa, tensile " << format(j.tensile_strength)
         << " Pa, " << (j.bonded ? "bonded" : "frictional") << "\n";
+}
+
+/// Loads, time stepping, contact settings, stages and the suggested dt.
+void describe_stepping(const Scene& scene, const dda::System& system, std::ostream& out)
+{
+  const dda::ModelDescription& model = scene.model;
   out << "  loads: " << model.point_loads.size() << ", fixed points: " << model.fixed_points.size()
       << " (default penalty " << format(system.default_fixed_point_stiffness()) << " N/m)"
       << ", monitors: " << model.monitors.size() << "\n";
@@ -518,58 +355,61 @@ std::string check_scene(const Scene& scene)
   const TimeStepAdvice advice = suggest_time_step(scene);
   out << "  suggested dt: " << format(advice.dt_min, 3) << " to " << format(advice.dt_max, 3)
       << " s (" << advice.reason << ")\n";
-  if (!model.boundaries.empty())
-    describe_boundaries(system, model.time.dt, out);
-  if (ties)
-  {
-    const fem::FarFieldDescription& d = *scene.far_field;
-    out << "  far field: " << far_field->n_cells() << " cells of "
-        << format(far_field->smallest_element_size()) << " to " << format(far_field->element_size())
-        << " m, FE_Q(" << d.degree << "), " << far_field->n_dofs() << " DOFs, solver "
-        << far_field->solver_name() << ", integrator "
-        << (d.integrator == fem::Integrator::dda ? "dda" : "newmark_trapezoidal") << "\n";
-    out << "  far field material: VP " << format(far_field->p_wave_speed(), 5) << " m/s, VS "
-        << format(far_field->s_wave_speed(), 5) << " m/s\n";
-    const double f = std::max(d.max_frequency, d.incident.velocity.characteristic_frequency());
-    if (f > 0.0)
-      out << "  far-field resolution at " << format(f) << " Hz: "
-          << format(far_field->s_wave_speed() / f / far_field->element_size() * d.degree, 3)
-          << " nodes per S wavelength in the largest element\n";
-    const coupling::InterfaceDescription& i = *scene.interface;
-    out << "  interface: part " << fem::name_of(i.part) << " (" << format(ties->part_length())
-        << " m), " << ties->n_tied_edges() << " block edges of " << ties->n_tied_blocks()
-        << " blocks, " << ties->n_ties() << " ties (" << 2 * ties->n_ties()
-        << " condensed unknowns); p " << format(i.normal_stiffness) << " N/m, shear ratio "
-        << i.shear_ratio << ", "
-        << (std::isinf(i.cohesion) && std::isinf(i.tensile_strength)
-                ? std::string("bonded (unlimited strength)")
-                : "phi " + format(i.friction_angle) + " deg, c " + format(i.cohesion) +
-                      " Pa, tensile " + format(i.tensile_strength) + " Pa")
-        << "\n";
-    if (const auto z = interface_impedance(scene, system, *ties))
-    {
-      out << "  rock mass at the interface: E_eff " << format(z->blocks_modulus)
-          << " Pa (blocks with their joints), far field E " << format(z->far_field_modulus)
-          << " Pa: reflection of a normally incident wave about " << format(100 * z->reflection, 2)
-          << "%\n";
-      if (z->reflection > 0.01)
-        out << "warning: " << impedance_warning(*z) << "\n";
-    }
-    for (const fem::BoundaryCondition& b : d.boundaries)
-      out << "  far field " << fem::name_of(b.part) << ": " << fem::name_of(b.kind) << "\n";
-    out << "  far-field monitors: " << d.monitors.size() << "\n";
-  }
-  for (const std::string& w : unstable_boundaries(system, model.time.dt))
-    out << "warning: " << w << " (`run` refuses it without --allow-unstable)\n";
-  return out.str();
 }
 
-int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
+/// The far field (mesh, solver, material, resolution) of a coupled scene.
+void describe_far_field(const fem::FarFieldDescription& d, const fem::ElasticWaveModel& far_field,
+                        std::ostream& out)
+{
+  out << "  far field: " << far_field.n_cells() << " cells of "
+      << format(far_field.smallest_element_size()) << " to " << format(far_field.element_size())
+      << " m, FE_Q(" << d.degree << "), " << far_field.n_dofs() << " DOFs, solver "
+      << far_field.solver_name() << ", integrator "
+      << (d.integrator == fem::Integrator::dda ? "dda" : "newmark_trapezoidal") << "\n";
+  out << "  far field material: VP " << format(far_field.p_wave_speed(), 5) << " m/s, VS "
+      << format(far_field.s_wave_speed(), 5) << " m/s\n";
+  const double f = std::max(d.max_frequency, d.incident.velocity.characteristic_frequency());
+  if (f > 0.0)
+    out << "  far-field resolution at " << format(f)
+        << " Hz: " << format(far_field.s_wave_speed() / f / far_field.element_size() * d.degree, 3)
+        << " nodes per S wavelength in the largest element\n";
+}
+
+/// The interface of a coupled scene: ties, their springs and strength, the impedance contrast,
+/// the far field's boundaries and monitors.
+void describe_interface(const Scene& scene, const dda::System& system,
+                        const coupling::FarFieldTies& ties, std::ostream& out)
+{
+  const coupling::InterfaceDescription& i = *scene.interface;
+  out << "  interface: part " << fem::name_of(i.part) << " (" << format(ties.part_length())
+      << " m), " << ties.n_tied_edges() << " block edges of " << ties.n_tied_blocks() << " blocks, "
+      << ties.n_ties() << " ties (" << 2 * ties.n_ties() << " condensed unknowns); p "
+      << format(i.normal_stiffness) << " N/m, shear ratio " << i.shear_ratio << ", "
+      << (std::isinf(i.cohesion) && std::isinf(i.tensile_strength)
+              ? std::string("bonded (unlimited strength)")
+              : "phi " + format(i.friction_angle) + " deg, c " + format(i.cohesion) +
+                    " Pa, tensile " + format(i.tensile_strength) + " Pa")
+      << "\n";
+  if (const auto z = interface_impedance(scene, system, ties))
+  {
+    out << "  rock mass at the interface: E_eff " << format(z->blocks_modulus)
+        << " Pa (blocks with their joints), far field E " << format(z->far_field_modulus)
+        << " Pa: reflection of a normally incident wave about " << format(100 * z->reflection, 2)
+        << "%\n";
+    if (z->reflection > 0.01)
+      out << "warning: " << impedance_warning(*z) << "\n";
+  }
+  for (const fem::BoundaryCondition& b : scene.far_field->boundaries)
+    out << "  far field " << fem::name_of(b.part) << ": " << fem::name_of(b.kind) << "\n";
+  out << "  far-field monitors: " << scene.far_field->monitors.size() << "\n";
+}
+} // namespace
+
+std::string check_scene(const Scene& scene)
 {
   if (scene.far_field && !scene.coupled())
-    return run_far_field(scene, options, log);
-  const auto wall_start = Clock::now();
-  dda::System system(scene.model); // input errors surface here, before anything is written
+    return check_far_field(scene);
+  dda::System system(scene.model); // finds joints; throws InputError on engine-level issues
   std::unique_ptr<fem::ElasticWaveModel> far_field;
   std::unique_ptr<coupling::FarFieldTies> ties;
   if (scene.coupled())
@@ -577,9 +417,76 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
     far_field = std::make_unique<fem::ElasticWaveModel>(*scene.far_field);
     ties = std::make_unique<coupling::FarFieldTies>(system, *far_field, *scene.interface);
   }
+  std::ostringstream out;
+  out << "scene: " << scene.name << " (" << scene.file << ")\n";
+  if (scene.tunnel)
+  {
+    out << "  tunnel, truncation " << name_of(scene.tunnel->truncation) << ": what it chose\n";
+    for (const std::string& reason : scene.tunnel->reasons)
+      out << "    " << reason << "\n";
+  }
+  describe_blocks(scene, system, out);
+  describe_stepping(scene, system, out);
+  if (!scene.model.boundaries.empty())
+    describe_boundaries(system, scene.model.time.dt, out);
+  if (ties)
+  {
+    describe_far_field(*scene.far_field, *far_field, out);
+    describe_interface(scene, system, *ties, out);
+  }
+  for (const std::string& w : unstable_boundaries(system, scene.model.time.dt))
+    out << "warning: " << w << " (`run` refuses it without --allow-unstable)\n";
+  return out.str();
+}
 
-  const std::filesystem::path dir =
-      options.output_directory.empty() ? scene.output.directory : options.output_directory;
+namespace
+{
+/// A run of blocks, alone or tied to a far field: set up, its stages in turn, the summary.
+class BlocksRun
+{
+public:
+  /// Builds the models (input errors surface here, before anything is written), creates the
+  /// output directory and opens the outputs; refuses unstable boundaries unless allowed.
+  BlocksRun(const Scene& scene, const RunOptions& options, std::ostream& log);
+  /// Runs every stage until one fails; returns the exit code (run_scene).
+  int run();
+
+private:
+  std::vector<std::string> collect_warnings(bool allow_unstable) const;
+  void run_static_stage(const dda::Stage& stage);
+  void run_dynamic_stage(const dda::Stage& stage);
+  void update_progress(bool force = false)
+  {
+    progress.update(system.n_steps(), system.time(), elapsed(wall_start), force);
+  }
+
+  const Scene& scene;
+  std::ostream& log;
+  const Clock::time_point wall_start = Clock::now();
+  dda::System system;
+  std::unique_ptr<fem::ElasticWaveModel> far_field;
+  std::unique_ptr<coupling::FarFieldTies> ties;
+  std::filesystem::path dir;
+  std::vector<std::string> warnings;
+  KeyblockRecorder keyblocks;
+  std::optional<RunOutputs> outputs;
+  Progress progress;
+  StageTotals stages;
+  LastStep last_step;
+  bool initial_written = false;
+  std::optional<std::vector<dda::Vector2>> fall_reference; ///< per block [m]
+};
+
+BlocksRun::BlocksRun(const Scene& scene_, const RunOptions& options, std::ostream& log_)
+    : scene(scene_), log(log_), system(scene.model), keyblocks(scene.model),
+      progress(!options.quiet && isatty(fileno(stderr)), scene.model.time.end_time)
+{
+  if (scene.coupled())
+  {
+    far_field = std::make_unique<fem::ElasticWaveModel>(*scene.far_field);
+    ties = std::make_unique<coupling::FarFieldTies>(system, *far_field, *scene.interface);
+  }
+  dir = options.output_directory.empty() ? scene.output.directory : options.output_directory;
   run_support::create_output_directory(dir);
   if (scene.tunnel)
     run_support::write_text_file(dir / "expanded_scene.yaml",
@@ -587,306 +494,139 @@ int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
                                      " as its `tunnel` section expanded it (ddafem check prints "
                                      "why)\n" +
                                      scene.expanded_yaml + "\n");
+  warnings = collect_warnings(options.allow_unstable);
+  for (const std::string& w : warnings)
+    log << "warning: " << w << "\n";
+  outputs.emplace(
+      dir, scene.file, system,
+      CoupledParts{far_field.get(), ties.get(), scene.far_field ? &*scene.far_field : nullptr},
+      keyblocks, scene.output.vtu_compression);
+  stages.smallest_dt = scene.model.time.dt;
+}
 
+std::vector<std::string> BlocksRun::collect_warnings(bool allow_unstable) const
+{
   const dda::TimeSettings& time = scene.model.time;
-  const TimeStepAdvice advice = suggest_time_step(scene);
-  std::vector<std::string> warnings;
+  std::vector<std::string> found;
   for (const std::string& w : unstable_boundaries(system, time.dt))
   {
-    if (!options.allow_unstable)
+    if (!allow_unstable)
       throw InputError(w + ": expected a smaller time.dt, or --allow-unstable to watch it fail");
-    warnings.push_back(w + " (run with --allow-unstable)");
+    found.push_back(w + " (run with --allow-unstable)");
   }
   if (ties)
     if (const auto z = interface_impedance(scene, system, *ties); z && z->reflection > 0.01)
-      warnings.push_back(impedance_warning(*z));
+      found.push_back(impedance_warning(*z));
+  const TimeStepAdvice advice = suggest_time_step(scene);
   if (time.dt > advice.dt_max)
-    warnings.push_back("dt = " + format(time.dt) + " s exceeds the suggested " +
-                       format(advice.dt_max, 3) + " s (" + advice.reason + ")");
+    found.push_back("dt = " + format(time.dt) + " s exceeds the suggested " +
+                    format(advice.dt_max, 3) + " s (" + advice.reason + ")");
   if (scene.rock_mass && !scene.rock_mass->slivers.empty())
-    warnings.push_back("rock_mass: " + std::to_string(scene.rock_mass->slivers.size()) +
-                       " blocks below the sliver threshold kept (`check` lists them)");
-  for (const std::string& w : warnings)
-    log << "warning: " << w << "\n";
+    found.push_back("rock_mass: " + std::to_string(scene.rock_mass->slivers.size()) +
+                    " blocks below the sliver threshold kept (`check` lists them)");
+  return found;
+}
 
-  std::vector<HistoryChannel> channels = history_channels(scene.model);
-  if (ties)
-    add_coupled_channels(channels, *scene.far_field);
-  KeyblockRecorder keyblocks(scene.model);
-  keyblocks.add_channels(channels);
-  HistoryWriter history((dir / "histories.h5").string(), channels);
-  history.set_attribute("scene", scene.file);
-  history.set_attribute("version", DDAFEM_VERSION);
-  dda::VtuSeriesWriter vtu(dir.string(), "blocks");
-  dda::VtuSeriesWriter contact_vtu(dir.string(), "contacts");
-  dda::VtuSeriesWriter tie_vtu(dir.string(), "ties");
-  std::vector<std::pair<double, std::vector<std::string>>> model_snapshots;
+void BlocksRun::run_static_stage(const dda::Stage& stage)
+{
+  const dda::StaticStageResult result =
+      dda::run_static_stage(system, stage, scene.model.time, [&] { update_progress(); });
+  stages.add(result);
+  for (const dda::ReleasedBlock& r : result.released)
+  {
+    keyblocks.mark_released(r.block);
+    if (stage.release == dda::ReleaseAction::remove)
+      keyblocks.mark_removed(r.block);
+  }
+  stages.records.push_back(static_stage_record(stage, result, system, keyblocks));
+  stages.failure = static_stage_failure(stage, result, system);
+}
 
-  std::vector<dda::Stage> stages = scene.model.stages;
-  if (stages.empty())
+void BlocksRun::run_dynamic_stage(const dda::Stage& stage)
+{
+  system.begin_stage(dda::StageMode::dynamic);
+  if (!fall_reference)
+  {
+    // Falls in settle stages are measured from the first dynamic stage's start.
+    fall_reference.emplace();
+    for (const dda::Block& b : system.get_blocks())
+      fall_reference->push_back(b.displacement());
+  }
+  if (!initial_written)
+  {
+    outputs->write_state(true, last_step);
+    initial_written = true;
+  }
+  const dda::TimeSettings& time = scene.model.time;
+  // Steps of this stage as the user sets dt: with bathe one step is two System half steps.
+  std::size_t stage_steps = 0;
+  double next_snapshot = system.time() + scene.output.interval;
+  const dda::DynamicStageResult result = dda::run_dynamic_stage(
+      system, stage, time, *fall_reference,
+      [&](const dda::TimeStepper& stepper, const dda::StepStatus& status, bool last)
+      {
+        last_step = {stepper.last_dt(), status.n_open_close_iterations, stepper.n_last_step_cuts()};
+        const bool snapshot = run_support::snapshot_due(system.time(), scene.output.interval,
+                                                        time.dt, next_snapshot) ||
+                              last;
+        ++stage_steps;
+        if (stage_steps % scene.output.history_every == 0 || last || snapshot)
+          outputs->write_state(snapshot, last_step);
+        update_progress();
+      });
+  stages.add(result);
+  for (const auto& [block, when] : result.removed)
+    keyblocks.mark_removed(block);
+  stages.records.push_back(dynamic_stage_record(stage, result, system, keyblocks));
+  stages.failure = result.failure;
+}
+
+int BlocksRun::run()
+{
+  std::vector<dda::Stage> plan = scene.model.stages;
+  if (plan.empty())
   {
     dda::Stage only;
     only.name = "dynamic";
-    only.end_time = time.end_time;
-    stages.push_back(only);
+    only.end_time = scene.model.time.end_time;
+    plan.push_back(only);
   }
-
-  double output_time = 0.0;        // [s] histories and snapshots
-  double far_field_vtu_time = 0.0; // [s] of which the far field's VTU files
-  LastStep last_step;
-  const auto write_state = [&](bool snapshot)
-  {
-    const auto start = Clock::now();
-    std::vector<double> row = history_row(system, last_step);
-    if (ties)
-      append_coupled_row(row, *far_field, *ties, scene.far_field->monitors.size());
-    keyblocks.append_row(system, row);
-    history.append(system.time(), row);
-    if (snapshot)
-    {
-      const auto name = [](const std::string& path)
-      { return std::filesystem::path(path).filename().string(); };
-      std::vector<std::string> files = {
-          name(vtu.write(system.time(), system.snapshot())),
-          name(contact_vtu.write(system.time(), system.contact_snapshot()))};
-      if (ties)
-      {
-        const auto far_field_start = Clock::now();
-        files.push_back(
-            far_field->write_snapshot(dir.string(), "far_field", scene.output.vtu_compression));
-        far_field_vtu_time += elapsed(far_field_start);
-        files.push_back(name(tie_vtu.write(system.time(), tie_snapshot(*ties, system))));
-      }
-      model_snapshots.emplace_back(system.time(), files);
-      write_model_pvd(dir, model_snapshots);
-    }
-    output_time += elapsed(start);
-  };
-
-  Progress progress(!options.quiet && isatty(fileno(stderr)), time.end_time);
-  dda::StepStatus failure;
-  nlohmann::json stage_records = nlohmann::json::array();
-  bool initial_written = false;
-  std::size_t n_cut_steps = 0, n_penalty_raises = 0, n_flips_ignored = 0;
-  std::size_t n_reversals = 0;
-  std::map<dda::StepOutcome, std::size_t> cuts_by_cause; // of every stage's TimeStepper
-  const auto add_cuts = [&](const std::map<dda::StepOutcome, std::size_t>& causes)
-  {
-    for (const auto& [outcome, n] : causes)
-      cuts_by_cause[outcome] += n;
-  };
-  double smallest_dt = time.dt;
-  std::optional<std::vector<dda::Vector2>> fall_reference; // per block [m]
-  for (const dda::Stage& stage : stages)
+  for (const dda::Stage& stage : plan)
   {
     if (stage.mode == dda::StageMode::static_equilibrium)
-    {
-      const dda::StaticStageResult result = dda::run_static_stage(
-          system, stage, time,
-          [&] { progress.update(system.n_steps(), system.time(), elapsed(wall_start)); });
-      n_cut_steps += result.n_cut_steps;
-      n_penalty_raises += result.n_penalty_raises;
-      add_cuts(result.cuts_by_cause);
-      smallest_dt = std::min(smallest_dt, result.smallest_dt);
-      for (const dda::ReleasedBlock& r : result.released)
-      {
-        keyblocks.mark_released(r.block);
-        if (stage.release == dda::ReleaseAction::remove)
-          keyblocks.mark_removed(r.block);
-      }
-      stage_records.push_back(static_stage_record(stage, result, system, keyblocks));
-      failure = static_stage_failure(stage, result, system);
-      if (failure.outcome != dda::StepOutcome::success)
-        break;
-      continue;
-    }
-
-    system.begin_stage(dda::StageMode::dynamic);
-    if (!fall_reference)
-    {
-      // Falls in settle stages are measured from the first dynamic stage's start.
-      fall_reference.emplace();
-      for (const dda::Block& b : system.get_blocks())
-        fall_reference->push_back(b.displacement());
-    }
-    if (!initial_written)
-    {
-      write_state(true);
-      initial_written = true;
-    }
-    // Steps of this stage as the user sets dt: with bathe one step is two System half steps.
-    std::size_t stage_steps = 0;
-    double next_snapshot = system.time() + scene.output.interval;
-    const dda::DynamicStageResult result = dda::run_dynamic_stage(
-        system, stage, time, *fall_reference,
-        [&](const dda::TimeStepper& stepper, const dda::StepStatus& status, bool last)
-        {
-          last_step = {stepper.last_dt(), status.n_open_close_iterations,
-                       stepper.n_last_step_cuts()};
-          const bool snapshot = run_support::snapshot_due(system.time(), scene.output.interval,
-                                                          time.dt, next_snapshot) ||
-                                last;
-          ++stage_steps;
-          if (stage_steps % scene.output.history_every == 0 || last || snapshot)
-            write_state(snapshot);
-          progress.update(system.n_steps(), system.time(), elapsed(wall_start));
-        });
-    n_cut_steps += result.n_cut_steps;
-    n_penalty_raises += result.n_penalty_raises;
-    n_flips_ignored += result.n_flips_ignored;
-    n_reversals += result.n_reversals;
-    add_cuts(result.cuts_by_cause);
-    smallest_dt = std::min(smallest_dt, result.smallest_dt);
-    for (const auto& [block, when] : result.removed)
-      keyblocks.mark_removed(block);
-    stage_records.push_back(dynamic_stage_record(stage, result, system, keyblocks));
-    failure = result.failure;
-    if (failure.outcome != dda::StepOutcome::success)
+      run_static_stage(stage);
+    else
+      run_dynamic_stage(stage);
+    if (stages.failed())
       break;
   }
-  progress.update(system.n_steps(), system.time(), elapsed(wall_start), true);
+  update_progress(true);
   progress.finish();
-
-  const bool failed = failure.outcome != dda::StepOutcome::success;
   // Keep the state reached readable (a static-only analysis writes its equilibrium here).
-  if (failed || !initial_written)
-    write_state(true);
-  history.flush();
+  if (stages.failed() || !initial_written)
+    outputs->write_state(true, last_step);
+  outputs->flush();
 
-  const dda::PhaseTimings& t = system.get_timings();
-  const dda::EnergyBalance e = system.energy();
   const double wall = elapsed(wall_start);
-  nlohmann::json summary;
-  summary["scene"] = scene.file;
-  summary["name"] = scene.name;
-  summary["version"] = DDAFEM_VERSION;
-  summary["status"] = failed ? "numerical_failure" : "completed";
-  if (failed)
-    summary["failure"] = failure.message;
-  summary["time_reached_s"] = system.time();
-  summary["end_time_s"] = time.end_time;
-  summary["steps"] = system.n_steps();
-  summary["dt_s"] = time.dt;
-  std::size_t n_cuts = 0;
-  nlohmann::json cuts_by_cause_json = nlohmann::json::object();
-  for (const auto& [outcome, n] : cuts_by_cause)
-  {
-    n_cuts += n;
-    cuts_by_cause_json[dda::outcome_name(outcome)] = n;
-  }
-  summary["time_step"] = {
-      {"control", time.control == dda::TimeControl::fixed ? "fixed" : "adaptive"},
-      {"dt_max_s", time.dt},
-      {"smallest_dt_s", smallest_dt},
-      {"attempts", system.get_timings().n_attempts},
-      {"cuts", n_cuts},
-      {"cuts_by_cause", cuts_by_cause_json},
-      {"steps_cut", n_cut_steps},
-      {"penalty_raises", n_penalty_raises},
-      {"flips_ignored", n_flips_ignored},
-      {"slip_reversals", n_reversals}};
-  summary["stages"] = stage_records;
-  if (scene.tunnel)
-  {
-    const TunnelPlan& plan = *scene.tunnel;
-    summary["tunnel"] = {{"truncation", name_of(plan.truncation)},
-                         {"near_field_lower_m", {plan.near_lower.x(), plan.near_lower.y()}},
-                         {"near_field_upper_m", {plan.near_upper.x(), plan.near_upper.y()}},
-                         {"far_field", plan.far_field},
-                         {"margin_m", plan.margin},
-                         {"side_margin_m", plan.side_margin},
-                         {"outer_blocks", plan.n_outer_blocks},
-                         {"outer_block_size_m", plan.outer_block_size},
-                         {"rock_mass_modulus_pa", plan.rock_mass_modulus},
-                         {"arrival_time_s", plan.arrival_time},
-                         {"end_time_s", plan.end_time}};
-  }
-  summary["integrator"] = dda::integrator_name(time.integrator);
-  if (time.integrator == dda::Integrator::generalized_alpha)
-    summary["spectral_radius"] = time.spectral_radius;
-  summary["solver"] = {{"name", system.get_solver().name()},
-                       {"factorizations", system.get_solver().n_factorizations()},
-                       {"solves", system.get_solver().n_solves()},
-                       {"refinement_iterations", system.get_solver().n_refinements()}};
-  summary["model"] = {{"blocks", system.get_blocks().size()},
-                      {"bonded_joints", system.get_joints().size()},
-                      {"dofs", system.n_dofs()}};
-  if (ties)
-  {
-    const fem::Timings& ft = far_field->timings();
-    const fem::EnergyBalance fe = far_field->energy();
-    summary["model"]["far_field_cells"] = far_field->n_cells();
-    summary["model"]["far_field_dofs"] = far_field->n_dofs();
-    summary["model"]["element_size_m"] = far_field->element_size();
-    summary["model"]["ties"] = ties->n_ties();
-    summary["model"]["tied_edges"] = ties->n_tied_edges();
-    summary["model"]["tied_blocks"] = ties->n_tied_blocks();
-    summary["far_field"] = {{"solver", far_field->solver_name()},
-                            {"timings_s",
-                             {{"setup", ft.setup},
-                              {"assemble", ft.assemble},
-                              {"solve", ft.solve},
-                              {"update", ft.update}}},
-                            {"energy_J",
-                             {{"kinetic", fe.kinetic},
-                              {"strain", fe.strain},
-                              {"work_of_input", fe.work_of_input},
-                              {"work_of_dashpots", fe.work_of_dashpots},
-                              {"work_of_rayleigh", fe.work_of_rayleigh},
-                              {"work_of_ties", fe.work_of_springs},
-                              {"dissipated", fe.dissipated}}}};
-    const coupling::TieCounts n = ties->counts();
-    summary["interface"] = {
-        {"ties", {{"intact", n.intact}, {"lock", n.lock}, {"slide", n.slide}, {"open", n.open}}},
-        {"work_into_blocks_J", ties->work_on_blocks()},
-        {"work_into_far_field_J", fe.work_of_springs},
-        {"tie_energy_J", ties->tie_energy()},
-        {"timings_s",
-         {{"condensation", ties->condensation_seconds()}, {"ties", ties->tie_seconds()}}}};
-  }
-  const dda::ContactCounts counts = system.contact_counts();
-  summary["contacts"] = {{"open", counts.open},
-                         {"slide", counts.slide},
-                         {"lock", counts.lock},
-                         {"broken_joints", system.n_broken_joints()},
-                         {"open_close_iterations", system.get_timings().n_open_close_iterations},
-                         {"search_distance_m", system.search_distance()},
-                         {"max_step_displacement_m", system.max_step_displacement()}};
-  summary["wall_time_s"] = wall;
-  summary["peak_memory_mb"] = run_support::peak_memory_mb();
-  summary["timings_s"] = {{"broad_phase", t.broad_phase}, {"narrow_phase", t.narrow_phase},
-                          {"assemble", t.assemble},       {"solve", t.solve},
-                          {"update", t.update},           {"output", output_time},
-                          {"tie_terms", t.tie_terms},     {"tied_body", t.tied_body}};
-  // Parts of timings_s: the far field's VTU files within output.
-  summary["timings_detail_s"] = {{"output_far_field_vtu", far_field_vtu_time}};
-  summary["energy_J"] = {{"kinetic", e.kinetic},
-                         {"strain", e.strain},
-                         {"spring", e.spring},
-                         {"work_of_loads", e.work_of_loads},
-                         {"work_of_supports", e.work_of_supports},
-                         {"work_of_boundaries", e.work_of_boundaries},
-                         {"work_of_ties", e.work_of_ties},
-                         {"removed", e.removed},
-                         {"initial", e.initial},
-                         {"dissipated", e.dissipated}};
-  if (!keyblocks.empty())
-    summary["keyblocks"] = keyblocks.summary(system);
-  summary["warnings"] = warnings;
-  summary["outputs"] = {{"histories", "histories.h5"},
-                        {"model", "model.pvd"},
-                        {"blocks", "blocks.pvd"},
-                        {"contacts", "contacts.pvd"},
-                        {"snapshots", vtu.n_written()}};
-  if (ties)
-  {
-    summary["outputs"]["far_field"] = "far_field.pvd";
-    summary["outputs"]["ties"] = "ties.pvd";
-  }
-  const std::string steps = std::to_string(system.n_steps()) +
-                            (time.integrator == dda::Integrator::bathe ? " half steps" : " steps");
-  return run_support::finish_run(dir, summary, failed ? failure.message : std::string(), steps,
+  const nlohmann::json summary = run_summary(
+      {scene, system,
+       CoupledParts{far_field.get(), ties.get(), scene.far_field ? &*scene.far_field : nullptr},
+       stages, *outputs, keyblocks, warnings, wall});
+  const std::string steps =
+      std::to_string(system.n_steps()) +
+      (scene.model.time.integrator == dda::Integrator::bathe ? " half steps" : " steps");
+  return run_support::finish_run(dir, summary,
+                                 stages.failed() ? stages.failure.message : std::string(), steps,
                                  system.time(), wall, "model.pvd", log);
+}
+} // namespace
+
+int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
+{
+  if (scene.far_field && !scene.coupled())
+    return run_far_field(scene, options, log);
+  BlocksRun run(scene, options, log);
+  return run.run();
 }
 
 } // namespace ddafem

@@ -1,0 +1,185 @@
+#include "app/run_summary.h"
+
+#include "app/run_support.h"
+
+#include <algorithm>
+
+namespace ddafem
+{
+namespace
+{
+nlohmann::json time_step_summary(const dda::TimeSettings& time, const StageTotals& stages,
+                                 std::size_t n_attempts)
+{
+  std::size_t n_cuts = 0;
+  nlohmann::json by_cause = nlohmann::json::object();
+  for (const auto& [outcome, n] : stages.cuts_by_cause)
+  {
+    n_cuts += n;
+    by_cause[dda::outcome_name(outcome)] = n;
+  }
+  return {{"control", time.control == dda::TimeControl::fixed ? "fixed" : "adaptive"},
+          {"dt_max_s", time.dt},
+          {"smallest_dt_s", stages.smallest_dt},
+          {"attempts", n_attempts},
+          {"cuts", n_cuts},
+          {"cuts_by_cause", by_cause},
+          {"steps_cut", stages.n_cut_steps},
+          {"penalty_raises", stages.n_penalty_raises},
+          {"flips_ignored", stages.n_flips_ignored},
+          {"slip_reversals", stages.n_reversals}};
+}
+
+nlohmann::json tunnel_summary(const TunnelPlan& plan)
+{
+  return {{"truncation", name_of(plan.truncation)},
+          {"near_field_lower_m", {plan.near_lower.x(), plan.near_lower.y()}},
+          {"near_field_upper_m", {plan.near_upper.x(), plan.near_upper.y()}},
+          {"far_field", plan.far_field},
+          {"margin_m", plan.margin},
+          {"side_margin_m", plan.side_margin},
+          {"outer_blocks", plan.n_outer_blocks},
+          {"outer_block_size_m", plan.outer_block_size},
+          {"rock_mass_modulus_pa", plan.rock_mass_modulus},
+          {"arrival_time_s", plan.arrival_time},
+          {"end_time_s", plan.end_time}};
+}
+
+/// The far field's solver, timings and energies, the interface's ties and work, and the model's
+/// far-field sizes.
+void add_coupled_summary(nlohmann::json& summary, const CoupledParts& coupled)
+{
+  const fem::ElasticWaveModel& far_field = *coupled.far_field;
+  const coupling::FarFieldTies& ties = *coupled.ties;
+  const fem::Timings& ft = far_field.timings();
+  const fem::EnergyBalance fe = far_field.energy();
+  summary["model"]["far_field_cells"] = far_field.n_cells();
+  summary["model"]["far_field_dofs"] = far_field.n_dofs();
+  summary["model"]["element_size_m"] = far_field.element_size();
+  summary["model"]["ties"] = ties.n_ties();
+  summary["model"]["tied_edges"] = ties.n_tied_edges();
+  summary["model"]["tied_blocks"] = ties.n_tied_blocks();
+  summary["far_field"] = {{"solver", far_field.solver_name()},
+                          {"timings_s", far_field_timings(ft)},
+                          {"energy_J",
+                           {{"kinetic", fe.kinetic},
+                            {"strain", fe.strain},
+                            {"work_of_input", fe.work_of_input},
+                            {"work_of_dashpots", fe.work_of_dashpots},
+                            {"work_of_rayleigh", fe.work_of_rayleigh},
+                            {"work_of_ties", fe.work_of_springs},
+                            {"dissipated", fe.dissipated}}}};
+  const coupling::TieCounts n = ties.counts();
+  summary["interface"] = {
+      {"ties", {{"intact", n.intact}, {"lock", n.lock}, {"slide", n.slide}, {"open", n.open}}},
+      {"work_into_blocks_J", ties.work_on_blocks()},
+      {"work_into_far_field_J", fe.work_of_springs},
+      {"tie_energy_J", ties.tie_energy()},
+      {"timings_s", {{"condensation", ties.condensation_seconds()}, {"ties", ties.tie_seconds()}}}};
+}
+
+/// The blocks' model, solver, contacts, energies and timings.
+void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
+                        const RunOutputs& outputs)
+{
+  const dda::FactorizationReusingSolver& solver = system.get_solver();
+  summary["solver"] = {{"name", solver.name()},
+                       {"factorizations", solver.n_factorizations()},
+                       {"solves", solver.n_solves()},
+                       {"refinement_iterations", solver.n_refinements()}};
+  summary["model"] = {{"blocks", system.get_blocks().size()},
+                      {"bonded_joints", system.get_joints().size()},
+                      {"dofs", system.n_dofs()}};
+  const dda::ContactCounts counts = system.contact_counts();
+  const dda::PhaseTimings& t = system.get_timings();
+  summary["contacts"] = {{"open", counts.open},
+                         {"slide", counts.slide},
+                         {"lock", counts.lock},
+                         {"broken_joints", system.n_broken_joints()},
+                         {"open_close_iterations", t.n_open_close_iterations},
+                         {"search_distance_m", system.search_distance()},
+                         {"max_step_displacement_m", system.max_step_displacement()}};
+  summary["timings_s"] = {{"broad_phase", t.broad_phase}, {"narrow_phase", t.narrow_phase},
+                          {"assemble", t.assemble},       {"solve", t.solve},
+                          {"update", t.update},           {"output", outputs.seconds()},
+                          {"tie_terms", t.tie_terms},     {"tied_body", t.tied_body}};
+  // Parts of timings_s: the far field's VTU files within output.
+  summary["timings_detail_s"] = {{"output_far_field_vtu", outputs.far_field_vtu_seconds()}};
+  const dda::EnergyBalance e = system.energy();
+  summary["energy_J"] = {{"kinetic", e.kinetic},
+                         {"strain", e.strain},
+                         {"spring", e.spring},
+                         {"work_of_loads", e.work_of_loads},
+                         {"work_of_supports", e.work_of_supports},
+                         {"work_of_boundaries", e.work_of_boundaries},
+                         {"work_of_ties", e.work_of_ties},
+                         {"removed", e.removed},
+                         {"initial", e.initial},
+                         {"dissipated", e.dissipated}};
+}
+} // namespace
+
+void StageTotals::add(const dda::StaticStageResult& result)
+{
+  n_cut_steps += result.n_cut_steps;
+  n_penalty_raises += result.n_penalty_raises;
+  for (const auto& [outcome, n] : result.cuts_by_cause)
+    cuts_by_cause[outcome] += n;
+  smallest_dt = std::min(smallest_dt, result.smallest_dt);
+}
+
+void StageTotals::add(const dda::DynamicStageResult& result)
+{
+  n_cut_steps += result.n_cut_steps;
+  n_penalty_raises += result.n_penalty_raises;
+  n_flips_ignored += result.n_flips_ignored;
+  n_reversals += result.n_reversals;
+  for (const auto& [outcome, n] : result.cuts_by_cause)
+    cuts_by_cause[outcome] += n;
+  smallest_dt = std::min(smallest_dt, result.smallest_dt);
+}
+
+nlohmann::json run_summary(const RunRecord& run)
+{
+  const dda::TimeSettings& time = run.scene.model.time;
+  const dda::System& system = run.system;
+  nlohmann::json summary;
+  summary["scene"] = run.scene.file;
+  summary["name"] = run.scene.name;
+  summary["version"] = DDAFEM_VERSION;
+  summary["status"] = run.stages.failed() ? "numerical_failure" : "completed";
+  if (run.stages.failed())
+    summary["failure"] = run.stages.failure.message;
+  summary["time_reached_s"] = system.time();
+  summary["end_time_s"] = time.end_time;
+  summary["steps"] = system.n_steps();
+  summary["dt_s"] = time.dt;
+  summary["time_step"] = time_step_summary(time, run.stages, system.get_timings().n_attempts);
+  summary["stages"] = run.stages.records;
+  if (run.scene.tunnel)
+    summary["tunnel"] = tunnel_summary(*run.scene.tunnel);
+  summary["integrator"] = dda::integrator_name(time.integrator);
+  if (time.integrator == dda::Integrator::generalized_alpha)
+    summary["spectral_radius"] = time.spectral_radius;
+  add_blocks_summary(summary, system, run.outputs);
+  if (run.coupled.ties)
+    add_coupled_summary(summary, run.coupled);
+  summary["wall_time_s"] = run.wall_time;
+  summary["peak_memory_mb"] = run_support::peak_memory_mb();
+  if (!run.keyblocks.empty())
+    summary["keyblocks"] = run.keyblocks.summary(system);
+  summary["warnings"] = run.warnings;
+  summary["outputs"] = {{"histories", "histories.h5"},
+                        {"model", "model.pvd"},
+                        {"blocks", "blocks.pvd"},
+                        {"contacts", "contacts.pvd"},
+                        {"snapshots", run.outputs.n_snapshots()}};
+  if (run.coupled.ties)
+  {
+    summary["outputs"]["far_field"] = "far_field.pvd";
+    summary["outputs"]["ties"] = "ties.pvd";
+  }
+  return summary;
+}
+
+} // namespace ddafem
