@@ -235,20 +235,26 @@ void set_boundary_ids(const FarFieldDescription& d, Triangulation<2>& mesh, cons
     }
 }
 
-/// The coarse mesh around a hole: O-grid between the hole and a box, Cartesian grid outside.
-void make_coarse_hole_mesh(const FarFieldDescription& d, const double far_size,
-                           Triangulation<2>& mesh)
+/// The box around the hole that the O-grid fills, and its nodes: the box's corners x0 < x1,
+/// y0 < y1 [m], nx by ny intervals, `box` its nodes counterclockwise from the lower-left corner
+/// and `inner` the hole point of each node's ray from the centre.
+struct HoleRing
+{
+  double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
+  unsigned int nx = 0, ny = 0;
+  std::vector<double> xs, ys; ///< node coordinates along the box's sides
+  std::vector<Vertex> box, inner;
+};
+
+/// The hole's bounding box widened on every side by half its larger dimension (so that the
+/// ring is about equally thick all round), clipped to the rectangle.
+void set_ring_box(const FarFieldDescription& d, const std::vector<Vertex>& polygon, const Vertex& c,
+                  HoleRing& ring)
 {
   const HoleDescription& hole = d.hole;
-  const bool circle = hole.shape == HoleShape::circle;
-  const std::vector<Vertex> polygon = circle ? std::vector<Vertex>() : hole_polygon(hole);
-  const Vertex c = circle ? hole.center : centroid(polygon);
-
-  // The box: the hole's bounding box widened on every side by half its larger dimension (so
-  // that the ring is about equally thick all round), clipped to the rectangle.
   double hx0 = c[0] - hole.radius, hx1 = c[0] + hole.radius;
   double hy0 = c[1] - hole.radius, hy1 = c[1] + hole.radius;
-  if (!circle)
+  if (hole.shape != HoleShape::circle)
   {
     hx0 = hx1 = polygon[0][0];
     hy0 = hy1 = polygon[0][1];
@@ -261,141 +267,195 @@ void make_coarse_hole_mesh(const FarFieldDescription& d, const double far_size,
     }
   }
   const double margin = 0.5 * std::max(hx1 - hx0, hy1 - hy0);
-  const double bx0 = std::max(d.lower[0], hx0 - margin);
-  const double bx1 = std::min(d.upper[0], hx1 + margin);
-  const double by0 = std::max(d.lower[1], hy0 - margin);
-  const double by1 = std::min(d.upper[1], hy1 + margin);
+  ring.x0 = std::max(d.lower[0], hx0 - margin);
+  ring.x1 = std::min(d.upper[0], hx1 + margin);
+  ring.y0 = std::max(d.lower[1], hy0 - margin);
+  ring.y1 = std::min(d.upper[1], hy1 + margin);
+}
 
-  // Rays from c through the box nodes, counterclockwise from the box's lower-left corner; each
-  // polygon vertex is moved onto the hole point of its nearest ray (more rays until all
-  // vertices have rays of their own).
-  const unsigned int n_min = circle ? 4 : 2;
-  unsigned int nx = std::max(n_min, intervals(bx1 - bx0, far_size));
-  unsigned int ny = std::max(n_min, intervals(by1 - by0, far_size));
-  std::vector<double> xs, ys;
-  std::vector<Vertex> box, inner;
+/// The box's nodes for ring.nx, ring.ny intervals and the hole points of their rays.
+void set_ring_nodes(const HoleDescription& hole, const std::vector<Vertex>& polygon,
+                    const Vertex& c, HoleRing& ring)
+{
+  const unsigned int nx = ring.nx, ny = ring.ny;
+  ring.xs = subdivide(ring.x0, ring.x1, nx);
+  ring.ys = subdivide(ring.y0, ring.y1, ny);
+  ring.box.clear();
+  for (unsigned int i = 0; i < nx; ++i)
+    ring.box.push_back({{ring.xs[i], ring.y0}});
+  for (unsigned int i = 0; i < ny; ++i)
+    ring.box.push_back({{ring.x1, ring.ys[i]}});
+  for (unsigned int i = 0; i < nx; ++i)
+    ring.box.push_back({{ring.xs[nx - i], ring.y1}});
+  for (unsigned int i = 0; i < ny; ++i)
+    ring.box.push_back({{ring.x0, ring.ys[ny - i]}});
+  ring.inner.clear();
+  for (const Vertex& b : ring.box)
+    ring.inner.push_back(ray_to_hole(hole, polygon, c, b));
+}
+
+/// Moves each polygon vertex onto the hole point of its nearest ray (in angle about c); false
+/// if two vertices share a ray.
+bool snap_vertices_to_rays(const std::vector<Vertex>& polygon, const Vertex& c, HoleRing& ring)
+{
+  std::vector<int> owner(ring.box.size(), -1);
+  bool distinct = true;
+  for (std::size_t m = 0; m < polygon.size() && distinct; ++m)
+  {
+    const double phi = std::atan2(polygon[m][1] - c[1], polygon[m][0] - c[0]);
+    std::size_t nearest = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < ring.box.size(); ++j)
+    {
+      const double diff =
+          wrapped_angle_difference(phi, std::atan2(ring.box[j][1] - c[1], ring.box[j][0] - c[0]));
+      if (diff < best)
+      {
+        best = diff;
+        nearest = j;
+      }
+    }
+    distinct = owner[nearest] < 0;
+    owner[nearest] = static_cast<int>(m);
+    ring.inner[nearest] = polygon[m];
+  }
+  return distinct;
+}
+
+/// Rays from c through the box nodes, counterclockwise from the box's lower-left corner; each
+/// polygon vertex is moved onto the hole point of its nearest ray (more rays until all
+/// vertices have rays of their own).
+HoleRing make_ring(const FarFieldDescription& d, const double far_size,
+                   const std::vector<Vertex>& polygon, const Vertex& c)
+{
+  HoleRing ring;
+  set_ring_box(d, polygon, c, ring);
+  const unsigned int n_min = d.hole.shape == HoleShape::circle ? 4 : 2;
+  ring.nx = std::max(n_min, intervals(ring.x1 - ring.x0, far_size));
+  ring.ny = std::max(n_min, intervals(ring.y1 - ring.y0, far_size));
   for (unsigned int attempt = 0;; ++attempt)
   {
-    xs = subdivide(bx0, bx1, nx);
-    ys = subdivide(by0, by1, ny);
-    box.clear();
-    for (unsigned int i = 0; i < nx; ++i)
-      box.push_back({{xs[i], by0}});
-    for (unsigned int i = 0; i < ny; ++i)
-      box.push_back({{bx1, ys[i]}});
-    for (unsigned int i = 0; i < nx; ++i)
-      box.push_back({{xs[nx - i], by1}});
-    for (unsigned int i = 0; i < ny; ++i)
-      box.push_back({{bx0, ys[ny - i]}});
-    inner.clear();
-    for (const Vertex& b : box)
-      inner.push_back(ray_to_hole(hole, polygon, c, b));
-    std::vector<int> owner(box.size(), -1);
-    bool distinct = true;
-    for (std::size_t m = 0; m < polygon.size() && distinct; ++m)
-    {
-      const double phi = std::atan2(polygon[m][1] - c[1], polygon[m][0] - c[0]);
-      std::size_t nearest = 0;
-      double best = std::numeric_limits<double>::infinity();
-      for (std::size_t j = 0; j < box.size(); ++j)
-      {
-        const double diff =
-            wrapped_angle_difference(phi, std::atan2(box[j][1] - c[1], box[j][0] - c[0]));
-        if (diff < best)
-        {
-          best = diff;
-          nearest = j;
-        }
-      }
-      distinct = owner[nearest] < 0;
-      owner[nearest] = static_cast<int>(m);
-      inner[nearest] = polygon[m];
-    }
-    if (distinct)
-      break;
+    set_ring_nodes(d.hole, polygon, c, ring);
+    if (snap_vertices_to_rays(polygon, c, ring))
+      return ring;
     require(attempt < 8, "hole.vertices: " + std::to_string(polygon.size()) +
                              " vertices too close together in angle about the centroid to mesh, "
                              "expected fewer or more evenly spread vertices");
-    nx *= 2;
-    ny *= 2;
+    ring.nx *= 2;
+    ring.ny *= 2;
   }
+}
 
-  // Layers: geometric radii as in a log-polar grid, so that ring elements are roughly square.
-  const std::size_t n_rays = box.size();
-  double hole_perimeter = 0.0;
-  for (std::size_t j = 0; j < n_rays; ++j)
-    hole_perimeter += norm(minus(inner[(j + 1) % n_rays], inner[j]));
-  const double box_perimeter = 2.0 * ((bx1 - bx0) + (by1 - by0));
-  const double r1 = hole_perimeter / (2.0 * M_PI), r2 = box_perimeter / (2.0 * M_PI);
-  const auto n_layers = static_cast<unsigned int>(
-      std::max(1L, std::lround(n_rays / (2.0 * M_PI) * std::log(std::max(r2 / r1, 1.0 + 1e-12)))));
-
+/// Quadrilaterals for Triangulation::create_triangulation; equal points share a vertex.
+class CellList
+{
+public:
+  void add_cell(const Vertex& a, const Vertex& b, const Vertex& e, const Vertex& f)
+  {
+    CellData<2> cell;
+    cell.vertices = {vertex(a), vertex(b), vertex(e), vertex(f)};
+    cells.push_back(cell);
+  }
   std::vector<Point<2>> vertices;
-  std::map<std::pair<double, double>, unsigned int> index;
-  const auto vertex = [&](const Vertex& p)
+  std::vector<CellData<2>> cells;
+
+private:
+  unsigned int vertex(const Vertex& p)
   {
     const auto [it, inserted] = index.emplace(std::make_pair(p[0], p[1]), vertices.size());
     if (inserted)
       vertices.emplace_back(p[0], p[1]);
     return it->second;
-  };
+  }
+  std::map<std::pair<double, double>, unsigned int> index;
+};
+
+/// The O-grid between the hole and the box. Layers: geometric radii as in a log-polar grid, so
+/// that ring elements are roughly square.
+void add_ring_cells(const HoleRing& ring, CellList& cells)
+{
+  const std::size_t n_rays = ring.box.size();
+  double hole_perimeter = 0.0;
+  for (std::size_t j = 0; j < n_rays; ++j)
+    hole_perimeter += norm(minus(ring.inner[(j + 1) % n_rays], ring.inner[j]));
+  const double box_perimeter = 2.0 * ((ring.x1 - ring.x0) + (ring.y1 - ring.y0));
+  const double r1 = hole_perimeter / (2.0 * M_PI), r2 = box_perimeter / (2.0 * M_PI);
+  const auto n_layers = static_cast<unsigned int>(
+      std::max(1L, std::lround(n_rays / (2.0 * M_PI) * std::log(std::max(r2 / r1, 1.0 + 1e-12)))));
   const auto ring_point = [&](const std::size_t j, const unsigned int k) -> Vertex
   {
     if (k == n_layers)
-      return box[j % n_rays];
+      return ring.box[j % n_rays];
     const double s = r2 > r1 ? (r1 * std::pow(r2 / r1, double(k) / n_layers) - r1) / (r2 - r1)
                              : double(k) / n_layers;
-    const Vertex& q = inner[j % n_rays];
-    const Vertex& b = box[j % n_rays];
+    const Vertex& q = ring.inner[j % n_rays];
+    const Vertex& b = ring.box[j % n_rays];
     return {{q[0] + s * (b[0] - q[0]), q[1] + s * (b[1] - q[1])}};
   };
-
-  std::vector<CellData<2>> cells;
-  const auto add_cell = [&](const Vertex& a, const Vertex& b, const Vertex& e, const Vertex& f)
-  {
-    CellData<2> cell;
-    cell.vertices = {vertex(a), vertex(b), vertex(e), vertex(f)};
-    cells.push_back(cell);
-  };
-  // Ring cells: x runs outward, y counterclockwise (positive Jacobian).
+  // x runs outward, y counterclockwise (positive Jacobian).
   for (std::size_t j = 0; j < n_rays; ++j)
     for (unsigned int k = 0; k < n_layers; ++k)
-      add_cell(ring_point(j, k), ring_point(j, k + 1), ring_point(j + 1, k),
-               ring_point(j + 1, k + 1));
+      cells.add_cell(ring_point(j, k), ring_point(j, k + 1), ring_point(j + 1, k),
+                     ring_point(j + 1, k + 1));
+}
 
-  // Cartesian cells outside the box; the box's own nodes are reused bit for bit.
-  const auto axis = [&](const double lo, const double b0, const std::vector<double>& inside,
-                        const double b1, const double hi, unsigned int& offset)
+/// Grid lines along one axis: far-size bands from lo to the box side b0 and from b1 to hi
+/// around the box's own nodes `inside` (reused bit for bit); `offset` = index of inside[0].
+std::vector<double> grid_axis(const double lo, const double b0, const std::vector<double>& inside,
+                              const double b1, const double hi, const double far_size,
+                              unsigned int& offset)
+{
+  std::vector<double> x;
+  if (b0 > lo)
   {
-    std::vector<double> x;
-    if (b0 > lo)
-    {
-      const std::vector<double> band = subdivide(lo, b0, intervals(b0 - lo, far_size));
-      x.insert(x.end(), band.begin(), band.end() - 1);
-    }
-    offset = static_cast<unsigned int>(x.size());
-    x.insert(x.end(), inside.begin(), inside.end());
-    if (hi > b1)
-    {
-      const std::vector<double> band = subdivide(b1, hi, intervals(hi - b1, far_size));
-      x.insert(x.end(), band.begin() + 1, band.end());
-    }
-    return x;
-  };
+    const std::vector<double> band = subdivide(lo, b0, intervals(b0 - lo, far_size));
+    x.insert(x.end(), band.begin(), band.end() - 1);
+  }
+  offset = static_cast<unsigned int>(x.size());
+  x.insert(x.end(), inside.begin(), inside.end());
+  if (hi > b1)
+  {
+    const std::vector<double> band = subdivide(b1, hi, intervals(hi - b1, far_size));
+    x.insert(x.end(), band.begin() + 1, band.end());
+  }
+  return x;
+}
+
+/// Cartesian cells outside the box.
+void add_outer_cells(const FarFieldDescription& d, const HoleRing& ring, const double far_size,
+                     CellList& cells)
+{
   unsigned int ix = 0, iy = 0;
-  const std::vector<double> X = axis(d.lower[0], bx0, xs, bx1, d.upper[0], ix);
-  const std::vector<double> Y = axis(d.lower[1], by0, ys, by1, d.upper[1], iy);
+  const std::vector<double> X =
+      grid_axis(d.lower[0], ring.x0, ring.xs, ring.x1, d.upper[0], far_size, ix);
+  const std::vector<double> Y =
+      grid_axis(d.lower[1], ring.y0, ring.ys, ring.y1, d.upper[1], far_size, iy);
   for (std::size_t j = 0; j + 1 < Y.size(); ++j)
     for (std::size_t i = 0; i + 1 < X.size(); ++i)
     {
-      if (i >= ix && i < ix + nx && j >= iy && j < iy + ny)
+      if (i >= ix && i < ix + ring.nx && j >= iy && j < iy + ring.ny)
         continue;
-      add_cell({{X[i], Y[j]}}, {{X[i + 1], Y[j]}}, {{X[i], Y[j + 1]}}, {{X[i + 1], Y[j + 1]}});
+      cells.add_cell({{X[i], Y[j]}}, {{X[i + 1], Y[j]}}, {{X[i], Y[j + 1]}},
+                     {{X[i + 1], Y[j + 1]}});
     }
+}
 
-  GridTools::invert_all_negative_measure_cells(vertices, cells);
-  GridTools::consistently_order_cells(cells);
-  mesh.create_triangulation(vertices, cells, SubCellData());
+/// The coarse mesh around a hole: O-grid between the hole and a box, Cartesian grid outside.
+void make_coarse_hole_mesh(const FarFieldDescription& d, const double far_size,
+                           Triangulation<2>& mesh)
+{
+  const HoleDescription& hole = d.hole;
+  const bool circle = hole.shape == HoleShape::circle;
+  const std::vector<Vertex> polygon = circle ? std::vector<Vertex>() : hole_polygon(hole);
+  const Vertex c = circle ? hole.center : centroid(polygon);
+  const HoleRing ring = make_ring(d, far_size, polygon, c);
+  CellList cells;
+  add_ring_cells(ring, cells);
+  add_outer_cells(d, ring, far_size, cells);
+
+  GridTools::invert_all_negative_measure_cells(cells.vertices, cells.cells);
+  GridTools::consistently_order_cells(cells.cells);
+  mesh.create_triangulation(cells.vertices, cells.cells, SubCellData());
   set_boundary_ids(d, mesh, circle);
   if (circle)
     mesh.set_manifold(1, PolarManifold<2>(Point<2>(c[0], c[1])));

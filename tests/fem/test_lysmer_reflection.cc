@@ -113,7 +113,7 @@ TEST(LysmerReflection, ReflectionGrowsWithAngle)
 
 // FE measurement (issue 5 acceptance "Oblique incidence", coarse and fast; all angles:
 // tools/verify_lysmer.py).
-#include "fem/lysmer_measurement.h"
+#include "tools/lysmer/lysmer_measurement.h"
 
 namespace
 {

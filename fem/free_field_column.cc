@@ -1,0 +1,152 @@
+// ElasticWaveModel free-field sides: a 1D column advanced alongside, sampled at the side faces
+// (fem/README.md, free_field).
+#include "fem/elastic_wave_model_impl.h"
+
+#include <deal.II/base/quadrature.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+namespace ddafem::fem
+{
+using namespace far_field_detail;
+
+void ElasticWaveModel::Impl::make_free_field_column()
+{
+  const auto& d = description;
+  bool needed = false;
+  for (const auto& bc : d.boundaries)
+    needed = needed || bc.kind == BoundaryKind::free_field;
+  if (!needed)
+    return;
+  // The column: one far-size element wide, the model's material, base and top, rollers.
+  FarFieldDescription c;
+  c.lower = d.lower;
+  c.upper = {{d.lower[0] + h, d.upper[1]}};
+  c.element_size = h;
+  c.degree = d.degree;
+  c.density = d.density;
+  c.youngs_modulus = d.youngs_modulus;
+  c.poisson_ratio = d.poisson_ratio;
+  c.plane_mode = d.plane_mode;
+  c.incident = d.incident;
+  c.dt = d.dt;
+  c.integrator = d.integrator;
+  c.rayleigh = d.rayleigh;
+  for (const auto& bc : d.boundaries)
+    if (bc.part == BoundaryPart::bottom || bc.part == BoundaryPart::top)
+      c.boundaries.push_back(bc);
+  c.boundaries.push_back({BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0, {}});
+  c.boundaries.push_back({BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0, {}});
+  column = std::make_unique<ElasticWaveModel>(c);
+
+  const Impl& col = *column->impl;
+  const QGauss<1> face_quadrature(fe.degree + 1);
+  FEFaceValues<2> face_values(fe, face_quadrature, update_quadrature_points);
+  const double x = d.lower[0] + 0.5 * h;
+  for (const auto& cell : dof_handler.active_cell_iterators())
+    for (const unsigned int f : cell->face_indices())
+    {
+      if (!is_free_field_face(cell, f))
+        continue;
+      face_values.reinit(cell, f);
+      for (const unsigned int q : face_values.quadrature_point_indices())
+      {
+        const double y = std::clamp(face_values.quadrature_point(q)[1], d.lower[1], d.upper[1]);
+        column_probes.push_back(col.make_probe(x, y));
+      }
+    }
+}
+
+std::unique_ptr<FEValues<2>> ElasticWaveModel::Impl::make_probe(const double x,
+                                                                const double y) const
+{
+  const MappingQ1<2> mapping;
+  const auto found = GridTools::find_active_cell_around_point(mapping, dof_handler, Point<2>(x, y));
+  const Point<2> reference = GeometryInfo<2>::project_to_unit_cell(found.second);
+  auto probe =
+      std::make_unique<FEValues<2>>(mapping, fe, Quadrature<2>(std::vector<Point<2>>{reference}),
+                                    update_values | update_gradients);
+  probe->reinit(found.first);
+  return probe;
+}
+
+bool ElasticWaveModel::Impl::is_free_field_face(const DoFHandler<2>::active_cell_iterator& cell,
+                                                const unsigned int f) const
+{
+  if (!cell->face(f)->at_boundary())
+    return false;
+  for (const auto& bc : description.boundaries)
+    if (bc.kind == BoundaryKind::free_field &&
+        cell->face(f)->boundary_id() == boundary_id_of(bc.part))
+      return true;
+  return false;
+}
+
+MonitorSample ElasticWaveModel::Impl::column_sample(const FEValues<2>& probe) const
+{
+  const Impl& col = *column->impl;
+  std::vector<Vector<double>> point_v(1, Vector<double>(2));
+  std::vector<std::vector<Tensor<1, 2>>> grad_u(1, std::vector<Tensor<1, 2>>(2));
+  probe.get_function_values(col.v, point_v);
+  probe.get_function_gradients(col.u, grad_u);
+  MonitorSample sample;
+  sample.velocity = {{point_v[0](0), point_v[0](1)}};
+  sample.stress = col.elasticity.stress(grad_u[0][0], grad_u[0][1]);
+  return sample;
+}
+
+void ElasticWaveModel::Impl::add_free_field_load(Vector<double>& f) const
+{
+  const double rho = description.density;
+  const QGauss<1> face_quadrature(fe.degree + 1);
+  FEFaceValues<2> face_values(fe, face_quadrature,
+                              update_values | update_normal_vectors | update_JxW_values);
+  const unsigned int n = fe.n_dofs_per_cell();
+  Vector<double> cell_load(n);
+  std::vector<types::global_dof_index> dofs(n);
+  std::size_t probe = 0;
+  for (const auto& cell : dof_handler.active_cell_iterators())
+    for (const unsigned int face : cell->face_indices())
+    {
+      if (!is_free_field_face(cell, face))
+        continue;
+      face_values.reinit(cell, face);
+      cell_load = 0.0;
+      for (const unsigned int q : face_values.quadrature_point_indices())
+      {
+        const MonitorSample ff = column_sample(*column_probes[probe++]);
+        const Tensor<1, 2> n_q = face_values.normal_vector(q);
+        const double sigma[2][2] = {{ff.stress[0], ff.stress[2]}, {ff.stress[2], ff.stress[1]}};
+        // t = sigma_ff n + D v_ff, D = rho (VP n n^T + VS (I - n n^T)) (a = b = 1).
+        double traction[2];
+        const double vn = ff.velocity[0] * n_q[0] + ff.velocity[1] * n_q[1];
+        for (unsigned int c = 0; c < 2; ++c)
+          traction[c] = sigma[c][0] * n_q[0] + sigma[c][1] * n_q[1] +
+                        rho * (vp * vn * n_q[c] + vs * (ff.velocity[c] - vn * n_q[c]));
+        for (unsigned int i = 0; i < n; ++i)
+        {
+          const unsigned int c = fe.system_to_component_index(i).first;
+          cell_load(i) += face_values.shape_value(i, q) * traction[c] * face_values.JxW(q);
+        }
+      }
+      cell->get_dof_indices(dofs);
+      for (unsigned int i = 0; i < n; ++i)
+        f(dofs[i]) += cell_load(i);
+    }
+}
+
+std::array<double, 2> ElasticWaveModel::free_field_velocity(const double y) const
+{
+  AssertThrow(impl->column, ExcMessage("free_field_velocity: the model has no free_field part"));
+  const auto probe = impl->column->impl->make_probe(
+      impl->description.lower[0] + 0.5 * impl->h,
+      std::clamp(y, impl->description.lower[1], impl->description.upper[1]));
+  return impl->column_sample(*probe).velocity;
+}
+
+} // namespace ddafem::fem
