@@ -101,7 +101,7 @@ output: {directory: results/two_blocks, interval: 0.001}
   std::ostringstream md;
   md << "# Scene file reference\n\n"
      << "This file is generated from the schema that the scene reader validates against "
-        "(`app/scene_schema.cc`).\nDo not edit it; regenerate it with\n\n"
+        "(`app/scene_schema.cc` and `app/schema_*.cc`).\nDo not edit it; regenerate it with\n\n"
      << "    build/ddafem scene-reference > docs/scene_reference.md\n\n"
      << "## Conventions\n\n"
      << "- A scene is a YAML file. Units are SI: m, s, kg, N, Pa; angles in degrees.\n"
