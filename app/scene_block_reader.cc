@@ -2,6 +2,7 @@
 // the points that must lie in some block (`point_loads`, `fixed_points`, `monitors`).
 #include "app/scene_readers.h"
 
+#include "dda/contact/broad_phase.h"
 #include "dda/geometry.h"
 
 #include <algorithm>
@@ -178,52 +179,39 @@ void read_blocks(const MapReader& top, const SceneNames& names, dda::ModelDescri
     rock_mass = read_rock_mass(top.section_reader("rock_mass"), names, model, sources);
 }
 
-/// Overlapping blocks are an error. Only pairs whose bounding boxes (and projections onto their
-/// edge normals) overlap by more than the tolerated area are handed to the exact but slow
-/// overlap computation; candidate pairs come from a sweep over the boxes sorted by lower x.
+/// Overlapping blocks are an error. Candidate pairs come from the contact detection's broad
+/// phase (their bounding boxes overlap or touch); only pairs whose boxes (and projections onto
+/// their edge normals) overlap by more than the tolerated area are handed to the exact but slow
+/// overlap computation. Pairs are checked in index order, so the first overlap reported is the
+/// one with the lowest indices.
 void check_overlaps(const dda::ModelDescription& model, const std::vector<BlockSource>& sources,
                     const Locator& locator)
 {
-  const std::size_t n = model.blocks.size();
-  std::vector<Box> boxes;
+  std::vector<dda::BoundingBox> boxes;
   std::vector<double> areas;
   for (const dda::BlockDescription& b : model.blocks)
   {
-    boxes.emplace_back(b.vertices);
+    boxes.push_back(dda::bounding_box(b.vertices, 0.0));
     areas.push_back(std::abs(dda::signed_area(b.vertices)));
   }
-  std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i)
-    order[i] = i;
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return boxes[a].lower.x() < boxes[b].lower.x(); });
-  for (std::size_t oi = 0; oi < n; ++oi)
+  for (const auto& [i, j] : dda::overlapping_pairs(boxes))
   {
-    const std::size_t i = order[oi];
-    for (std::size_t oj = oi + 1; oj < n && boxes[order[oj]].lower.x() < boxes[i].upper.x(); ++oj)
-    {
-      const std::size_t j = order[oj];
-      if (sources[i].generated && sources[j].generated)
-        continue; // faces of one arrangement
-      const double tolerated = 1e-9 * std::min(areas[i], areas[j]);
-      const double wx = std::min(boxes[i].upper.x(), boxes[j].upper.x()) -
-                        std::max(boxes[i].lower.x(), boxes[j].lower.x());
-      const double wy = std::min(boxes[i].upper.y(), boxes[j].upper.y()) -
-                        std::max(boxes[i].lower.y(), boxes[j].lower.y());
-      if (wx <= 0.0 || wy <= 0.0 || wx * wy <= tolerated ||
-          overlap_area_bound(model.blocks[i].vertices, model.blocks[j].vertices) <= tolerated)
-        continue;
-      const double overlap = dda::overlap_area(model.blocks[i].vertices, model.blocks[j].vertices);
-      if (overlap > tolerated)
-      {
-        const std::size_t first = std::min(i, j), second = std::max(i, j);
-        throw locator.error(sources[second].node, sources[second].key_path, "",
-                            "blocks overlap: " + model.blocks[first].origin + " and " +
-                                model.blocks[second].origin + " share an area of " +
-                                format_number(overlap) +
-                                " m^2; expected blocks that touch at most");
-      }
-    }
+    if (sources[i].generated && sources[j].generated)
+      continue; // faces of one arrangement
+    const double tolerated = 1e-9 * std::min(areas[i], areas[j]);
+    const double wx =
+        std::min(boxes[i].x_max, boxes[j].x_max) - std::max(boxes[i].x_min, boxes[j].x_min);
+    const double wy =
+        std::min(boxes[i].y_max, boxes[j].y_max) - std::max(boxes[i].y_min, boxes[j].y_min);
+    if (wx <= 0.0 || wy <= 0.0 || wx * wy <= tolerated ||
+        overlap_area_bound(model.blocks[i].vertices, model.blocks[j].vertices) <= tolerated)
+      continue;
+    const double overlap = dda::overlap_area(model.blocks[i].vertices, model.blocks[j].vertices);
+    if (overlap > tolerated)
+      throw locator.error(sources[j].node, sources[j].key_path, "",
+                          "blocks overlap: " + model.blocks[i].origin + " and " +
+                              model.blocks[j].origin + " share an area of " +
+                              format_number(overlap) + " m^2; expected blocks that touch at most");
   }
 }
 
