@@ -1,0 +1,393 @@
+// The model's sections: analysis, materials and joints, time functions, boundaries, time,
+// contacts, stages, solver and output.
+#include "app/scene_readers.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace ddafem::scene_reading
+{
+namespace
+{
+/// A table from a CSV file; every problem names the file, row and the scene key.
+TimeFunction read_csv_table(const MapReader& r)
+{
+  const std::string file = r.string("file");
+  const long long time_column = r.integer("time_column");
+  const long long value_column = r.integer("value_column");
+  const long long skip_rows = r.integer("skip_rows");
+  std::filesystem::path csv_path(file);
+  if (csv_path.is_relative())
+    csv_path = r.ctx().scene_directory / csv_path;
+  const std::string shown = csv_path.lexically_normal().string();
+
+  std::error_code ec;
+  std::ifstream in(csv_path);
+  if (!std::filesystem::is_regular_file(csv_path, ec) || !in)
+    throw r.error("file", "cannot open CSV file '" + shown + "'");
+
+  std::vector<double> times, values;
+  std::string line;
+  long long row = 0;
+  const std::size_t n_needed = static_cast<std::size_t>(std::max(time_column, value_column)) + 1;
+  while (std::getline(in, line))
+  {
+    ++row;
+    if (row <= skip_rows || trim(line).empty())
+      continue;
+    const std::vector<std::string> cells = split(line, ',');
+    const std::string at_row = "CSV file '" + shown + "' row " + std::to_string(row) + ": ";
+    if (cells.size() < n_needed)
+      throw r.error("file", at_row + "found " + std::to_string(cells.size()) +
+                                " column(s), expected at least " + std::to_string(n_needed));
+    const auto cell = [&](long long column)
+    {
+      const std::string text = trim(cells[static_cast<std::size_t>(column)]);
+      const std::optional<double> x = parse_double(text);
+      if (!x)
+        throw r.error("file", at_row + "column " + std::to_string(column) + " is '" + text +
+                                  "', expected a number");
+      return *x;
+    };
+    const double t = cell(time_column);
+    const double v = cell(value_column);
+    if (!times.empty() && t <= times.back())
+      throw r.error("file", at_row + "time " + format_number(t) +
+                                " does not increase strictly (previous " +
+                                format_number(times.back()) + ")");
+    times.push_back(t);
+    values.push_back(v);
+  }
+  if (times.empty())
+    throw r.error("file", "CSV file '" + shown + "' has no data rows (after skipping " +
+                              std::to_string(skip_rows) + ")");
+  return TimeFunction::table(std::move(times), std::move(values));
+}
+
+/// The `edges` of a `boundaries[i]` item: block and edge indices in range, each edge once.
+void read_boundary_edges(const MapReader& r, const dda::ModelDescription& model,
+                         dda::BoundaryDescription& b)
+{
+  const std::vector<std::array<long long, 2>> edges = r.integer_pair_list("edges");
+  const std::size_t n_blocks = model.blocks.size();
+  for (std::size_t i = 0; i < edges.size(); ++i)
+  {
+    const auto block = static_cast<std::size_t>(edges[i][0]);
+    const auto edge = static_cast<std::size_t>(edges[i][1]);
+    if (block >= n_blocks)
+      throw r.item_error("edges", i,
+                         "block index " + std::to_string(block) +
+                             " is out of range: expected 0 to " + std::to_string(n_blocks - 1) +
+                             " (the " + std::to_string(n_blocks) +
+                             " blocks of the scene, grid cells counted one by one)");
+    const std::size_t n_edges = model.blocks[block].vertices.size();
+    if (edge >= n_edges)
+      throw r.item_error("edges", i,
+                         "edge index " + std::to_string(edge) + " is out of range: block " +
+                             std::to_string(block) + " (" + model.blocks[block].origin + ") has " +
+                             std::to_string(n_edges) + " edges, expected 0 to " +
+                             std::to_string(n_edges - 1));
+    const std::pair<std::size_t, std::size_t> e(block, edge);
+    const auto previous = std::find(b.edges.begin(), b.edges.end(), e);
+    if (previous != b.edges.end())
+      throw r.item_error("edges", i,
+                         "duplicate edge (also edges[" +
+                             std::to_string(previous - b.edges.begin()) +
+                             "]): expected each edge once");
+    b.edges.push_back(e);
+  }
+}
+
+/// A boundary selects its edges by exactly one of `edges`, `on_line` and `outer`.
+void check_boundary_selector(const MapReader& r, bool outer)
+{
+  std::vector<std::string> selectors;
+  if (r.has("edges"))
+    selectors.push_back("'edges'");
+  if (r.has("on_line"))
+    selectors.push_back("'on_line'");
+  if (outer)
+    selectors.push_back("'outer: true'");
+  if (selectors.size() != 1)
+    throw r.ctx().locator.error(
+        r.yaml(), r.key_path(), "",
+        (selectors.empty() ? std::string("no edges selected")
+                           : "more than one selector (" + join(selectors, ", ") + ")") +
+            ": expected exactly one of 'edges: [[block, edge], ...]', 'on_line: {point: [x, y], "
+            "direction: [dx, dy]}' or 'outer: true'. Allowed keys here: " +
+            join(r.ctx().schema.section("boundaries[i]").key_names(), ", "));
+}
+
+/// A `stages[i]` item with `mode: settle`: its SettleCriterion (no `dt`, no `end_time`: it runs
+/// with time.dt from where the previous stage ended, to rest or its max_duration).
+dda::SettleCriterion read_settle_criterion(const MapReader& r)
+{
+  for (const char* key : {"dt", "end_time", "max_steps", "tolerance", "release"})
+    if (r.has(key))
+      throw r.error(key, std::string("a settle stage runs with time.dt until its blocks are at "
+                                     "rest or max_duration: expected no `") +
+                             key + "` here");
+  dda::SettleCriterion c;
+  c.rest_speed = r.number("rest_speed");
+  c.rest_duration = r.number("rest_duration");
+  c.fall_distance = r.number("fall_distance");
+  c.max_duration = r.number("max_duration");
+  c.remove_fallen = r.boolean("remove_fallen");
+  if (c.remove_fallen && c.fall_distance <= 0.0)
+    throw r.error("remove_fallen",
+                  "fallen blocks are removed once they have fallen: expected fall_distance > 0 "
+                  "with remove_fallen true");
+  return c;
+}
+
+/// The time at which the last dynamic stage before the new one ended [s] (0 for none).
+double previous_dynamic_end(const dda::ModelDescription& model)
+{
+  for (auto it = model.stages.rbegin(); it != model.stages.rend(); ++it)
+    if (it->mode == dda::StageMode::dynamic)
+      return it->end_time;
+  return 0.0;
+}
+
+/// One `stages[i]` item, after the stages before it (time.dt and time.end_time by default).
+dda::Stage read_stage(const MapReader& r, const dda::ModelDescription& model)
+{
+  if (!model.stages.empty() && model.stages.back().settle)
+    throw r.error("mode", "a stage after the settle stage " + model.stages.back().name +
+                              ", whose end is not known before the run: expected the settle "
+                              "stage last");
+  dda::Stage stage;
+  stage.name = r.string("name");
+  stage.mode =
+      r.choice("mode") == "static" ? dda::StageMode::static_equilibrium : dda::StageMode::dynamic;
+  if (r.choice("mode") == "settle")
+    stage.settle = read_settle_criterion(r);
+  stage.dt = r.has("dt") ? r.number("dt") : model.time.dt;
+  stage.end_time = r.has("end_time") ? r.number("end_time") : model.time.end_time;
+  stage.max_steps = static_cast<std::size_t>(r.integer("max_steps"));
+  stage.tolerance = r.number("tolerance");
+  stage.release =
+      r.choice("release") == "remove" ? dda::ReleaseAction::remove : dda::ReleaseAction::fall;
+  if (stage.mode == dda::StageMode::dynamic && !stage.settle)
+  {
+    if (r.has("dt"))
+      throw r.error("dt", "a dynamic stage steps with time.dt: expected no `dt` here");
+    const double start = previous_dynamic_end(model);
+    if (stage.end_time <= start)
+      throw r.error("end_time", "expected a time after the previous dynamic stage's end (" +
+                                    format_number(start) + " s)");
+  }
+  return stage;
+}
+} // namespace
+
+TimeFunction read_time_function(const MapReader& parent, const std::string& name)
+{
+  const MapReader r = parent.time_function_reader(name);
+  const std::string type = r.choice("type");
+  if (type == "constant")
+    return TimeFunction::constant(r.number("value"));
+  if (type == "sine_pulse")
+    return TimeFunction::sine_pulse(r.number("amplitude"), r.number("frequency"),
+                                    r.number("cycles"), r.number("start"));
+  if (type == "table")
+  {
+    std::vector<double> times, values;
+    for (const auto& [t, v] : r.pair_list("points"))
+    {
+      if (!times.empty() && t <= times.back())
+        throw r.error("points", "expected strictly increasing times; found " + format_number(t) +
+                                    " after " + format_number(times.back()));
+      times.push_back(t);
+      values.push_back(v);
+    }
+    return TimeFunction::table(std::move(times), std::move(values));
+  }
+  assert(type == "csv");
+  return read_csv_table(r);
+}
+
+void read_analysis(const MapReader& top, dda::ModelDescription& model)
+{
+  const MapReader analysis = top.section_reader("analysis");
+  model.plane_mode =
+      analysis.choice("plane") == "strain" ? dda::PlaneMode::strain : dda::PlaneMode::stress;
+  model.geometry = analysis.choice("geometry") == "small_displacement"
+                       ? dda::GeometryMode::small_displacement
+                       : dda::GeometryMode::updated;
+}
+
+SceneNames read_materials(const MapReader& top, dda::ModelDescription& model)
+{
+  SceneNames names;
+  std::vector<std::string>& material_names = names.materials;
+  for (const auto& [name, r] : top.section_map("materials"))
+  {
+    dda::Material m;
+    m.name = name;
+    m.density = r.number("density");
+    m.youngs_modulus = r.number("youngs_modulus");
+    m.poisson_ratio = r.number("poisson_ratio");
+    model.materials.push_back(m);
+    material_names.push_back(name);
+  }
+  if (model.materials.empty())
+    throw top.error("materials", "expected at least one material");
+
+  std::vector<std::string>& joint_names = names.joint_materials;
+  for (const auto& [name, r] : top.section_map("joint_materials"))
+  {
+    dda::JointMaterial j;
+    j.name = name;
+    j.normal_stiffness = r.number("normal_stiffness");
+    j.shear_ratio = r.number("shear_ratio");
+    j.friction_angle = r.number("friction_angle");
+    j.cohesion = r.number("cohesion");
+    j.tensile_strength = r.number("tensile_strength");
+    j.bonded = r.boolean("bonded");
+    model.joint_materials.push_back(j);
+    joint_names.push_back(name);
+  }
+
+  const MapReader joints = top.section_reader("joints");
+  if (joints.has("default"))
+    model.default_joint_material =
+        find_name(joints, "default", joints.string("default"), joint_names, "joint material");
+  for (const MapReader& r : joints.section_list("pairs"))
+  {
+    const std::array<std::string, 2> pair = r.name_pair("materials");
+    dda::JointAssignment a;
+    a.material_a = find_name(r, "materials", pair[0], material_names, "material");
+    a.material_b = find_name(r, "materials", pair[1], material_names, "material");
+    a.joint_material = find_name(r, "joint", r.string("joint"), joint_names, "joint material");
+    model.joint_assignments.push_back(a);
+  }
+
+  return names;
+}
+
+/// One `boundaries[i]` item. Only what the text can tell is checked here (types, ranges, one
+/// selector, block and edge indices); which edges a line or `outer` selects, and whether an edge
+/// is outer at all, is for the engine, which sees the geometry.
+dda::BoundaryDescription read_boundary(const MapReader& r, const dda::ModelDescription& model)
+{
+  dda::BoundaryDescription b;
+  b.origin = r.key_path();
+  const std::string type = r.choice("type");
+  b.type = type == "vb1"       ? dda::BoundaryType::vb1
+           : type == "vb2"     ? dda::BoundaryType::vb2
+           : type == "dashpot" ? dda::BoundaryType::dashpot
+                               : dda::BoundaryType::free;
+  b.impedance = r.choice("impedance") == "effective" ? dda::ImpedanceKind::effective
+                                                     : dda::ImpedanceKind::textbook;
+  b.a_n = r.number("a_n");
+  b.a_t = r.number("a_t");
+  b.outer = r.boolean("outer");
+  if (r.has("input"))
+  {
+    if (b.type == dda::BoundaryType::free)
+      throw r.error("input", "an incident wave enters through the dashpots of a viscous "
+                             "boundary: expected `type: vb1`, `vb2` or `dashpot`");
+    const MapReader in = r.section_reader("input");
+    b.has_input = true;
+    b.input.type =
+        in.choice("type") == "p" ? dda::BoundaryInput::Type::p : dda::BoundaryInput::Type::sv;
+    b.input.velocity = read_time_function(in, "velocity");
+  }
+  check_boundary_selector(r, b.outer);
+  if (r.has("edges"))
+    read_boundary_edges(r, model, b);
+  if (r.has("on_line"))
+  {
+    const MapReader line = r.section_reader("on_line");
+    b.on_line = true;
+    b.line_point = line.vector2("point");
+    const Vector2 direction = line.vector2("direction");
+    const double scale = direction.cwiseAbs().maxCoeff();
+    if (scale == 0.0)
+      throw line.error("direction", "expected a non-zero direction [dx, dy]");
+    b.line_direction = (direction / scale).normalized(); // a unit vector
+  }
+  return b;
+}
+
+void read_time(const MapReader& top, dda::TimeSettings& time_settings)
+{
+  if (!top.has("time"))
+    throw top.error("time", "expected a `time` section (dt, end_time) or a `tunnel`");
+  const MapReader time = top.section_reader("time");
+  time_settings.dt = time.number("dt");
+  time_settings.end_time = time.number("end_time");
+  if (time_settings.end_time < time_settings.dt)
+    throw time.error("end_time",
+                     "expected end_time >= dt = " + format_number(time_settings.dt) + " s");
+  for (const dda::Integrator i : {dda::Integrator::generalized_alpha, dda::Integrator::bathe,
+                                  dda::Integrator::dda, dda::Integrator::newmark_trapezoidal})
+    if (time.choice("integrator") == dda::integrator_name(i))
+      time_settings.integrator = i;
+  time_settings.spectral_radius = time.number("spectral_radius");
+  time_settings.control =
+      time.choice("control") == "fixed" ? dda::TimeControl::fixed : dda::TimeControl::adaptive;
+  if (time.has("dt_min"))
+  {
+    time_settings.dt_min = time.number("dt_min");
+    if (time_settings.dt_min > time_settings.dt)
+      throw time.error("dt_min",
+                       "expected dt_min <= dt = " + format_number(time_settings.dt) + " s");
+  }
+  time_settings.cut_factor = time.number("cut_factor");
+  time_settings.growth_factor = time.number("growth_factor");
+  time_settings.reversal_tolerance = time.number("reversal_tolerance");
+}
+
+void read_contacts(const MapReader& top, dda::ContactSettings& contact_settings)
+{
+  const MapReader contacts = top.section_reader("contacts");
+  contact_settings.max_displacement_ratio = contacts.number("max_displacement_ratio");
+  if (contacts.has("search_distance"))
+    contact_settings.search_distance = contacts.number("search_distance");
+  if (contacts.has("max_penetration"))
+    contact_settings.max_penetration = contacts.number("max_penetration");
+  contact_settings.max_open_close_iterations =
+      static_cast<unsigned>(contacts.integer("max_open_close_iterations"));
+  contact_settings.angle_tolerance_deg = contacts.number("angle_tolerance");
+  contact_settings.max_penalty_factor = contacts.number("max_penalty_factor");
+  contact_settings.flip_force_ratio = contacts.number("flip_force_ratio");
+}
+
+void read_stages(const MapReader& top, dda::ModelDescription& model)
+{
+  for (const MapReader& r : top.section_list("stages"))
+    model.stages.push_back(read_stage(r, model));
+}
+
+dda::SolverKind read_solver(const MapReader& top)
+{
+  const MapReader solver = top.section_reader("solver");
+  const std::string solver_type = solver.choice("type");
+  return solver_type == "amesos_klu"   ? dda::SolverKind::amesos_klu
+         : solver_type == "eigen_ldlt" ? dda::SolverKind::eigen_ldlt
+                                       : dda::SolverKind::block_ldlt;
+}
+
+OutputSettings read_output(const MapReader& top)
+{
+  OutputSettings settings;
+  const MapReader output = top.section_reader("output");
+  settings.directory = output.string("directory");
+  if (trim(settings.directory).empty())
+    throw output.error("directory", "expected a non-empty directory name");
+  settings.interval = output.number("interval");
+  settings.history_every = static_cast<std::size_t>(output.integer("history_every"));
+  const std::string compression = output.choice("vtu_compression");
+  settings.vtu_compression = compression == "none" ? fem::VtuCompression::none
+                             : compression == "best_compression"
+                                 ? fem::VtuCompression::best_compression
+                                 : fem::VtuCompression::best_speed;
+  return settings;
+}
+
+} // namespace ddafem::scene_reading

@@ -1,0 +1,177 @@
+// The `tunnel` section: read, planned (app/tunnel_scene.h) and expanded into the sections of a
+// scene, which is then read like any other.
+#include "app/scene_readers.h"
+#include "app/tunnel_scene.h"
+
+namespace ddafem::scene_reading
+{
+namespace
+{
+/// The `tunnel` section's joint sets and explicit joints. Their joint material names (passed on
+/// to `rock_mass` with them) are checked here, so that errors name the tunnel's keys.
+void read_tunnel_joints(const MapReader& r, const YAML::Node& root, dda::RockMassDescription& d)
+{
+  std::vector<std::string> joint_names;
+  for (const auto& named : nested(root, {"joint_materials"}))
+    joint_names.push_back(named.first.Scalar());
+  for (const MapReader& j : r.section_list("joint_sets"))
+  {
+    d.joint_sets.push_back(read_joint_set(j));
+    read_joint_material(j, joint_names);
+  }
+  for (const MapReader& j : r.section_list("joints"))
+  {
+    d.joints.push_back({j.vector2("from"), j.vector2("to")});
+    read_joint_material(j, joint_names);
+  }
+}
+
+/// The rock's material (`tunnel.rock` in `materials`), the default joint's stiffness, gravity and
+/// the plane mode, from the rest of the scene.
+void read_tunnel_rock(const MapReader& r, const YAML::Node& root, const Context& context,
+                      TunnelDescription& t)
+{
+  t.rock = r.string("rock");
+  const YAML::Node rock_node = nested(root, {"materials", t.rock});
+  if (!rock_node.IsDefined())
+    throw r.error("rock", "expected the name of a material in `materials`");
+  const MapReader rock(rock_node, context.schema.section("materials.<name>"), "materials." + t.rock,
+                       context);
+  t.density = rock.number("density");
+  t.youngs_modulus = rock.number("youngs_modulus");
+  t.poisson_ratio = rock.number("poisson_ratio");
+  const YAML::Node default_joint = nested(root, {"joints", "default"});
+  if (default_joint.IsDefined() && default_joint.IsScalar())
+  {
+    const YAML::Node j = nested(root, {"joint_materials", default_joint.Scalar()});
+    if (j.IsDefined())
+      t.joint_normal_stiffness = MapReader(j, context.schema.section("joint_materials.<name>"),
+                                           "joint_materials." + default_joint.Scalar(), context)
+                                     .number("normal_stiffness");
+  }
+  const YAML::Node gravity = child(root, "gravity");
+  if (gravity.IsDefined())
+  {
+    const MapReader top(root, context.schema.section(SceneSchema::top_level), "", context);
+    const Vector2 g = top.vector2("gravity");
+    if (!(g.y() < 0.0) || g.x() != 0.0)
+      throw top.error("gravity", "expected gravity [0, -g] (downwards) with a tunnel");
+    t.gravity = -g.y();
+  }
+  const YAML::Node plane = nested(root, {"analysis", "plane"});
+  if (plane.IsDefined() && plane.IsScalar() && plane.Scalar() != "strain")
+    throw context.locator.error(plane, "analysis.plane", plane.Scalar(),
+                                "expected strain (or nothing) with a tunnel: a section through "
+                                "a long tunnel is in plane strain");
+}
+
+/// `tunnel.wave`: the incident wave's type, velocity record and frequencies [Hz].
+void read_tunnel_wave(const MapReader& r, const YAML::Node& tunnel_node, TunnelDescription& t)
+{
+  const MapReader wave = r.section_reader("wave");
+  t.wave_type = wave.choice("type");
+  const TimeFunction velocity = read_time_function(wave, "velocity");
+  const bool pulse = nested(tunnel_node, {"wave", "velocity", "type"}).Scalar() == "sine_pulse";
+  if (wave.has("frequency"))
+    t.wave_frequency = wave.number("frequency");
+  else if (pulse)
+    t.wave_frequency = velocity.characteristic_frequency();
+  else
+    throw wave.error("frequency", "expected the wave's dominant frequency [Hz] for a record");
+  t.max_frequency =
+      wave.has("max_frequency") ? wave.number("max_frequency") : 2.0 * t.wave_frequency;
+  t.wave_duration = velocity.active_until();
+}
+
+/// The near field, the truncation, the far field's margins and mesh, the window and the time step.
+void read_tunnel_domain(const MapReader& r, TunnelDescription& t)
+{
+  const MapReader near = r.section_reader("near_field");
+  t.size_factor = near.number("size_factor");
+  if (near.has("lower") != near.has("upper"))
+    throw near.error(near.has("lower") ? "upper" : "lower",
+                     "expected both `lower` and `upper`, or neither (size_factor)");
+  if (near.has("lower"))
+  {
+    const Vector2 lower = near.vector2("lower"), upper = near.vector2("upper");
+    if (!(upper.x() > lower.x() && upper.y() > lower.y()))
+      throw near.error("upper", "expected upper > lower in both x and y");
+    t.near_field = std::array<Point, 2>{lower, upper};
+  }
+  const std::string truncation = r.choice("truncation");
+  t.truncation = truncation == "vb1"         ? TunnelTruncation::vb1
+                 : truncation == "dashpot"   ? TunnelTruncation::dashpot
+                 : truncation == "reference" ? TunnelTruncation::reference
+                 : truncation == "blocks"    ? TunnelTruncation::blocks
+                                             : TunnelTruncation::hybrid;
+  if (r.has("margin"))
+    t.margin = r.number("margin");
+  if (r.has("reference_margin"))
+    t.reference_margin = r.number("reference_margin");
+  t.points_per_wavelength = r.number("points_per_wavelength");
+  t.growth_ratio = r.number("growth_ratio");
+  if (r.has("window"))
+    t.window = r.number("window");
+  if (r.has("dt"))
+    t.dt = r.number("dt");
+}
+
+/// `tunnel.static` and `tunnel.settle`: the stages before and after the wave.
+void read_tunnel_stages(const MapReader& r, TunnelDescription& t)
+{
+  const MapReader stage = r.section_reader("static");
+  if (stage.has("dt"))
+    t.static_dt = stage.number("dt");
+  t.static_tolerance = stage.number("tolerance");
+  t.static_max_steps = stage.integer("max_steps");
+  t.static_release = stage.choice("release");
+  const MapReader settle = r.section_reader("settle");
+  if (settle.has("enabled"))
+    t.settle = settle.boolean("enabled");
+  t.settle_rest_speed = settle.number("rest_speed");
+  if (settle.has("rest_duration"))
+    t.settle_rest_duration = settle.number("rest_duration");
+  if (settle.has("max_duration"))
+    t.settle_max_duration = settle.number("max_duration");
+  t.settle_remove_fallen = settle.boolean("remove_fallen");
+}
+} // namespace
+
+/// The `tunnel` section: reads it, plans the model (app/tunnel_scene.h) and writes the sections
+/// it generates into `root`, which is then read like any scene.
+TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
+{
+  const YAML::Node tunnel_node = child(root, "tunnel");
+  const MapReader r(tunnel_node, context.schema.section("tunnel"), "tunnel", context);
+  TunnelDescription t;
+  read_tunnel_rock(r, root, context, t);
+  t.rock_mass.chord_tolerance = r.number("chord_tolerance");
+  t.rock_mass.seed = static_cast<std::uint64_t>(r.integer("seed"));
+  read_tunnel_joints(r, root, t.rock_mass);
+  const double far = 1e12;
+  t.rock_mass.openings.push_back(
+      read_opening(r.section_reader("opening"),
+                   {Point(-far, -far), Point(far, -far), Point(far, far), Point(-far, far)},
+                   t.rock_mass.chord_tolerance));
+  t.depth = r.number("depth");
+  t.k0 = r.number("k0");
+  read_tunnel_wave(r, tunnel_node, t);
+  read_tunnel_domain(r, t);
+  read_tunnel_stages(r, t);
+
+  try
+  {
+    TunnelPlan plan = plan_tunnel(t);
+    write_tunnel_sections(t, plan,
+                          {child(tunnel_node, "opening"), child(tunnel_node, "joint_sets"),
+                           child(tunnel_node, "joints"), nested(tunnel_node, {"wave", "velocity"})},
+                          root);
+    return plan;
+  }
+  catch (const InputError& e)
+  {
+    throw context.locator.error(tunnel_node, "tunnel", "", e.what());
+  }
+}
+
+} // namespace ddafem::scene_reading
