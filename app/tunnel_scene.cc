@@ -465,24 +465,12 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
   return plan;
 }
 
-void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
-                           const TunnelNodes& nodes, YAML::Node& root)
+namespace
 {
-  const YAML::Node& given = root; // lookups without creating keys
-  for (const char* generated : {"blocks", "rock_mass", "far_field", "interface", "boundaries",
-                                "in_situ_stress", "stages", "fixed_points"})
-    if (given[generated])
-      throw InputError(std::string("the scene has both `tunnel` and `") + generated +
-                       "`: the tunnel generates " + generated +
-                       "; expected one or the other (see `ddafem check` for what it generates)");
-
-  YAML::Node analysis =
-      given["analysis"] ? YAML::Clone(given["analysis"]) : YAML::Node(YAML::NodeType::Map);
-  analysis["plane"] = "strain";
-  root["analysis"] = analysis;
-  if (!given["gravity"])
-    root["gravity"] = pair(0.0, -t.gravity);
-
+/// `rock_mass`: the near field's rectangle with the tunnel's joints and opening.
+void write_rock_mass(const TunnelDescription& t, const TunnelPlan& plan, const TunnelNodes& nodes,
+                     YAML::Node& root)
+{
   YAML::Node rock_mass;
   rock_mass["material"] = t.rock;
   rock_mass["region"]["rectangle"]["lower"] = pair(plan.near_lower.x(), plan.near_lower.y());
@@ -495,7 +483,11 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
   rock_mass["seed"] = static_cast<long long>(t.rock_mass.seed);
   rock_mass["chord_tolerance"] = t.rock_mass.chord_tolerance;
   root["rock_mass"] = rock_mass;
+}
 
+/// `in_situ_stress`: lithostatic, with k0 horizontally; returns the opening's centre height [m].
+double write_in_situ_stress(const TunnelDescription& t, const TunnelPlan& plan, YAML::Node& root)
+{
   // Lithostatic stress, tension positive: sigma_yy = -rho g (depth of the point).
   const double center_y = 0.5 * (plan.opening_lower.y() + plan.opening_upper.y());
   const double syy = -t.density * t.gravity * t.depth, gradient = t.density * t.gravity;
@@ -505,130 +497,144 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
   in_situ["reference_y"] = center_y;
   root["in_situ_stress"] = in_situ;
 
-  YAML::Node input;
-  input["type"] = t.wave_type;
-  input["velocity"] = nodes.velocity;
-  if (plan.far_field)
+  return center_y;
+}
+
+/// `far_field` and `interface`: the equivalent rock mass around the near field's blocks.
+void write_far_field(const TunnelDescription& t, const TunnelPlan& plan, const YAML::Node& input,
+                     YAML::Node& root)
+{
+  add_material(t, "rock_mass_equivalent", plan.rock_mass_modulus, "the far field's material", root);
+
+  YAML::Node f;
+  f["material"] = "rock_mass_equivalent";
+  f["lower"] = pair(plan.far_lower.x(), plan.far_lower.y());
+  f["upper"] = pair(plan.far_upper.x(), plan.far_upper.y());
+  f["element_size"] = plan.far_element_size;
+  f["max_frequency"] = t.max_frequency;
+  f["points_per_wavelength"] = t.points_per_wavelength;
+  f["degree"] = 2;
+  f["hole"]["shape"] = "rectangle";
+  f["hole"]["lower"] = pair(plan.near_lower.x(), plan.near_lower.y());
+  f["hole"]["upper"] = pair(plan.near_upper.x(), plan.near_upper.y());
+  f["hole"]["element_size"] = plan.near_element_size;
+  f["hole"]["growth_ratio"] = t.growth_ratio;
+  const auto boundary = [](const char* part, const char* type)
   {
-    add_material(t, "rock_mass_equivalent", plan.rock_mass_modulus, "the far field's material",
-                 root);
+    YAML::Node b;
+    b["part"] = part;
+    b["type"] = type;
+    b.SetStyle(YAML::EmitterStyle::Flow);
+    return b;
+  };
+  f["boundaries"].push_back(boundary("bottom", "input"));
+  f["boundaries"].push_back(boundary("left", "free_field"));
+  f["boundaries"].push_back(boundary("right", "free_field"));
+  f["boundaries"].push_back(boundary("top", plan.top_is_surface ? "free" : "lysmer"));
+  f["incident"] = input;
+  root["far_field"] = f;
+  YAML::Node interface;
+  interface["part"] = "hole";
+  root["interface"] = interface;
+}
 
-    YAML::Node f;
-    f["material"] = "rock_mass_equivalent";
-    f["lower"] = pair(plan.far_lower.x(), plan.far_lower.y());
-    f["upper"] = pair(plan.far_upper.x(), plan.far_upper.y());
-    f["element_size"] = plan.far_element_size;
-    f["max_frequency"] = t.max_frequency;
-    f["points_per_wavelength"] = t.points_per_wavelength;
-    f["degree"] = 2;
-    f["hole"]["shape"] = "rectangle";
-    f["hole"]["lower"] = pair(plan.near_lower.x(), plan.near_lower.y());
-    f["hole"]["upper"] = pair(plan.near_upper.x(), plan.near_upper.y());
-    f["hole"]["element_size"] = plan.near_element_size;
-    f["hole"]["growth_ratio"] = t.growth_ratio;
-    const auto boundary = [](const char* part, const char* type)
-    {
-      YAML::Node b;
-      b["part"] = part;
-      b["type"] = type;
-      b.SetStyle(YAML::EmitterStyle::Flow);
-      return b;
-    };
-    f["boundaries"].push_back(boundary("bottom", "input"));
-    f["boundaries"].push_back(boundary("left", "free_field"));
-    f["boundaries"].push_back(boundary("right", "free_field"));
-    f["boundaries"].push_back(boundary("top", plan.top_is_surface ? "free" : "lysmer"));
-    f["incident"] = input;
-    root["far_field"] = f;
-    YAML::Node interface;
-    interface["part"] = "hole";
-    root["interface"] = interface;
-  }
-  else if (t.truncation == TunnelTruncation::blocks)
+/// The outer blocks' material, their bonded joints with each other and with the rock.
+void write_outer_joints(const TunnelDescription& t, const TunnelPlan& plan, YAML::Node& root)
+{
+  const YAML::Node& given = root; // lookups without creating keys
+  add_material(t, "outer_rock", plan.outer_youngs_modulus, "the outer blocks' material", root);
+  if (given["joint_materials"]["outer_bond"])
+    throw InputError("the joint material name `outer_bond` is taken: the tunnel names the outer "
+                     "blocks' joints so; expected another name for yours");
+  YAML::Node j;
+  j["normal_stiffness"] = plan.outer_joint_stiffness;
+  j["shear_ratio"] = plan.outer_shear_ratio;
+  j["cohesion"] = plan.outer_strength;
+  j["tensile_strength"] = plan.outer_strength;
+  j["bonded"] = true;
+  YAML::Node joint_materials = given["joint_materials"] ? YAML::Clone(given["joint_materials"])
+                                                        : YAML::Node(YAML::NodeType::Map);
+  joint_materials["outer_bond"] = j;
+  root["joint_materials"] = joint_materials;
+  YAML::Node joints =
+      given["joints"] ? YAML::Clone(given["joints"]) : YAML::Node(YAML::NodeType::Map);
+  for (const std::string& other : {t.rock, std::string("outer_rock")})
   {
-    add_material(t, "outer_rock", plan.outer_youngs_modulus, "the outer blocks' material", root);
-    if (given["joint_materials"]["outer_bond"])
-      throw InputError("the joint material name `outer_bond` is taken: the tunnel names the outer "
-                       "blocks' joints so; expected another name for yours");
-    YAML::Node j;
-    j["normal_stiffness"] = plan.outer_joint_stiffness;
-    j["shear_ratio"] = plan.outer_shear_ratio;
-    j["cohesion"] = plan.outer_strength;
-    j["tensile_strength"] = plan.outer_strength;
-    j["bonded"] = true;
-    YAML::Node joint_materials = given["joint_materials"] ? YAML::Clone(given["joint_materials"])
-                                                          : YAML::Node(YAML::NodeType::Map);
-    joint_materials["outer_bond"] = j;
-    root["joint_materials"] = joint_materials;
-    YAML::Node joints =
-        given["joints"] ? YAML::Clone(given["joints"]) : YAML::Node(YAML::NodeType::Map);
-    for (const std::string& other : {t.rock, std::string("outer_rock")})
-    {
-      YAML::Node entry;
-      entry["materials"].push_back("outer_rock");
-      entry["materials"].push_back(other);
-      entry["materials"].SetStyle(YAML::EmitterStyle::Flow);
-      entry["joint"] = "outer_bond";
-      entry.SetStyle(YAML::EmitterStyle::Flow);
-      joints["pairs"].push_back(entry);
-    }
-    root["joints"] = joints;
-
-    YAML::Node blocks(YAML::NodeType::Sequence);
-    for (const BlockGrid& g : plan.outer_grids)
-    {
-      YAML::Node b;
-      b["material"] = "outer_rock";
-      b["grid"]["origin"] = pair(g.origin.x(), g.origin.y());
-      b["grid"]["cell_size"] = pair(g.cell_size.x(), g.cell_size.y());
-      YAML::Node count(YAML::NodeType::Sequence);
-      count.push_back(static_cast<long long>(g.count[0]));
-      count.push_back(static_cast<long long>(g.count[1]));
-      count.SetStyle(YAML::EmitterStyle::Flow);
-      b["grid"]["count"] = count;
-      blocks.push_back(b);
-    }
-    root["blocks"] = blocks;
-
-    // Textbook impedance of E_o scaled to E_eff's (VP and VS go with sqrt(E) at a fixed nu): the
-    // dashpots rho VP and rho VS of the rock mass, as the far field's Lysmer base.
-    const double a = std::sqrt(plan.rock_mass_modulus / plan.outer_youngs_modulus);
-    const auto dashpot = [&](const Point& from, const Point& to)
-    {
-      YAML::Node b = line_boundary("dashpot", from, to);
-      b["impedance"] = "textbook";
-      b["a_n"] = a;
-      b["a_t"] = a;
-      return b;
-    };
-    const Point& lo = plan.far_lower;
-    const Point& hi = plan.far_upper;
-    YAML::Node base = dashpot(lo, Point(hi.x(), lo.y()));
-    base["input"] = input;
-    YAML::Node boundaries(YAML::NodeType::Sequence);
-    boundaries.push_back(base);
-    boundaries.push_back(dashpot(Point(hi.x(), lo.y()), hi));
-    if (!plan.top_is_surface)
-      boundaries.push_back(dashpot(hi, Point(lo.x(), hi.y())));
-    boundaries.push_back(dashpot(Point(lo.x(), hi.y()), lo));
-    root["boundaries"] = boundaries;
+    YAML::Node entry;
+    entry["materials"].push_back("outer_rock");
+    entry["materials"].push_back(other);
+    entry["materials"].SetStyle(YAML::EmitterStyle::Flow);
+    entry["joint"] = "outer_bond";
+    entry.SetStyle(YAML::EmitterStyle::Flow);
+    joints["pairs"].push_back(entry);
   }
-  else
+  root["joints"] = joints;
+}
+
+/// `blocks` (the outer grids) and `boundaries` (dashpots around them, the wave at the base).
+void write_outer_blocks(const TunnelPlan& plan, const YAML::Node& input, YAML::Node& root)
+{
+  YAML::Node blocks(YAML::NodeType::Sequence);
+  for (const BlockGrid& g : plan.outer_grids)
   {
-    const Point& lo = plan.near_lower;
-    const Point& hi = plan.near_upper;
-    const std::string type = name_of(t.truncation);
-    YAML::Node base = line_boundary(type, lo, Point(hi.x(), lo.y()));
-    base["input"] = input;
-    YAML::Node boundaries(YAML::NodeType::Sequence);
-    boundaries.push_back(base);
-    boundaries.push_back(line_boundary(type, Point(hi.x(), lo.y()), hi));
-    boundaries.push_back(line_boundary(type, hi, Point(lo.x(), hi.y())));
-    boundaries.push_back(line_boundary(type, Point(lo.x(), hi.y()), lo));
-    root["boundaries"] = boundaries;
+    YAML::Node b;
+    b["material"] = "outer_rock";
+    b["grid"]["origin"] = pair(g.origin.x(), g.origin.y());
+    b["grid"]["cell_size"] = pair(g.cell_size.x(), g.cell_size.y());
+    YAML::Node count(YAML::NodeType::Sequence);
+    count.push_back(static_cast<long long>(g.count[0]));
+    count.push_back(static_cast<long long>(g.count[1]));
+    count.SetStyle(YAML::EmitterStyle::Flow);
+    b["grid"]["count"] = count;
+    blocks.push_back(b);
   }
+  root["blocks"] = blocks;
 
-  // Monitors just outside the opening (in its wall rock) and where the wave enters the blocks.
+  // Textbook impedance of E_o scaled to E_eff's (VP and VS go with sqrt(E) at a fixed nu): the
+  // dashpots rho VP and rho VS of the rock mass, as the far field's Lysmer base.
+  const double a = std::sqrt(plan.rock_mass_modulus / plan.outer_youngs_modulus);
+  const auto dashpot = [&](const Point& from, const Point& to)
+  {
+    YAML::Node b = line_boundary("dashpot", from, to);
+    b["impedance"] = "textbook";
+    b["a_n"] = a;
+    b["a_t"] = a;
+    return b;
+  };
+  const Point& lo = plan.far_lower;
+  const Point& hi = plan.far_upper;
+  YAML::Node base = dashpot(lo, Point(hi.x(), lo.y()));
+  base["input"] = input;
+  YAML::Node boundaries(YAML::NodeType::Sequence);
+  boundaries.push_back(base);
+  boundaries.push_back(dashpot(Point(hi.x(), lo.y()), hi));
+  if (!plan.top_is_surface)
+    boundaries.push_back(dashpot(hi, Point(lo.x(), hi.y())));
+  boundaries.push_back(dashpot(Point(lo.x(), hi.y()), lo));
+  root["boundaries"] = boundaries;
+}
+
+/// `boundaries` of the near field's blocks (the truncation's type, the wave at the base).
+void write_near_boundaries(const TunnelDescription& t, const TunnelPlan& plan,
+                           const YAML::Node& input, YAML::Node& root)
+{
+  const Point& lo = plan.near_lower;
+  const Point& hi = plan.near_upper;
+  const std::string type = name_of(t.truncation);
+  YAML::Node base = line_boundary(type, lo, Point(hi.x(), lo.y()));
+  base["input"] = input;
+  YAML::Node boundaries(YAML::NodeType::Sequence);
+  boundaries.push_back(base);
+  boundaries.push_back(line_boundary(type, Point(hi.x(), lo.y()), hi));
+  boundaries.push_back(line_boundary(type, hi, Point(lo.x(), hi.y())));
+  boundaries.push_back(line_boundary(type, Point(lo.x(), hi.y()), lo));
+  root["boundaries"] = boundaries;
+}
+
+/// `monitors` just outside the opening and where the wave enters the blocks, after the user's.
+void write_monitors(const TunnelPlan& plan, double center_y, YAML::Node& root)
+{
+  const YAML::Node& given = root; // lookups without creating keys
   const double offset = 0.1 * plan.mean_block_size;
   const double cx = 0.5 * (plan.opening_lower.x() + plan.opening_upper.x());
   YAML::Node monitors =
@@ -639,7 +645,11 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
   monitors.push_back(monitor("right_wall", plan.opening_upper.x() + offset, center_y));
   monitors.push_back(monitor("near_field_base", cx, plan.near_lower.y() + offset));
   root["monitors"] = monitors;
+}
 
+/// `stages`: excavate (static), shake (dynamic) and, if planned, settle.
+void write_stages(const TunnelDescription& t, const TunnelPlan& plan, YAML::Node& root)
+{
   YAML::Node stage_static, stage_dynamic;
   stage_static["name"] = "excavate";
   stage_static["mode"] = "static";
@@ -665,7 +675,12 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
     stages.push_back(stage_settle);
   }
   root["stages"] = stages;
+}
 
+/// `time` and `output`: the plan's step, end and snapshot interval unless the user gave them.
+void write_time_and_output(const TunnelPlan& plan, YAML::Node& root)
+{
+  const YAML::Node& given = root; // lookups without creating keys
   YAML::Node time = given["time"] ? YAML::Clone(given["time"]) : YAML::Node(YAML::NodeType::Map);
   if (!time["dt"])
     time["dt"] = plan.dt;
@@ -681,6 +696,46 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
   if (!output["interval"])
     output["interval"] = plan.end_time / 40.0;
   root["output"] = output;
+}
+} // namespace
+
+void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
+                           const TunnelNodes& nodes, YAML::Node& root)
+{
+  const YAML::Node& given = root; // lookups without creating keys
+  for (const char* generated : {"blocks", "rock_mass", "far_field", "interface", "boundaries",
+                                "in_situ_stress", "stages", "fixed_points"})
+    if (given[generated])
+      throw InputError(std::string("the scene has both `tunnel` and `") + generated +
+                       "`: the tunnel generates " + generated +
+                       "; expected one or the other (see `ddafem check` for what it generates)");
+
+  YAML::Node analysis =
+      given["analysis"] ? YAML::Clone(given["analysis"]) : YAML::Node(YAML::NodeType::Map);
+  analysis["plane"] = "strain";
+  root["analysis"] = analysis;
+  if (!given["gravity"])
+    root["gravity"] = pair(0.0, -t.gravity);
+
+  write_rock_mass(t, plan, nodes, root);
+  const double center_y = write_in_situ_stress(t, plan, root);
+
+  YAML::Node input;
+  input["type"] = t.wave_type;
+  input["velocity"] = nodes.velocity;
+  if (plan.far_field)
+    write_far_field(t, plan, input, root);
+  else if (t.truncation == TunnelTruncation::blocks)
+  {
+    write_outer_joints(t, plan, root);
+    write_outer_blocks(plan, input, root);
+  }
+  else
+    write_near_boundaries(t, plan, input, root);
+
+  write_monitors(plan, center_y, root);
+  write_stages(t, plan, root);
+  write_time_and_output(plan, root);
 }
 
 } // namespace ddafem
