@@ -455,6 +455,10 @@ private:
   std::vector<std::string> collect_warnings(bool allow_unstable) const;
   void run_static_stage(const dda::Stage& stage);
   void run_dynamic_stage(const dda::Stage& stage);
+  CoupledParts coupled_parts() const
+  {
+    return {far_field.get(), ties.get(), scene.far_field ? &*scene.far_field : nullptr};
+  }
   void update_progress(bool force = false)
   {
     progress.update(system.n_steps(), system.time(), elapsed(wall_start), force);
@@ -497,10 +501,8 @@ BlocksRun::BlocksRun(const Scene& scene_, const RunOptions& options, std::ostrea
   warnings = collect_warnings(options.allow_unstable);
   for (const std::string& w : warnings)
     log << "warning: " << w << "\n";
-  outputs.emplace(
-      dir, scene.file, system,
-      CoupledParts{far_field.get(), ties.get(), scene.far_field ? &*scene.far_field : nullptr},
-      keyblocks, scene.output.vtu_compression);
+  outputs.emplace(dir, scene.file, system, coupled_parts(), keyblocks,
+                  scene.output.vtu_compression);
   stages.smallest_dt = scene.model.time.dt;
 }
 
@@ -608,10 +610,8 @@ int BlocksRun::run()
   outputs->flush();
 
   const double wall = elapsed(wall_start);
-  const nlohmann::json summary = run_summary(
-      {scene, system,
-       CoupledParts{far_field.get(), ties.get(), scene.far_field ? &*scene.far_field : nullptr},
-       stages, *outputs, keyblocks, warnings, wall});
+  const nlohmann::json summary =
+      run_summary({scene, system, coupled_parts(), stages, *outputs, keyblocks, warnings, wall});
   const std::string steps =
       std::to_string(system.n_steps()) +
       (scene.model.time.integrator == dda::Integrator::bathe ? " half steps" : " steps");

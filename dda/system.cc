@@ -642,8 +642,7 @@ void System::hold_block(std::size_t i)
 void System::remove_block(std::size_t i)
 {
   Block& b = blocks[i];
-  removed_energy +=
-      0.5 * b.velocity.dot(mass_matrix(linearisation_moments(b), block_density(b)) * b.velocity);
+  removed_energy += kinetic_energy(b);
   b.velocity.setZero();
   b.acceleration.setZero();
   removed[i] = true;
@@ -1262,13 +1261,18 @@ double System::stored_spring_energy() const
   return e;
 }
 
+double System::kinetic_energy(const Block& b) const
+{
+  return 0.5 * b.velocity.dot(mass_matrix(linearisation_moments(b), block_density(b)) * b.velocity);
+}
+
 EnergyBalance System::energy() const
 {
   EnergyBalance e;
   for (const Block& b : blocks)
   {
     const PolygonMoments& g = linearisation_moments(b);
-    e.kinetic += 0.5 * b.velocity.dot(mass_matrix(g, block_density(b)) * b.velocity);
+    e.kinetic += kinetic_energy(b);
     e.strain += 0.5 * g.area * b.stress.dot(compliance[b.material] * b.stress);
   }
   e.spring = stored_spring_energy();

@@ -432,6 +432,8 @@ private:
   Vector2 boundary_normal(const BoundaryEdge& e) const;
   /// rho A0: the mass stays that of t = 0 while the block's area changes with its strain.
   double block_mass(const Block& b) const;
+  /// v^T M v / 2 of a block [J], with the mass matrix of its linearisation moments.
+  double kinetic_energy(const Block& b) const;
   /// Density of the block in the configuration the step is linearised about [kg/m^3]: the
   /// material's, times initial over current area (mass conservation), so that M = rho
   /// integral of T^T T dA keeps the translational mass rho A0.
