@@ -239,15 +239,11 @@ dda::SettleCriterion plan_settle_stage(const TunnelDescription& t, const TunnelP
   return c;
 }
 
-} // namespace
-
-TunnelPlan plan_tunnel(const TunnelDescription& t)
+/// The opening's bounding box, the near field of blocks around it and the ground surface
+/// (plan.opening_*, near_*, surface_y).
+void plan_near_field(const TunnelDescription& t, TunnelPlan& plan)
 {
-  TunnelPlan plan;
-  plan.truncation = t.truncation;
   std::vector<std::string>& why = plan.reasons;
-
-  // The opening and the near field around it.
   const std::vector<Point> opening =
       dda::opening_polygon(t.rock_mass.openings.front(), t.rock_mass.chord_tolerance);
   plan.opening_lower = plan.opening_upper = opening.front();
@@ -291,8 +287,22 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
                      " m, above the ground surface at y = " + format(plan.surface_y) +
                      " m (the opening's centre " + format(t.depth) +
                      " m deep): expected a deeper tunnel or a smaller near field");
+}
 
-  // The blocks, once, to measure them.
+/// The shortest S wavelength [m] and VB I's time-step limit [s] of the near field's worst edge
+/// block, found while measuring the blocks.
+struct BlockMeasures
+{
+  double wavelength = 0.0;
+  double vb1_limit = std::numeric_limits<double>::infinity();
+};
+
+/// The near field's blocks, generated once to measure them: their number and size, the rock
+/// mass's modulus where the far field meets them and its wave speeds (plan.n_blocks,
+/// mean_block_size, rock_mass_modulus, vp, vs, wave_speed).
+BlockMeasures plan_rock_mass(const TunnelDescription& t, TunnelPlan& plan)
+{
+  std::vector<std::string>& why = plan.reasons;
   dda::RockMassDescription d = t.rock_mass;
   d.region = {plan.near_lower, Point(plan.near_upper.x(), plan.near_lower.y()), plan.near_upper,
               Point(plan.near_lower.x(), plan.near_upper.y())};
@@ -302,7 +312,8 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
 
   // The rock mass's modulus where the far field meets the blocks (coupling/README.md).
   const double tolerance = 1e-9 * (plan.near_upper - plan.near_lower).norm();
-  double sum = 0.0, weight = 0.0, vb1_limit = std::numeric_limits<double>::infinity();
+  BlockMeasures measures;
+  double sum = 0.0, weight = 0.0;
   const double vp_rock =
       std::sqrt(t.youngs_modulus * (1.0 - t.poisson_ratio) /
                 (t.density * (1.0 + t.poisson_ratio) * (1.0 - 2.0 * t.poisson_ratio)));
@@ -319,7 +330,7 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
     sum += length * e;
     weight += length;
     // VB I's bound dt <= m / cn (physics.md eq. 44) with m = rho A and cn = rho L VP.
-    vb1_limit = std::min(vb1_limit, b.area / (length * vp_rock));
+    measures.vb1_limit = std::min(measures.vb1_limit, b.area / (length * vp_rock));
   }
   plan.rock_mass_modulus = weight > 0.0 ? sum / weight : t.youngs_modulus;
   const double nu = t.poisson_ratio, rho = t.density, e = plan.rock_mass_modulus;
@@ -332,101 +343,85 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
                 format(plan.rock_mass_modulus) + " Pa (intact " + format(t.youngs_modulus) +
                 " Pa with the joints behind the near field's edge): VP " + format(plan.vp) +
                 " m/s, VS " + format(plan.vs) + " m/s");
-  const double wavelength = plan.vs / t.max_frequency;
+  measures.wavelength = plan.vs / t.max_frequency;
+  const double wavelength = measures.wavelength;
   why.push_back("shortest S wavelength " + format(wavelength) + " m at " + format(t.max_frequency) +
                 " Hz: " + format(wavelength / plan.mean_block_size) + " blocks per wavelength");
+  return measures;
+}
 
-  // The far field, or the outer blocks out to the same extent.
-  const double half_height = 0.5 * (plan.near_upper.y() - plan.near_lower.y());
-  const double window = t.window > 0.0 ? t.window
-                                       : 2.0 * half_height / plan.wave_speed + t.wave_duration +
-                                             2.0 / t.wave_frequency;
-  plan.far_field =
-      t.truncation == TunnelTruncation::hybrid || t.truncation == TunnelTruncation::reference;
+/// How far the far field (or the outer blocks) reaches beyond the near field, and why
+/// (plan.margin, side_margin, far_lower/upper, top_is_surface, arrival_time); `window` [s] is
+/// the time the wave needs to cross the blocks.
+void plan_extent(const TunnelDescription& t, double window, TunnelPlan& plan)
+{
+  std::vector<std::string>& why = plan.reasons;
   const bool outer_blocks = t.truncation == TunnelTruncation::blocks;
   const char* const outer = outer_blocks ? "outer blocks" : "far field";
-  if (plan.far_field || outer_blocks)
+  const double dominant_wavelength = plan.wave_speed / t.wave_frequency;
+  if (t.truncation == TunnelTruncation::hybrid)
   {
-    const double dominant_wavelength = plan.wave_speed / t.wave_frequency;
-    if (t.truncation == TunnelTruncation::hybrid)
-    {
-      plan.margin = t.margin > 0.0 ? t.margin : dominant_wavelength;
-      why.push_back("far field: " + format(plan.margin) + " m beyond the blocks" +
-                    (t.margin > 0.0
-                         ? std::string(" (tunnel.margin)")
-                         : ", one wavelength of the incident wave at " + format(t.wave_frequency) +
-                               " Hz: what the opening scatters meets the dashpots "
-                               "nearly normally (tunnel.margin overrides)"));
-    }
-    else
-    {
-      // Nothing reflected at the truncation may return to the opening before the end: a P
-      // wave from the near field's edge there and back takes 2 margin / VP.
-      plan.margin = t.reference_margin > 0.0 ? t.reference_margin : 0.5 * plan.vp * window;
-      why.push_back(std::string(outer) + " (" + name_of(t.truncation) +
-                    "): " + format(plan.margin) + " m beyond the near field" +
-                    (t.reference_margin > 0.0
-                         ? std::string(" (tunnel.reference_margin)")
-                         : ": a P wave reflected at the truncation needs more than the " +
-                               format(window) + " s window to come back"));
-    }
-    plan.side_margin = plan.margin;
-    if (outer_blocks && !(t.reference_margin > 0.0))
-    {
-      // The side dashpots resist the free-field motion itself (there are no free-field columns
-      // for blocks): they radiate from the moment the wave enters at the base corners, a margin
-      // below and side_margin beside the near field. Their P waves must not reach the near
-      // field before the end, margin / wave_speed + window after the entry.
-      const double reach = plan.vp * (plan.margin / plan.wave_speed + window);
-      plan.side_margin =
-          std::max(plan.margin, std::sqrt(reach * reach - plan.margin * plan.margin));
-      why.push_back("outer blocks: " + format(plan.side_margin) +
-                    " m beside the near field: the side dashpots resist the free-field motion and "
-                    "radiate from the base corners; their P waves reach the near field after the "
-                    "end");
-    }
-    plan.far_lower = plan.near_lower - Point(plan.side_margin, plan.margin);
-    plan.far_upper = plan.near_upper + Point(plan.side_margin, plan.margin);
-    if (plan.far_upper.y() >= plan.surface_y)
-    {
-      plan.far_upper.y() = plan.surface_y;
-      plan.top_is_surface = true;
-      why.push_back("the " + std::string(outer) + (outer_blocks ? " reach" : " reaches") +
-                    " the ground surface at y = " + format(plan.surface_y) +
-                    " m: its top is traction free");
-    }
-    else if (outer_blocks)
-      why.push_back("the ground surface (y = " + format(plan.surface_y) +
-                    " m) lies beyond the outer blocks: their top absorbs (dashpot)");
-    else
-      why.push_back("the ground surface (y = " + format(plan.surface_y) +
-                    " m) lies beyond the far field: its top absorbs (Lysmer), its base takes the "
-                    "incident wave (Lysmer with the input traction), its sides are free-field "
-                    "columns");
-    plan.arrival_time = (plan.near_lower.y() - plan.far_lower.y()) / plan.wave_speed;
-  }
-  if (outer_blocks)
-    plan_outer_blocks(t, wavelength, plan);
-  else if (plan.far_field)
-  {
-    plan.far_element_size = 2.0 * wavelength / t.points_per_wavelength;
-    plan.near_element_size = std::min(plan.mean_block_size, plan.far_element_size);
-    plan.elements_per_wavelength = wavelength / plan.far_element_size;
-    why.push_back("far elements FE_Q2 of " + format(plan.far_element_size) + " m (" +
-                  format(t.points_per_wavelength) + " nodes per S wavelength at " +
-                  format(t.max_frequency) + " Hz), " + format(plan.near_element_size) +
-                  " m at the blocks (their mean size), growing by " + format(t.growth_ratio));
+    plan.margin = t.margin > 0.0 ? t.margin : dominant_wavelength;
+    why.push_back("far field: " + format(plan.margin) + " m beyond the blocks" +
+                  (t.margin > 0.0
+                       ? std::string(" (tunnel.margin)")
+                       : ", one wavelength of the incident wave at " + format(t.wave_frequency) +
+                             " Hz: what the opening scatters meets the dashpots "
+                             "nearly normally (tunnel.margin overrides)"));
   }
   else
-    why.push_back("no far field: the blocks' outer edges carry " +
-                  std::string(name_of(t.truncation)) +
-                  " boundaries and the wave enters at their base");
+  {
+    // Nothing reflected at the truncation may return to the opening before the end: a P
+    // wave from the near field's edge there and back takes 2 margin / VP.
+    plan.margin = t.reference_margin > 0.0 ? t.reference_margin : 0.5 * plan.vp * window;
+    why.push_back(std::string(outer) + " (" + name_of(t.truncation) + "): " + format(plan.margin) +
+                  " m beyond the near field" +
+                  (t.reference_margin > 0.0
+                       ? std::string(" (tunnel.reference_margin)")
+                       : ": a P wave reflected at the truncation needs more than the " +
+                             format(window) + " s window to come back"));
+  }
+  plan.side_margin = plan.margin;
+  if (outer_blocks && !(t.reference_margin > 0.0))
+  {
+    // The side dashpots resist the free-field motion itself (there are no free-field columns
+    // for blocks): they radiate from the moment the wave enters at the base corners, a margin
+    // below and side_margin beside the near field. Their P waves must not reach the near
+    // field before the end, margin / wave_speed + window after the entry.
+    const double reach = plan.vp * (plan.margin / plan.wave_speed + window);
+    plan.side_margin = std::max(plan.margin, std::sqrt(reach * reach - plan.margin * plan.margin));
+    why.push_back("outer blocks: " + format(plan.side_margin) +
+                  " m beside the near field: the side dashpots resist the free-field motion and "
+                  "radiate from the base corners; their P waves reach the near field after the "
+                  "end");
+  }
+  plan.far_lower = plan.near_lower - Point(plan.side_margin, plan.margin);
+  plan.far_upper = plan.near_upper + Point(plan.side_margin, plan.margin);
+  if (plan.far_upper.y() >= plan.surface_y)
+  {
+    plan.far_upper.y() = plan.surface_y;
+    plan.top_is_surface = true;
+    why.push_back("the " + std::string(outer) + (outer_blocks ? " reach" : " reaches") +
+                  " the ground surface at y = " + format(plan.surface_y) +
+                  " m: its top is traction free");
+  }
+  else if (outer_blocks)
+    why.push_back("the ground surface (y = " + format(plan.surface_y) +
+                  " m) lies beyond the outer blocks: their top absorbs (dashpot)");
+  else
+    why.push_back("the ground surface (y = " + format(plan.surface_y) +
+                  " m) lies beyond the far field: its top absorbs (Lysmer), its base takes the "
+                  "incident wave (Lysmer with the input traction), its sides are free-field "
+                  "columns");
+  plan.arrival_time = (plan.near_lower.y() - plan.far_lower.y()) / plan.wave_speed;
+}
 
-  plan.end_time = plan.arrival_time + window;
-  why.push_back("dynamic stage: " + format(plan.end_time) + " s = " + format(plan.arrival_time) +
-                " s for the wave to reach the blocks + " + format(window) +
-                " s to cross them, the pulse and two periods after it" +
-                (t.window > 0.0 ? std::string(" (tunnel.window)") : std::string()));
+/// The dynamic stage's dt and the static stage's pseudo time step, and why (plan.dt,
+/// static_dt); `vb1_limit` [s] as BlockMeasures.
+void plan_time_steps(const TunnelDescription& t, double vb1_limit, TunnelPlan& plan)
+{
+  std::vector<std::string>& why = plan.reasons;
+  const bool outer_blocks = t.truncation == TunnelTruncation::blocks;
   if (t.dt > 0.0)
     plan.dt = t.dt;
   else
@@ -458,6 +453,51 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
                     ", the model's size over the near field's: it settles in about as many "
                     "steps as the near field alone";
   why.push_back("static stage: pseudo time step " + format(plan.static_dt) + " s" + static_reason);
+}
+
+} // namespace
+
+TunnelPlan plan_tunnel(const TunnelDescription& t)
+{
+  TunnelPlan plan;
+  plan.truncation = t.truncation;
+  std::vector<std::string>& why = plan.reasons;
+  plan_near_field(t, plan);
+  const BlockMeasures measures = plan_rock_mass(t, plan);
+
+  // The far field, or the outer blocks out to the same extent.
+  const double half_height = 0.5 * (plan.near_upper.y() - plan.near_lower.y());
+  const double window = t.window > 0.0 ? t.window
+                                       : 2.0 * half_height / plan.wave_speed + t.wave_duration +
+                                             2.0 / t.wave_frequency;
+  plan.far_field =
+      t.truncation == TunnelTruncation::hybrid || t.truncation == TunnelTruncation::reference;
+  const bool outer_blocks = t.truncation == TunnelTruncation::blocks;
+  if (plan.far_field || outer_blocks)
+    plan_extent(t, window, plan);
+  if (outer_blocks)
+    plan_outer_blocks(t, measures.wavelength, plan);
+  else if (plan.far_field)
+  {
+    plan.far_element_size = 2.0 * measures.wavelength / t.points_per_wavelength;
+    plan.near_element_size = std::min(plan.mean_block_size, plan.far_element_size);
+    plan.elements_per_wavelength = measures.wavelength / plan.far_element_size;
+    why.push_back("far elements FE_Q2 of " + format(plan.far_element_size) + " m (" +
+                  format(t.points_per_wavelength) + " nodes per S wavelength at " +
+                  format(t.max_frequency) + " Hz), " + format(plan.near_element_size) +
+                  " m at the blocks (their mean size), growing by " + format(t.growth_ratio));
+  }
+  else
+    why.push_back("no far field: the blocks' outer edges carry " +
+                  std::string(name_of(t.truncation)) +
+                  " boundaries and the wave enters at their base");
+
+  plan.end_time = plan.arrival_time + window;
+  why.push_back("dynamic stage: " + format(plan.end_time) + " s = " + format(plan.arrival_time) +
+                " s for the wave to reach the blocks + " + format(window) +
+                " s to cross them, the pulse and two periods after it" +
+                (t.window > 0.0 ? std::string(" (tunnel.window)") : std::string()));
+  plan_time_steps(t, measures.vb1_limit, plan);
   if (t.settle.value_or(true))
     plan.settle = plan_settle_stage(t, plan, why);
   else

@@ -151,17 +151,44 @@ void open_piece(std::string& out, double time, std::size_t n_points, std::size_t
   out += "\">\n";
 }
 
-/// The complete text of one .vtu file.
-std::string vtu_text(double time, const std::vector<BlockSnapshot>& blocks)
+/// One integer or number per line of a cell-data array, `get` of each item.
+template <typename Value, typename Item>
+void append_column(std::string& out, const std::vector<Item>& items, const char* type,
+                   const char* name,
+                   Value (*get)(const typename std::vector<Item>::value_type&)) // get: not deduced
 {
-  std::size_t n_points = 0;
-  for (const auto& block : blocks)
-    n_points += block.vertices.size();
+  open_array(out, type, name, 1);
+  for (const Item& item : items)
+  {
+    out += "          ";
+    if constexpr (std::is_floating_point_v<Value>)
+      append_number(out, get(item));
+    else
+      append_integer(out, get(item));
+    out += '\n';
+  }
+  out += close_array;
+}
 
-  std::string out;
-  out.reserve(256 + 64 * n_points + 256 * blocks.size());
-  open_piece(out, time, n_points, blocks.size());
-  // Points: the current vertices of every block, block after block, z = 0 [m].
+/// A 3-component cell-data array of 2D vectors (z = 0), `get` of each item.
+template <typename Item>
+void append_vector_column(std::string& out, const std::vector<Item>& items, const char* name,
+                          Vector2 (*get)(const Item&))
+{
+  open_array(out, "Float64", name, 3);
+  for (const Item& item : items)
+    append_vector(out, get(item));
+  out += close_array;
+}
+
+constexpr const char* close_piece = "    </Piece>\n"
+                                    "  </UnstructuredGrid>\n"
+                                    "</VTKFile>\n";
+
+/// Points and cells of the blocks: their current vertices, block after block, z = 0 [m], and
+/// one polygon per block over its own vertices.
+void append_block_geometry(std::string& out, const std::vector<BlockSnapshot>& blocks)
+{
   out += "      <Points>\n"
          "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   for (const auto& block : blocks)
@@ -169,8 +196,6 @@ std::string vtu_text(double time, const std::vector<BlockSnapshot>& blocks)
       append_vector(out, vertex);
   out += close_array;
   out += "      </Points>\n";
-
-  // Cells: one polygon per block over its own vertices.
   out += "      <Cells>\n";
   open_array(out, "Int64", "connectivity", 1);
   std::size_t point = 0;
@@ -195,42 +220,23 @@ std::string vtu_text(double time, const std::vector<BlockSnapshot>& blocks)
     out += '\n';
   }
   out += close_array;
-  open_array(out, "UInt8", "types", 1);
-  for (std::size_t b = 0; b < blocks.size(); ++b)
-  {
-    out += "          ";
-    append_integer(out, vtk_polygon);
-    out += '\n';
-  }
-  out += close_array;
+  append_column<int>(out, blocks, "UInt8", "types",
+                     [](const BlockSnapshot&) { return vtk_polygon; });
   out += "      </Cells>\n";
+}
 
-  // Cell data: one tuple per block.
+/// Cell data of the blocks: one tuple per block.
+void append_block_data(std::string& out, const std::vector<BlockSnapshot>& blocks)
+{
   out += "      <CellData Scalars=\"von_mises\" Vectors=\"displacement\">\n";
-  open_array(out, "Int64", "block_id", 1);
-  for (const auto& block : blocks)
-  {
-    out += "          ";
-    append_integer(out, block.id);
-    out += '\n';
-  }
-  out += close_array;
-  open_array(out, "Int32", "material", 1);
-  for (const auto& block : blocks)
-  {
-    out += "          ";
-    append_integer(out, block.material);
-    out += '\n';
-  }
-  out += close_array;
-  open_array(out, "Float64", "displacement", 3); // [m]
-  for (const auto& block : blocks)
-    append_vector(out, block.displacement);
-  out += close_array;
-  open_array(out, "Float64", "velocity", 3); // [m/s]
-  for (const auto& block : blocks)
-    append_vector(out, block.velocity);
-  out += close_array;
+  append_column<std::size_t>(out, blocks, "Int64", "block_id",
+                             [](const BlockSnapshot& b) { return b.id; });
+  append_column<std::size_t>(out, blocks, "Int32", "material",
+                             [](const BlockSnapshot& b) { return b.material; });
+  append_vector_column<BlockSnapshot>(out, blocks, "displacement", // [m]
+                                      [](const BlockSnapshot& b) { return b.displacement; });
+  append_vector_column<BlockSnapshot>(out, blocks, "velocity", // [m/s]
+                                      [](const BlockSnapshot& b) { return b.velocity; });
   out += "        <DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"3\" "
          "ComponentName0=\"sxx\" ComponentName1=\"syy\" ComponentName2=\"sxy\" "
          "format=\"ascii\">\n"; // [Pa], tension positive
@@ -245,37 +251,24 @@ std::string vtu_text(double time, const std::vector<BlockSnapshot>& blocks)
     out += '\n';
   }
   out += close_array;
-  open_array(out, "Float64", "von_mises", 1); // [Pa]
-  for (const auto& block : blocks)
-  {
-    out += "          ";
-    append_number(out, von_mises(block.stress));
-    out += '\n';
-  }
-  out += close_array;
-  out += "      </CellData>\n"
-         "    </Piece>\n"
-         "  </UnstructuredGrid>\n"
-         "</VTKFile>\n";
-  return out;
+  append_column<double>(out, blocks, "Float64", "von_mises", // [Pa]
+                        [](const BlockSnapshot& b) { return von_mises(b.stress); });
+  out += "      </CellData>\n";
 }
 
-/// One integer or number per line of a cell-data array.
-template <typename Value>
-void append_column(std::string& out, const std::vector<ContactSnapshot>& contacts, const char* type,
-                   const char* name, Value (*get)(const ContactSnapshot&))
+/// The complete text of one .vtu file.
+std::string vtu_text(double time, const std::vector<BlockSnapshot>& blocks)
 {
-  open_array(out, type, name, 1);
-  for (const ContactSnapshot& c : contacts)
-  {
-    out += "          ";
-    if constexpr (std::is_floating_point_v<Value>)
-      append_number(out, get(c));
-    else
-      append_integer(out, get(c));
-    out += '\n';
-  }
-  out += close_array;
+  std::size_t n_points = 0;
+  for (const auto& block : blocks)
+    n_points += block.vertices.size();
+  std::string out;
+  out.reserve(256 + 64 * n_points + 256 * blocks.size());
+  open_piece(out, time, n_points, blocks.size());
+  append_block_geometry(out, blocks);
+  append_block_data(out, blocks);
+  out += close_piece;
+  return out;
 }
 
 std::string contact_vtu_text(double time, const std::vector<ContactSnapshot>& contacts)
@@ -315,10 +308,8 @@ std::string contact_vtu_text(double time, const std::vector<ContactSnapshot>& co
                              [](const ContactSnapshot& c) { return c.block_b; });
   append_column<int>(out, contacts, "Int32", "state",
                      [](const ContactSnapshot& c) { return static_cast<int>(c.state); });
-  open_array(out, "Float64", "normal", 3);
-  for (const ContactSnapshot& c : contacts)
-    append_vector(out, c.normal);
-  out += close_array;
+  append_vector_column<ContactSnapshot>(out, contacts, "normal",
+                                        [](const ContactSnapshot& c) { return c.normal; });
   append_column<double>(out, contacts, "Float64", "normal_force",
                         [](const ContactSnapshot& c) { return c.normal_force; });
   append_column<double>(out, contacts, "Float64", "shear_force",
@@ -327,10 +318,8 @@ std::string contact_vtu_text(double time, const std::vector<ContactSnapshot>& co
                         [](const ContactSnapshot& c) { return c.gap; });
   append_column<double>(out, contacts, "Float64", "slip",
                         [](const ContactSnapshot& c) { return c.slip; });
-  out += "      </CellData>\n"
-         "    </Piece>\n"
-         "  </UnstructuredGrid>\n"
-         "</VTKFile>\n";
+  out += "      </CellData>\n";
+  out += close_piece;
   return out;
 }
 
