@@ -108,8 +108,6 @@ bool cholesky_inverse_6(const Matrix6& a, Matrix6& l_inverse)
 void BlockCholeskySolver::analyze_pattern(const BlockSparseMatrix& a)
 {
   const std::size_t n = a.n_blocks();
-  constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
-
   analyzed_couplings.resize(a.n_couplings());
   for (std::size_t c = 0; c < a.n_couplings(); ++c)
     analyzed_couplings[c] = a.coupling(c);
@@ -118,7 +116,20 @@ void BlockCholeskySolver::analyze_pattern(const BlockSparseMatrix& a)
   for (std::size_t k = 0; k < n; ++k)
     new_of_old[old_of_new[k]] = k;
 
-  // Entries of the strictly lower part of P A P^T by row (counting sort on the row).
+  sort_entries_by_row(a);
+  const std::vector<std::size_t> column_count = find_row_patterns();
+  find_fill();
+  build_column_storage(column_count);
+
+  factor_blocks.assign(row_cols.size(), Matrix6::Zero());
+  diagonal_inverse.assign(n, Matrix6::Zero());
+  workspace.assign(n, Matrix6::Zero());
+  permuted.setZero(static_cast<Eigen::Index>(6 * n));
+}
+
+void BlockCholeskySolver::sort_entries_by_row(const BlockSparseMatrix& a)
+{
+  const std::size_t n = a.n_blocks();
   entry_start.assign(n + 1, 0);
   for (std::size_t c = 0; c < a.n_couplings(); ++c)
   {
@@ -128,22 +139,25 @@ void BlockCholeskySolver::analyze_pattern(const BlockSparseMatrix& a)
   for (std::size_t k = 0; k < n; ++k)
     entry_start[k + 1] += entry_start[k];
   entries.resize(a.n_couplings());
+  std::vector<std::size_t> next(entry_start.begin(), entry_start.end() - 1);
+  for (std::size_t c = 0; c < a.n_couplings(); ++c)
   {
-    std::vector<std::size_t> next(entry_start.begin(), entry_start.end() - 1);
-    for (std::size_t c = 0; c < a.n_couplings(); ++c)
-    {
-      const auto [i, j] = a.coupling(c);
-      const std::size_t ni = new_of_old[i];
-      const std::size_t nj = new_of_old[j];
-      // The upper block A(i, j) lands at (ni, nj); below the diagonal if ni > nj, else its
-      // transpose A(j, i) does at (nj, ni).
-      const std::size_t row = std::max(ni, nj);
-      entries[next[row]++] = MatrixEntry{std::min(ni, nj), c, ni < nj, false};
-    }
+    const auto [i, j] = a.coupling(c);
+    const std::size_t ni = new_of_old[i];
+    const std::size_t nj = new_of_old[j];
+    // The upper block A(i, j) lands at (ni, nj); below the diagonal if ni > nj, else its
+    // transpose A(j, i) does at (nj, ni).
+    const std::size_t row = std::max(ni, nj);
+    entries[next[row]++] = MatrixEntry{std::min(ni, nj), c, ni < nj, false};
   }
+}
 
-  // Elimination tree and row patterns of L: the pattern of row k is the union of the paths in
-  // the elimination tree from each j with A(k, j) != 0 towards k (Liu; Davis' ldl_symbolic).
+std::vector<std::size_t> BlockCholeskySolver::find_row_patterns()
+{
+  // The pattern of row k is the union of the paths in the elimination tree from each j with
+  // A(k, j) != 0 towards k (Liu; Davis' ldl_symbolic).
+  const std::size_t n = old_of_new.size();
+  constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
   std::vector<std::size_t> parent(n, none);
   std::vector<std::size_t> flag(n, none);
   std::vector<std::size_t> column_count(n, 0);
@@ -165,11 +179,15 @@ void BlockCholeskySolver::analyze_pattern(const BlockSparseMatrix& a)
     std::sort(row_cols.begin() + static_cast<std::ptrdiff_t>(row_start[k]), row_cols.end());
     row_start[k + 1] = row_cols.size();
   }
+  return column_count;
+}
 
-  // First contributions of A to each block and the fill-in, by row.
+void BlockCholeskySolver::find_fill()
+{
+  const std::size_t n = old_of_new.size();
+  std::vector<std::size_t> flag(n, std::numeric_limits<std::size_t>::max());
   fill_start.assign(n + 1, 0);
   fill_cols.clear();
-  std::fill(flag.begin(), flag.end(), none);
   for (std::size_t k = 0; k < n; ++k)
   {
     for (std::size_t e = entry_start[k]; e < entry_start[k + 1]; ++e)
@@ -182,8 +200,12 @@ void BlockCholeskySolver::analyze_pattern(const BlockSparseMatrix& a)
         fill_cols.push_back(row_cols[p]);
     fill_start[k + 1] = fill_cols.size();
   }
+}
 
-  // Column storage; rows are appended in ascending order.
+void BlockCholeskySolver::build_column_storage(const std::vector<std::size_t>& column_count)
+{
+  // Rows are appended in ascending order.
+  const std::size_t n = old_of_new.size();
   column_start.assign(n + 1, 0);
   for (std::size_t j = 0; j < n; ++j)
     column_start[j + 1] = column_start[j] + column_count[j];
@@ -197,11 +219,6 @@ void BlockCholeskySolver::analyze_pattern(const BlockSparseMatrix& a)
       column_rows[slot] = k;
       row_slots[p] = slot;
     }
-
-  factor_blocks.assign(row_cols.size(), Matrix6::Zero());
-  diagonal_inverse.assign(n, Matrix6::Zero());
-  workspace.assign(n, Matrix6::Zero());
-  permuted.setZero(static_cast<Eigen::Index>(6 * n));
 }
 
 bool BlockCholeskySolver::has_analyzed_pattern(const BlockSparseMatrix& a) const

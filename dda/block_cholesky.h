@@ -72,6 +72,19 @@ private:
   /// Whether `a` has the analyzed structure.
   bool has_analyzed_pattern(const BlockSparseMatrix& a) const;
 
+  // ---- The steps of analyze_pattern, in order ----
+  /// entry_start / entries: the couplings of `a` as entries of the strictly lower part of
+  /// P A P^T, by row (a counting sort on the row).
+  void sort_entries_by_row(const BlockSparseMatrix& a);
+  /// row_start / row_cols: the row patterns of L (elimination tree); returns the number of
+  /// off-diagonal blocks of each column of L.
+  std::vector<std::size_t> find_row_patterns();
+  /// entries[].first and fill_start / fill_cols: A's first contribution to each block and the
+  /// fill-in, by row.
+  void find_fill();
+  /// column_start / column_rows / row_slots: L's column storage from the column counts.
+  void build_column_storage(const std::vector<std::size_t>& column_count);
+
   // ---- Symbolic data (analyze_pattern) ----
   std::vector<std::pair<std::size_t, std::size_t>> analyzed_couplings;
   std::vector<std::size_t> old_of_new; ///< block permutation: new index -> old index
