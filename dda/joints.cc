@@ -17,6 +17,37 @@ Vector2 Joint::normal(bool initial) const
   return Vector2(t.y(), -t.x());
 }
 
+Eigen::Matrix2d joint_spring_matrix(const JointMaterial& jm, const Vector2& n, const Vector2& t)
+{
+  return jm.normal_stiffness * (n * n.transpose()) +
+         jm.shear_ratio * jm.normal_stiffness * (t * t.transpose());
+}
+
+void update_joint_point_forces(JointPoint& p, const JointMaterial& jm, const Vector2& n,
+                               const Vector2& t)
+{
+  const Vector2 gap = p.on_b.position - p.on_a.position;
+  p.normal_force = p.normal_preload + jm.normal_stiffness * n.dot(gap);
+  p.shear_force = p.shear_preload + jm.shear_ratio * jm.normal_stiffness * t.dot(gap);
+}
+
+double joint_point_energy(const JointPoint& p, const JointMaterial& jm)
+{
+  return 0.5 * (p.normal_force * p.normal_force / jm.normal_stiffness +
+                p.shear_force * p.shear_force / (jm.shear_ratio * jm.normal_stiffness));
+}
+
+ContactLaw joint_point_law(const JointMaterial& jm, double tan_friction, double length)
+{
+  ContactLaw law;
+  law.normal_stiffness = jm.normal_stiffness;
+  law.shear_stiffness = jm.shear_ratio * jm.normal_stiffness;
+  law.tan_friction = tan_friction;
+  law.cohesive_force = jm.cohesion * length;
+  law.tensile_capacity = jm.tensile_strength * length;
+  return law;
+}
+
 std::size_t joint_material_for(const ModelDescription& model, std::size_t material_a,
                                std::size_t material_b)
 {

@@ -2,7 +2,10 @@
 #pragma once
 
 #include "dda/block.h"
+#include "dda/contact/contact_law.h"
 #include "dda/model_description.h"
+
+#include <Eigen/Core>
 
 #include <array>
 #include <cstddef>
@@ -45,6 +48,26 @@ struct Joint
   /// Unit normal pointing out of block a, towards b: (t_y, -t_x).
   Vector2 normal(bool initial = false) const;
 };
+
+/// The springs of a bonded joint's end: p n n^T + p_s t t^T [N/m], with p the joint material's
+/// normal stiffness, p_s = shear_ratio p, n the joint's unit normal (out of block a) and t its
+/// unit tangent (Joint::normal, Joint::tangent).
+Eigen::Matrix2d joint_spring_matrix(const JointMaterial& jm, const Vector2& n, const Vector2& t);
+
+/// Sets the forces of a joint end's springs at its gap g = x_b - x_a [m] (the point on b minus
+/// the point on a): N = N0 + p n.g and S = S0 + p_s t.g [N], tension positive, with N0 and S0
+/// the preloads.
+void update_joint_point_forces(JointPoint& p, const JointMaterial& jm, const Vector2& n,
+                               const Vector2& t);
+
+/// Energy stored in a joint end's springs [J]: N^2 / (2 p) + S^2 / (2 p_s).
+double joint_point_energy(const JointPoint& p, const JointMaterial& jm);
+
+/// The contact law of a joint end's springs: the joint material's p and p_s, tan(phi)
+/// `tan_friction`, and its cohesion and tensile strength [Pa] over the length the end carries,
+/// `length` [m] (half the joint's), as cohesive force and tensile capacity [N]. Its strength
+/// decides when the joint breaks (exceeds_strength).
+ContactLaw joint_point_law(const JointMaterial& jm, double tan_friction, double length);
 
 /// Joint material between blocks of two materials: a matching `joint_assignments` entry, else
 /// the default (npos if there is none).

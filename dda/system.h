@@ -1,4 +1,7 @@
-// The DDA model in time: blocks, joints, loads and the implicit step.
+// The DDA model in time: blocks, joints, loads and the implicit step. Implemented one phase per
+// file: system.cc (construction, stages, ties, observers), system_step.cc (the step and its
+// control), contact_detection.cc, system_assembly.cc, system_open_close.cc, slip_reversals.cc,
+// step_scheme.cc, system_update.cc, system_energy.cc.
 #pragma once
 
 #include "dda/block.h"
@@ -282,6 +285,29 @@ private:
     Vector2 normal, tangent;
   };
 
+  // Construction, in order.
+  /// The integrator's coefficients, C and C^-1 per material and tan(phi) per joint material.
+  void set_material_constants();
+  /// The blocks of the model with their initial velocity and stress; returns their names for
+  /// messages. Throws InputError for a model without blocks.
+  std::vector<std::string> make_blocks();
+  /// The bonded joints where blocks share an edge (`size`: model_size [m], for tolerances);
+  /// disables contacts in a small-displacement analysis, where a frictional joint throws.
+  void find_bonded_joints(const std::vector<std::string>& names, double size);
+  /// Throws InputError if two blocks that may touch have materials no joint material applies to.
+  void check_contact_materials() const;
+  /// Sets `convex` per block (at t = 0).
+  void mark_convex_blocks();
+  /// w0, the step displacement bound g2 w0, the search distance d0, the penetration limit and
+  /// the angle tolerance, from the model's size [m] and its ContactSettings.
+  void set_contact_distances(double size);
+  /// The fixed points' default penalty [N/m]: 10 x the stiffest joint or block (E x 1 m).
+  void set_default_fixed_stiffness();
+  /// Point loads, fixed points and monitors onto their blocks (attach).
+  void attach_points();
+  /// The edges of each boundary (`size`: model_size [m], for tolerances); throws InputError for
+  /// an edge two boundaries select.
+  void select_boundaries(double size);
   MaterialPoint attach(const Point& p, const std::string& what) const;
   /// Joint preloads and the supports of viscous boundaries from the in-situ stress.
   void apply_in_situ_stress();
@@ -426,7 +452,27 @@ private:
   Matrix26 point_matrix(const MaterialPoint& p) const;
   /// The step's right-hand side, and its matrix if `with_matrix`.
   void assemble(double dt, bool with_matrix);
+  /// Each block's inertia c M and elasticity; its inertia force, stress and gravity [N, N m].
+  void add_block_terms(double dt, bool with_matrix);
+  /// Point loads and fixed points' penalty springs at the step's end time t1 [s].
+  void add_point_terms(double t1, bool with_matrix);
+  /// Viscous boundaries (dynamic stages) with their input force at t1 [s], and the supports of
+  /// their edges (springs in static stages, constant loads in dynamic ones).
+  void add_boundary_terms(double dt, double t1, bool with_matrix);
+  /// Bonded joints' end springs on the gaps, with their preloads.
+  void add_joint_terms(bool with_matrix);
+  /// The blocks and everything on them take the step's displacements d (6 per block).
   void update_blocks(double dt, const Eigen::VectorXd& d);
+  /// Adds the step's work of loads and gravity, boundaries and moving supports [J] (before the
+  /// material points move).
+  void add_work_of_step(double dt, const Eigen::VectorXd& d);
+  /// Material points (loads, fixed points, monitors, ties, boundaries, supports, joint ends)
+  /// move with their blocks by T d, T of the configuration the step was linearised about.
+  void move_material_points(const Eigen::VectorXd& d);
+  /// Each block's velocity, acceleration and force at the step's end, then geometry and stress.
+  void advance_block_states(double dt, const Eigen::VectorXd& d);
+  /// The bonded joints' spring forces at the gaps of the moved joint ends.
+  void update_joint_forces();
   double stored_spring_energy() const;
   /// Outward unit normal of a boundary edge in the configuration the step is linearised about.
   Vector2 boundary_normal(const BoundaryEdge& e) const;

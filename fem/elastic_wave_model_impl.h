@@ -8,6 +8,7 @@
 
 #include "common/input_error.h"
 #include "common/recent_cache.h"
+#include "common/stopwatch.h"
 #include "fem/elastic_wave_model.h"
 #include "fem/far_field_mesh.h"
 #include "fem/linear_solvers.h"
@@ -26,7 +27,6 @@
 #include <deal.II/lac/vector.h>
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -40,12 +40,6 @@ namespace ddafem::fem
 namespace far_field_detail
 {
 using namespace dealii;
-using Clock = std::chrono::steady_clock;
-
-inline double seconds_since(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 inline void require(const bool condition, const std::string& message)
 {
@@ -111,6 +105,7 @@ private:
 
 // The implementation files work in deal.II's names, as the single file they come from did.
 using namespace dealii;
+
 using far_field_detail::PlaneElasticity;
 
 class ElasticWaveModel::Impl

@@ -43,6 +43,12 @@ ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start
   return out;
 }
 
+bool exceeds_strength(const ContactLaw& law, double normal_force, double shear_force)
+{
+  const double shear_capacity = std::max(0.0, law.cohesive_force + normal_force * law.tan_friction);
+  return -normal_force > law.tensile_capacity || std::abs(shear_force) > shear_capacity;
+}
+
 ContactForces iteration_trial(unsigned iteration, const ContactForces& previous,
                               const ContactForces& next)
 {

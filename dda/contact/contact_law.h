@@ -48,6 +48,14 @@ struct ContactForces
 ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start, double gap,
                                double slip);
 
+/// Whether forces beyond the law's strength act on an intact bond (a bonded joint's end spring):
+/// a pull beyond the tensile capacity, -normal_force > tensile_capacity, or a shear beyond
+/// Mohr-Coulomb, |shear_force| > max(0, cohesive_force + normal_force tan(phi)) (a pull lowers
+/// the shear strength). `normal_force` [N] is compression positive, `shear_force` [N] of either
+/// sign. Unlike evaluate_contact's limit for a contact, the friction term is not cut off at zero
+/// normal force: a bond's shear strength falls with tension.
+bool exceeds_strength(const ContactLaw& law, double normal_force, double shear_force);
+
 /// The trial an open-close iteration (from 1) takes from the law's `next`, given the previous
 /// trial. From the second iteration on, a contact whose sliding direction reverses between two
 /// trials is taken as locked: the elastic trial S0 + p_s slip stays within the limit only in a

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace ddafem::dda;
 
 namespace
@@ -209,4 +211,36 @@ TEST(ContactLaw, SlidingThatReversesBetweenTrialsIsTakenAsLock)
   ContactForces smooth = slide_plus;
   smooth.shear_force = 0.0;
   EXPECT_EQ(iteration_trial(3, smooth, slide_minus).state, ContactState::slide);
+}
+
+// A bond's strength (law(): cohesive force 300 N, tensile capacity 200 N, tan(phi) 0.5):
+// tension beyond 200 N, or |S| beyond 300 + 0.5 N, exceeds it; at the limits it holds.
+TEST(ContactLaw, BondExceedsItsStrengthJustBeyondTheLimits)
+{
+  const double above_200 = std::nextafter(200.0, 1e9), below_200 = std::nextafter(200.0, 0.0);
+  EXPECT_FALSE(exceeds_strength(law(), -200.0, 0.0));
+  EXPECT_FALSE(exceeds_strength(law(), -below_200, 0.0));
+  EXPECT_TRUE(exceeds_strength(law(), -above_200, 0.0));
+
+  // N = 1000 N compression: 300 + 500 = 800 N either way.
+  const double above_800 = std::nextafter(800.0, 1e9), below_800 = std::nextafter(800.0, 0.0);
+  EXPECT_FALSE(exceeds_strength(law(), 1000.0, 800.0));
+  EXPECT_FALSE(exceeds_strength(law(), 1000.0, -800.0));
+  EXPECT_FALSE(exceeds_strength(law(), 1000.0, below_800));
+  EXPECT_TRUE(exceeds_strength(law(), 1000.0, above_800));
+  EXPECT_TRUE(exceeds_strength(law(), 1000.0, -above_800));
+
+  // A pull lowers the shear strength: N = -100 N leaves 300 - 50 = 250 N.
+  EXPECT_FALSE(exceeds_strength(law(), -100.0, 250.0));
+  EXPECT_TRUE(exceeds_strength(law(), -100.0, std::nextafter(250.0, 1e9)));
+}
+
+// Without cohesion a pull leaves no shear strength (not a negative one): any shear breaks it.
+TEST(ContactLaw, BondShearStrengthIsNeverNegative)
+{
+  ContactLaw l = law();
+  l.cohesive_force = 0.0;
+  EXPECT_FALSE(exceeds_strength(l, -100.0, 0.0));
+  EXPECT_TRUE(exceeds_strength(l, -100.0, 1e-9));
+  EXPECT_TRUE(exceeds_strength(l, -100.0, -1e-9));
 }

@@ -1,0 +1,206 @@
+// Phase 3 of the step (and the contact terms of phase 4): the matrix and right-hand side of
+// blocks, loads, fixed points, boundaries, joints and contacts, in the configuration the step
+// is linearised about.
+#include "dda/system.h"
+
+#include "dda/submatrices.h"
+#include "dda/system_helpers.h"
+
+namespace ddafem::dda
+{
+void System::assemble(double dt, bool with_matrix)
+{
+  if (with_matrix)
+    matrix.set_zero();
+  rhs.setZero();
+  // Loads and supports are evaluated at the step's end (the clock stands still in a static stage).
+  const double t1 = mode == StageMode::static_equilibrium ? current_time : current_time + dt;
+  add_block_terms(dt, with_matrix);
+  add_point_terms(t1, with_matrix);
+  add_boundary_terms(dt, t1, with_matrix);
+  add_joint_terms(with_matrix);
+}
+
+void System::add_block_terms(double dt, bool with_matrix)
+{
+  // Blocks: inertia c M and elasticity; the inertia force of the block's past (v0, a0, r0), the
+  // accumulated stress and gravity on the right-hand side.
+  const double mass_factor = step_integration.mass_factor(dt);
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+  {
+    const Block& b = blocks[i];
+    const PolygonMoments& g = linearisation_moments(b);
+    const double density = block_density(b);
+    const Matrix6 m = mass_matrix(g, density);
+    if (with_matrix)
+    {
+      matrix.diagonal(i).noalias() += mass_factor * m;
+      matrix.diagonal(i).noalias() += elastic_stiffness(g.area, elasticity[b.material]);
+    }
+    auto f = rhs.segment<6>(6 * i);
+    f += inertia_force(step_integration, m, step_start(i, dt), dt);
+    f += stress_force(g.area, b.stress) + body_force(g.area, density, model.gravity);
+  }
+}
+
+void System::add_point_terms(double t1, bool with_matrix)
+{
+  // Point loads at their material points.
+  for (const AttachedLoad& l : loads)
+    rhs.segment<6>(6 * l.point.block).noalias() +=
+        point_matrix(l.point).transpose() * (l.force * l.function.value(t1));
+
+  // Fixed points: penalty spring k |x + T d - X(t1)|^2 / 2.
+  for (const AttachedFixedPoint& f : fixed_points)
+  {
+    const Matrix26 t = point_matrix(f.point);
+    if (with_matrix)
+      matrix.diagonal(f.point.block).noalias() += f.stiffness * t.transpose() * t;
+    rhs.segment<6>(6 * f.point.block).noalias() +=
+        f.stiffness * t.transpose() * (f.target(t1) - f.point.position);
+  }
+}
+
+void System::add_boundary_terms(double dt, double t1, bool with_matrix)
+{
+  // Viscous boundaries at their edge midpoints, with the incident wave's input force; in a
+  // static stage their supports hold the edges instead (springs to the anchors plus the load),
+  // in a dynamic one the supports' loads stay on as constant forces.
+  const bool is_static = mode == StageMode::static_equilibrium;
+  for (std::size_t k = 0; k < boundary_edges.size(); ++k)
+  {
+    boundary_steps[k] = {};
+    if (is_static)
+      continue;
+    const BoundaryEdge& e = boundary_edges[k];
+    const KinematicState start = step_start(e.block, dt);
+    const Matrix26 t = point_matrix(e.midpoint);
+    boundary_steps[k] = boundary_step(
+        model.boundaries[e.boundary].type, e, boundary_normal(e), block_mass(blocks[e.block]), dt,
+        step_integration.beta, step_integration.gamma, t * start.velocity, t * start.acceleration);
+    if (with_matrix)
+      matrix.diagonal(e.block).noalias() += t.transpose() * boundary_steps[k].k * t;
+    rhs.segment<6>(6 * e.block).noalias() +=
+        t.transpose() * (boundary_steps[k].f + input_force(e, t1));
+  }
+  for (const Support& s : supports)
+  {
+    const Matrix26 t = point_matrix(s.point);
+    if (is_static && with_matrix)
+      matrix.diagonal(s.point.block).noalias() += t.transpose() * s.stiffness * t;
+    rhs.segment<6>(6 * s.point.block).noalias() += t.transpose() * (is_static ? s.force() : s.load);
+  }
+}
+
+void System::add_joint_terms(bool with_matrix)
+{
+  // Bonded joints: springs K_s on the gap g + T_b d_b - T_a d_a, with g = x_b - x_a, plus the
+  // preloads.
+  for (const Joint& j : joints)
+  {
+    const Vector2 n = j.normal(small_displacement()), tangent = j.tangent(small_displacement());
+    const Eigen::Matrix2d ks =
+        joint_spring_matrix(model.joint_materials[j.joint_material], n, tangent);
+    for (const JointPoint& p : j.points)
+    {
+      const Matrix26 ta = point_matrix(p.on_a);
+      const Matrix26 tb = point_matrix(p.on_b);
+      if (with_matrix)
+      {
+        const Matrix26 ks_ta = ks * ta;
+        const Matrix26 ks_tb = ks * tb;
+        matrix.diagonal(j.block_a).noalias() += ta.transpose() * ks_ta;
+        matrix.diagonal(j.block_b).noalias() += tb.transpose() * ks_tb;
+        matrix.upper(j.coupling).noalias() -= ta.transpose() * ks_tb;
+      }
+      const Vector2 force = ks * (p.on_b.position - p.on_a.position) + p.normal_preload * n +
+                            p.shear_preload * tangent;
+      rhs.segment<6>(6 * j.block_a).noalias() += ta.transpose() * force;
+      rhs.segment<6>(6 * j.block_b).noalias() -= tb.transpose() * force;
+    }
+  }
+}
+
+void System::add_contact_terms()
+{
+  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
+  {
+    const Contact& c = trial_contacts[k];
+    if (c.trial.state == ContactState::open)
+      continue;
+    const ContactFrame& f = frames[k];
+    const ContactLaw law = contact_law(c);
+    Eigen::Matrix2d k2 = law.normal_stiffness * (f.normal * f.normal.transpose());
+    // Lock: the shear spring on the step's slip, starting from the previous shear force;
+    // slide: the friction force of the trial, no shear spring.
+    const bool was_closed = c.forces.state != ContactState::open;
+    double shear = c.trial.shear_force;
+    if (c.trial.state == ContactState::lock)
+    {
+      k2 += law.shear_stiffness * (f.tangent * f.tangent.transpose());
+      shear = was_closed ? c.forces.shear_force : 0.0;
+    }
+    const Vector2 force_on_vertex = -law.normal_stiffness * c.gap * f.normal - shear * f.tangent;
+    add_pair_spring(matrix, rhs, c.coupling, c.vertex_block, f.t_vertex, c.edge_block, f.t_edge, k2,
+                    force_on_vertex);
+  }
+}
+
+void System::add_hold_terms()
+{
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    if (is_held(i))
+      matrix.diagonal(i).diagonal() *= 1.0 + 1e8;
+}
+
+Vector2 System::input_force(const BoundaryEdge& e, double t) const
+{
+  const BoundaryDescription& b = model.boundaries[e.boundary];
+  if (!b.has_input)
+    return Vector2::Zero();
+  const Vector2 n = boundary_normal(e), tangent(-n.y(), n.x());
+  const double v = b.input.velocity.value(t);
+  const Vector2 v_in = b.input.type == BoundaryInput::Type::p ? Vector2(0.0, v) : Vector2(v, 0.0);
+  return 2.0 * (e.cn * n.dot(v_in) * n + e.ct * tangent.dot(v_in) * tangent);
+}
+
+Vector2 System::boundary_normal(const BoundaryEdge& e) const
+{
+  const Block& b = blocks[e.block];
+  const std::vector<Point>& v = small_displacement() ? b.initial_vertices : b.vertices;
+  const Vector2 t = (v[(e.edge + 1) % v.size()] - v[e.edge]).normalized();
+  return Vector2(t.y(), -t.x());
+}
+
+double System::block_mass(const Block& b) const
+{
+  return model.materials[b.material].density * b.initial_moments.area;
+}
+
+double System::block_density(const Block& b) const
+{
+  const double density = model.materials[b.material].density;
+  if (small_displacement())
+    return density; // the linearisation area is the initial one
+  return density * (b.initial_moments.area / b.moments.area);
+}
+
+BoundaryStability System::stability_of(std::size_t k, double dt) const
+{
+  const BoundaryEdge& e = boundary_edges[k];
+  return boundary_stability(model.boundaries[e.boundary].type, e, block_mass(blocks[e.block]), dt);
+}
+
+const PolygonMoments& System::linearisation_moments(const Block& b) const
+{
+  return small_displacement() ? b.initial_moments : b.moments;
+}
+
+Matrix26 System::point_matrix(const MaterialPoint& p) const
+{
+  const Block& b = blocks[p.block];
+  return small_displacement() ? displacement_matrix(b.initial_centroid, p.initial)
+                              : displacement_matrix(b.moments.centroid, p.position);
+}
+
+} // namespace ddafem::dda

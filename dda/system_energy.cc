@@ -1,0 +1,56 @@
+// The model's energies: kinetic, strain and spring energy, and the balance with the works done
+// on it.
+#include "dda/system.h"
+
+#include "dda/submatrices.h"
+
+namespace ddafem::dda
+{
+double System::stored_spring_energy() const
+{
+  double e = 0.0;
+  for (const Joint& j : joints)
+  {
+    const JointMaterial& jm = model.joint_materials[j.joint_material];
+    for (const JointPoint& p : j.points)
+      e += joint_point_energy(p, jm);
+  }
+  for (const AttachedFixedPoint& f : fixed_points)
+    e += 0.5 * f.stiffness * (f.point.position - f.target(current_time)).squaredNorm();
+  for (const Contact& c : contacts)
+    if (c.forces.state != ContactState::open)
+    {
+      const ContactLaw law = contact_law(c);
+      e += 0.5 * (c.forces.normal_force * c.forces.normal_force / law.normal_stiffness +
+                  c.forces.shear_force * c.forces.shear_force / law.shear_stiffness);
+    }
+  return e;
+}
+
+double System::kinetic_energy(const Block& b) const
+{
+  return 0.5 * b.velocity.dot(mass_matrix(linearisation_moments(b), block_density(b)) * b.velocity);
+}
+
+EnergyBalance System::energy() const
+{
+  EnergyBalance e;
+  for (const Block& b : blocks)
+  {
+    const PolygonMoments& g = linearisation_moments(b);
+    e.kinetic += kinetic_energy(b);
+    e.strain += 0.5 * g.area * b.stress.dot(compliance[b.material] * b.stress);
+  }
+  e.spring = stored_spring_energy();
+  e.work_of_loads = work_of_loads;
+  e.work_of_supports = work_of_supports;
+  e.work_of_boundaries = work_of_boundaries;
+  e.work_of_ties = tied_body ? tied_body->work_on_blocks() : 0.0;
+  e.removed = removed_energy;
+  e.initial = initial_energy;
+  e.dissipated = e.initial + e.work_of_loads + e.work_of_supports + e.work_of_boundaries +
+                 e.work_of_ties - e.removed - e.stored();
+  return e;
+}
+
+} // namespace ddafem::dda

@@ -1,0 +1,282 @@
+// The step and its control: advance() in named phases (contacts, assembly, solve, step
+// control, acceptance) and the checks on each step's result.
+#include "dda/system.h"
+
+#include "common/stopwatch.h"
+#include "dda/system_helpers.h"
+
+#include <algorithm>
+#include <cmath>
+#include <future>
+#include <sstream>
+
+namespace ddafem::dda
+{
+StepStatus System::advance(double dt)
+{
+  undo_friction_jumps(); // each attempt starts from the accepted state
+  return attempt_step(dt);
+}
+
+StepStatus System::attempt_step(double dt)
+{
+  const std::string when =
+      "at t = " + format_time(current_time) + " (dt = " + format_time(dt) + ")";
+  ++timings.n_attempts;
+  if (mode == StageMode::static_equilibrium)
+    set_at_rest();
+  choose_step_scheme(dt); // 0. the integrator's form of this step
+  // A tied body begins its step (the far field's free response) on another thread while the
+  // blocks find their contacts and assemble: the two touch no common data.
+  std::future<std::string> tied = begin_tied_step(dt);
+  detect_contacts();                         // 1. candidates, 2. contacts
+  const bool new_matrix = assemble_step(dt); // 3. assemble
+  if (tied_body)
+  {
+    const std::string failure = tied.get();
+    if (!failure.empty())
+      return {StepOutcome::solver_failure, failure + " " + when, {}};
+  }
+  StepStatus status = solve_step(when, new_matrix); // 4. solve with the open-close iteration
+  if (status.outcome != StepOutcome::success)
+    return status;
+  if (mode == StageMode::static_equilibrium)
+    measure_balance(status);
+
+  // Step control: no vertex may move farther than g2 w0, no contact penetrate too deep, no
+  // slip reversal leave more than the tolerance.
+  check_motion_limits(status, when);
+  if (status.outcome != StepOutcome::success)
+    return status;
+  if (localising_slip_reversals())
+  {
+    const ReversalScan scan = scan_slip_reversals(dt);
+    if (scan.earliest > 0.0)
+    {
+      status.reversal_fraction = scan.earliest;
+      status.outcome = StepOutcome::slip_reversal;
+      status.message = "a sliding contact reverses its slip " + format_time(scan.earliest * dt) +
+                       " after the step's start " + when;
+      return status;
+    }
+    // A step at which friction turns around is redone with the integrator restarted at the
+    // jump (generalized-alpha; the trapezoidal rule and Bathe's first half, whose end velocity
+    // takes the start's acceleration). The redo repeats phases 1 and 2 too: they reset the
+    // trial contacts to the step's start (the restart leaves the geometry as it was), and it
+    // is taken on few steps.
+    if (!scan.friction_turns.empty() && start_force_lag() > 0.0 && friction_jumps.empty())
+    {
+      restart_at_friction_jumps(scan.friction_turns);
+      return attempt_step(dt);
+    }
+  }
+
+  // 5. Update the tied body, blocks and contacts.
+  const std::string failure = accept_step(dt);
+  if (!failure.empty())
+    return {StepOutcome::solver_failure, failure + " " + when, status.solve};
+  const std::string broken = break_joints();
+  if (!broken.empty())
+    return {StepOutcome::joint_broken, broken, status.solve};
+  if (!boundary_edges.empty() && mode == StageMode::dynamic)
+    check_energy_growth(status);
+  return status;
+}
+
+void System::detect_contacts()
+{
+  auto start = Clock::now();
+  std::vector<std::pair<std::size_t, std::size_t>> pairs =
+      contacts_enabled ? find_contact_candidates()
+                       : std::vector<std::pair<std::size_t, std::size_t>>{};
+  pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                             [&](const auto& p) { return removed[p.first] || removed[p.second]; }),
+              pairs.end());
+  timings.broad_phase += seconds_since(start);
+  start = Clock::now();
+  update_contacts(pairs);
+  timings.narrow_phase += seconds_since(start);
+}
+
+bool System::assemble_step(double dt)
+{
+  // With updated geometry every step has its own matrix; a small-displacement analysis (no
+  // contacts) keeps the matrix of the initial configuration while dt is unchanged.
+  const auto start = Clock::now();
+  const bool new_matrix = !small_displacement() || dt != matrix_dt ||
+                          step_integration.mass_factor(dt) != matrix_mass_factor;
+  assemble(dt, new_matrix);
+  if (new_matrix)
+    add_hold_terms();
+  matrix_dt = dt;
+  matrix_mass_factor = step_integration.mass_factor(dt);
+  timings.assemble += seconds_since(start);
+  return new_matrix;
+}
+
+std::future<std::string> System::begin_tied_step(double dt)
+{
+  if (!tied_body)
+    return {};
+  Eigen::VectorXd displacements(2 * tie_points.size());
+  for (std::size_t k = 0; k < tie_points.size(); ++k)
+  {
+    tie_matrices[k] = point_matrix(tie_points[k]);
+    displacements.segment<2>(2 * k) = tie_points[k].position - tie_origins[k];
+  }
+  return std::async(std::launch::async,
+                    [this, dt, displacements = std::move(displacements)]
+                    {
+                      const auto start = Clock::now();
+                      std::string failure = tied_body->begin_step(dt, displacements);
+                      timings.tied_body += seconds_since(start);
+                      return failure;
+                    });
+}
+
+StepStatus System::solve_step(const std::string& when, bool new_matrix)
+{
+  const auto start = Clock::now();
+  StepStatus status;
+  if (trial_contacts.empty() && !tied_body)
+  {
+    status.solve = solver.solve(matrix, rhs, solution,
+                                new_matrix ? MatrixChange::unknown : MatrixChange::unchanged,
+                                matrix_mass_factor);
+    if (!status.solve.success)
+    {
+      status.outcome = StepOutcome::solver_failure;
+      status.message = status.solve.message + " " + when;
+    }
+  }
+  else
+    status = solve_with_open_close(when, new_matrix);
+  timings.solve += seconds_since(start);
+  return status;
+}
+
+void System::check_motion_limits(StepStatus& status, const std::string& when)
+{
+  status.max_displacement = largest_vertex_displacement(solution);
+  if (status.max_displacement > step_displacement_limit)
+  {
+    std::ostringstream m;
+    m << "a vertex moves " << status.max_displacement << " m in one step, more than the "
+      << step_displacement_limit << " m allowed (g2 w0) " << when;
+    status.outcome = StepOutcome::displacement_too_large;
+    status.message = m.str();
+    return;
+  }
+  for (const Contact& c : trial_contacts)
+    if (c.trial.state != ContactState::open)
+      status.max_penetration = std::max(status.max_penetration, -c.end_gap);
+  if (status.max_penetration > penetration_limit)
+  {
+    std::ostringstream m;
+    m << "a contact penetrates " << status.max_penetration << " m, deeper than the "
+      << penetration_limit << " m allowed " << when
+      << " (a stiffer joint normal_stiffness or a smaller dt reduces it)";
+    status.penalty_raised = raise_penalties();
+    status.outcome = StepOutcome::penetration_too_large;
+    status.message = m.str();
+  }
+}
+
+std::string System::accept_step(double dt)
+{
+  auto start = Clock::now();
+  if (tied_body)
+  {
+    const std::string failure = tied_body->end_step(tie_increments(solution));
+    timings.tied_body += seconds_since(start);
+    if (!failure.empty())
+      return failure;
+  }
+  start = Clock::now();
+  record_half(dt, solution);
+  update_blocks(dt, solution);
+  for (Contact& c : trial_contacts)
+  {
+    if (c.trial.state == ContactState::slide)
+      c.total_slip += c.step_slip;
+    const bool slides_on = c.forces.state == ContactState::slide &&
+                           c.trial.state == ContactState::slide &&
+                           std::signbit(c.forces.shear_force) == std::signbit(c.trial.shear_force);
+    c.slide_duration = c.trial.state != ContactState::slide ? 0.0
+                       : slides_on                          ? c.slide_duration + dt
+                                                            : dt;
+    c.forces = c.trial;
+  }
+  contacts.swap(trial_contacts);
+  raised_penalties.clear();
+  if (mode == StageMode::static_equilibrium)
+    set_at_rest();
+  else
+  {
+    current_time += dt;
+    motion_starts = false;
+    friction_jumps.clear(); // the restarted state is the accepted one
+  }
+  timings.update += seconds_since(start);
+  ++timings.n_steps;
+  return {};
+}
+
+void System::check_energy_growth(StepStatus& status)
+{
+  const EnergyBalance e = energy();
+  largest_energy_input = std::max(largest_energy_input, e.work_of_loads + e.work_of_supports);
+  const double reference = e.initial + largest_energy_input;
+  if (!std::isfinite(e.stored()) || e.stored() > 10.0 * reference)
+  {
+    std::ostringstream m;
+    m << "the stored energy grew to " << e.stored() << " J, more than 10 times the " << reference
+      << " J put into the model, at t = " << format_time(current_time)
+      << ": a boundary is feeding energy into the model (see `ddafem check` for each "
+         "boundary's time-step limit)";
+    status.outcome = StepOutcome::energy_growth;
+    status.message = m.str();
+  }
+}
+
+void System::measure_balance(StepStatus& status)
+{
+  // With zero velocity the right-hand side's translational part is the resultant force at the
+  // step start; the magnitudes of its terms, from the same step-start state, are the load.
+  balances.assign(blocks.size(), {});
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+  {
+    balances[i].out_of_balance = rhs.segment<2>(6 * i);
+    balances[i].weight = balances[i].load = block_mass(blocks[i]) * model.gravity.norm();
+  }
+  const auto add = [&](std::size_t block, double magnitude) { balances[block].load += magnitude; };
+  for (const AttachedLoad& l : loads)
+    add(l.point.block, std::abs(l.function.value(current_time)) * l.force.norm());
+  for (const AttachedFixedPoint& f : fixed_points)
+    add(f.point.block, f.stiffness * (f.target(current_time) - f.point.position).norm());
+  for (const Support& s : supports)
+    add(s.point.block, s.force().norm());
+  for (const Joint& j : joints)
+    for (const JointPoint& p : j.points)
+    {
+      add(j.block_a, std::hypot(p.normal_force, p.shear_force));
+      add(j.block_b, std::hypot(p.normal_force, p.shear_force));
+    }
+  for (const Contact& c : trial_contacts)
+    if (c.forces.state != ContactState::open)
+    {
+      add(c.vertex_block, std::hypot(c.forces.normal_force, c.forces.shear_force));
+      add(c.edge_block, std::hypot(c.forces.normal_force, c.forces.shear_force));
+    }
+  if (tied_body)
+    for (std::size_t k = 0; k < tie_points.size(); ++k)
+      add(tie_points[k].block, tied_body->force().segment<2>(2 * k).norm());
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    if (!is_held(i) && balances[i].ratio() > status.unbalanced_force_ratio)
+    {
+      status.unbalanced_force_ratio = balances[i].ratio();
+      status.unbalanced_block = i;
+    }
+}
+
+} // namespace ddafem::dda
