@@ -1,13 +1,13 @@
 #include "coupling/far_field_ties.h"
 
 #include "common/input_error.h"
+#include "common/stopwatch.h"
 
 #include <deal.II/base/quadrature_lib.h>
 
 #include <Eigen/LU>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -15,13 +15,6 @@ namespace ddafem::coupling
 {
 namespace
 {
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 using Segment = std::array<double, 4>; // x0, y0, x1, y1 [m]
 
 double distance_to_segment(const dda::Point& p, const Segment& s)
@@ -30,6 +23,19 @@ double distance_to_segment(const dda::Point& p, const Segment& s)
   const dda::Vector2 ab = b - a;
   const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
   return (a + t * ab - p).norm();
+}
+
+/// The larger side of the blocks' bounding box [m], for tolerances.
+double extent_of(const std::vector<dda::Block>& blocks)
+{
+  dda::Point lo = blocks[0].vertices[0], hi = lo;
+  for (const dda::Block& b : blocks)
+    for (const dda::Point& v : b.vertices)
+    {
+      lo = lo.cwiseMin(v);
+      hi = hi.cwiseMax(v);
+    }
+  return (hi - lo).maxCoeff();
 }
 
 double distance_to_part(const dda::Point& p, const std::vector<Segment>& segments)
@@ -111,21 +117,8 @@ FarFieldTies::FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field
                      ", expected > 0 [N/m]");
 
   const std::vector<dda::Block>& blocks = system.get_blocks();
-  double size = 0.0;
-  {
-    dda::Point lo = blocks[0].vertices[0], hi = lo;
-    for (const dda::Block& b : blocks)
-      for (const dda::Point& v : b.vertices)
-      {
-        lo = lo.cwiseMin(v);
-        hi = hi.cwiseMax(v);
-      }
-    size = (hi - lo).maxCoeff();
-  }
-  const double tol = d.tolerance > 0.0 ? d.tolerance : 1e-6 * size;
-  const double tan_phi = std::tan(d.friction_angle * M_PI / 180.0);
+  const double tol = d.tolerance > 0.0 ? d.tolerance : 1e-6 * extent_of(blocks);
   linear = std::isinf(d.cohesion) && std::isinf(d.tensile_strength);
-
   std::vector<fem::PointSpring> springs;
   std::vector<dda::MaterialPoint> points;
   for (std::size_t i = 0; i < blocks.size(); ++i)
@@ -135,44 +128,9 @@ FarFieldTies::FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field
     {
       const dda::Point& a = v[e];
       const dda::Point& b = v[(e + 1) % v.size()];
-      if (distance_to_part(a, segments) > tol || distance_to_part(b, segments) > tol ||
-          distance_to_part(0.5 * (a + b), segments) > tol)
-        continue;
-      ++tied_edges;
-      const double length = (b - a).norm();
-      length_tied += length;
-      const dda::Vector2 t = (b - a) / length;
-      const dda::Vector2 n(t.y(), -t.x()); // out of an anticlockwise block
-      // Composite Gauss quadrature over the pieces of the edge between far-field face ends:
-      // the tie energy of a linear block edge against a degree-2 face is integrated exactly.
-      const std::vector<double> breaks = breakpoints_along(a, b, segments, tol);
-      const dealii::QGauss<1> gauss(d.points_per_face);
-      for (std::size_t piece = 0; piece + 1 < breaks.size(); ++piece)
-        for (unsigned q = 0; q < gauss.size(); ++q)
-        {
-          const double xi =
-              (breaks[piece] + gauss.point(q)[0] * (breaks[piece + 1] - breaks[piece])) / length;
-          const double weight = gauss.weight(q) * (breaks[piece + 1] - breaks[piece]) / length;
-          Tie tie;
-          tie.block = i;
-          tie.point = a + xi * (b - a);
-          tie.normal = n;
-          tie.tangent = t;
-          tie.length = weight * length;
-          tie.law.normal_stiffness = 2.0 * d.normal_stiffness * weight;
-          tie.law.shear_stiffness = d.shear_ratio * tie.law.normal_stiffness;
-          tie.law.tan_friction = tan_phi;
-          tie.law.cohesive_force = d.cohesion * tie.length;
-          tie.law.tensile_capacity = d.tensile_strength * tie.length;
-          tie.forces.state = dda::ContactState::lock;
-          tie.forces.intact = true;
-          tie.trial = tie.forces;
-          const Eigen::Matrix2d k = tie.law.normal_stiffness * n * n.transpose() +
-                                    tie.law.shear_stiffness * t * t.transpose();
-          springs.push_back({{tie.point.x(), tie.point.y()}, {k(0, 0), k(0, 1), k(1, 0), k(1, 1)}});
-          points.push_back({i, tie.point, tie.point});
-          ties.push_back(tie);
-        }
+      if (!(distance_to_part(a, segments) > tol || distance_to_part(b, segments) > tol ||
+            distance_to_part(0.5 * (a + b), segments) > tol))
+        tie_edge(i, a, b, segments, d, tol, springs, points);
     }
   }
   if (std::abs(length_tied - length_of_part) > 1e-3 * length_of_part)
@@ -188,7 +146,56 @@ FarFieldTies::FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field
                        str(ties[k].point.y()) + ") of block " + std::to_string(ties[k].block) +
                        " lies " + str(distances[k]) + " m from the far field's part '" + part +
                        "', expected within " + str(tol) + " m");
+  set_bonded_state(system.get_model(), springs);
+  system.tie(*this, points);
+}
 
+void FarFieldTies::tie_edge(std::size_t block, const dda::Point& a, const dda::Point& b,
+                            const std::vector<Segment>& segments, const InterfaceDescription& d,
+                            double tolerance, std::vector<fem::PointSpring>& springs,
+                            std::vector<dda::MaterialPoint>& points)
+{
+  ++tied_edges;
+  const double length = (b - a).norm();
+  length_tied += length;
+  const dda::Vector2 t = (b - a) / length;
+  const dda::Vector2 n(t.y(), -t.x()); // out of an anticlockwise block
+  const double tan_phi = std::tan(d.friction_angle * M_PI / 180.0);
+  // Composite Gauss quadrature over the pieces of the edge between far-field face ends: the
+  // tie energy of a linear block edge against a degree-2 face is integrated exactly.
+  const std::vector<double> breaks = breakpoints_along(a, b, segments, tolerance);
+  const dealii::QGauss<1> gauss(d.points_per_face);
+  for (std::size_t piece = 0; piece + 1 < breaks.size(); ++piece)
+    for (unsigned q = 0; q < gauss.size(); ++q)
+    {
+      const double xi =
+          (breaks[piece] + gauss.point(q)[0] * (breaks[piece + 1] - breaks[piece])) / length;
+      const double weight = gauss.weight(q) * (breaks[piece + 1] - breaks[piece]) / length;
+      Tie tie;
+      tie.block = block;
+      tie.point = a + xi * (b - a);
+      tie.normal = n;
+      tie.tangent = t;
+      tie.length = weight * length;
+      tie.law.normal_stiffness = 2.0 * d.normal_stiffness * weight;
+      tie.law.shear_stiffness = d.shear_ratio * tie.law.normal_stiffness;
+      tie.law.tan_friction = tan_phi;
+      tie.law.cohesive_force = d.cohesion * tie.length;
+      tie.law.tensile_capacity = d.tensile_strength * tie.length;
+      tie.forces.state = dda::ContactState::lock;
+      tie.forces.intact = true;
+      tie.trial = tie.forces;
+      const Eigen::Matrix2d k = tie.law.normal_stiffness * n * n.transpose() +
+                                tie.law.shear_stiffness * t * t.transpose();
+      springs.push_back({{tie.point.x(), tie.point.y()}, {k(0, 0), k(0, 1), k(1, 0), k(1, 1)}});
+      points.push_back({block, tie.point, tie.point});
+      ties.push_back(tie);
+    }
+}
+
+void FarFieldTies::set_bonded_state(const dda::ModelDescription& model,
+                                    const std::vector<fem::PointSpring>& springs)
+{
   const auto n = static_cast<Eigen::Index>(2 * ties.size());
   k_bonded = Eigen::MatrixXd::Zero(n, n);
   for (std::size_t k = 0; k < ties.size(); ++k)
@@ -196,14 +203,13 @@ FarFieldTies::FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field
         springs[k].stiffness[2], springs[k].stiffness[3];
   previous_force = Eigen::VectorXd::Zero(n);
   preload = Eigen::VectorXd::Zero(n);
-  const dda::InSituStress& in_situ = system.get_model().in_situ_stress;
   for (std::size_t k = 0; k < ties.size(); ++k)
-    preload.segment<2>(2 * k) = in_situ.traction(ties[k].point, ties[k].normal) * ties[k].length;
+    preload.segment<2>(2 * k) =
+        model.in_situ_stress.traction(ties[k].point, ties[k].normal) * ties[k].length;
   if (!linear && !preload.isZero(0.0))
     throw InputError("interface: a frictional interface cannot carry the in-situ stress's "
                      "preloads (Mohr-Coulomb would see only the dynamic increment): expected no "
                      "`interface.joint_material` with `in_situ_stress`");
-  system.tie(*this, points);
 }
 
 std::size_t FarFieldTies::n_tied_blocks() const

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstddef>
 #include <limits>
 #include <memory>
@@ -128,6 +129,17 @@ public:
   double tie_seconds() const { return time_ties; }
 
 private:
+  /// Ties along block `block`'s edge from a to b [m] (anticlockwise), lying on the far field's
+  /// part: one per Gauss point of each piece between the part's face ends, appended to `ties`
+  /// with the far field's spring at it (`springs`) and the block's material point (`points`).
+  void tie_edge(std::size_t block, const dda::Point& a, const dda::Point& b,
+                const std::vector<std::array<double, 4>>& segments, const InterfaceDescription& d,
+                double tolerance, std::vector<fem::PointSpring>& springs,
+                std::vector<dda::MaterialPoint>& points);
+  /// K from the far field's springs, zero start forces and the in-situ stress's preloads P
+  /// (InputError for a frictional interface with preloads).
+  void set_bonded_state(const dda::ModelDescription& model,
+                        const std::vector<fem::PointSpring>& springs);
   /// K', F0, R w0, M, H and g from the trial states.
   void build_terms();
   /// Accepts tie k's trial state with its stretch z - w [m] and spring force F on the far field
