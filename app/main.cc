@@ -1,7 +1,7 @@
-// ddafem command line: check and run scenes.
+// ddafem command line: check and run scenes (CLI11: subcommands, each with --help).
 //
 //   ddafem check SCENE [--set key=value]...
-//   ddafem run SCENE [-o DIR] [--quiet] [--set key=value]...
+//   ddafem run SCENE [-o DIR] [--quiet] [--allow-unstable] [--set key=value]...
 //   ddafem scene-reference
 //
 // Exit codes: 0 success, 1 numerical failure (or an I/O failure while writing results),
@@ -10,117 +10,104 @@
 #include "app/scene.h"
 #include "common/input_error.h"
 
+#include <CLI/CLI.hpp>
+
 #include <iostream>
 #include <string>
 #include <vector>
 
 namespace
 {
-const char* usage = R"(usage:
-  ddafem check SCENE [--set key=value]...             validate a scene and print a model summary
-  ddafem run SCENE [-o DIR] [--quiet] [--allow-unstable] [--set key=value]...
-                                                      run a scene, results into DIR
-  ddafem scene-reference                              print the scene key reference (Markdown)
-  ddafem --version | --help
-
-  --set path.to.key=value   override any scene key, e.g. --set time.dt=1e-4
-  -o DIR                    output directory (default: the scene's output.directory)
-  --quiet                   no progress line
-  --allow-unstable          run although a boundary feeds energy in at this dt (it will fail)
-exit codes: 0 success, 1 numerical failure, 2 bad input
-)";
-
+/// What the command line asks for.
 struct CommandLine
 {
-  std::string command;
   std::string scene;
-  std::string output_directory;
-  bool quiet = false;
-  bool allow_unstable = false;
-  std::vector<ddafem::Override> overrides;
+  std::vector<std::string> settings; ///< --set key=value, in the order given
+  ddafem::RunOptions options;
 };
 
-CommandLine parse_command_line(int argc, char** argv)
+/// The `--set` option and the scene argument that check and run share.
+void add_scene_arguments(CLI::App& command, CommandLine& cl)
 {
-  CommandLine cl;
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty())
-    throw ddafem::InputError(std::string("no command given\n") + usage);
-  cl.command = args[0];
-  for (std::size_t i = 1; i < args.size(); ++i)
+  command.add_option("SCENE", cl.scene, "the scene file (YAML)")->required();
+  command
+      .add_option("--set", cl.settings,
+                  "override any scene key, e.g. --set time.dt=1e-4 (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+}
+
+/// Reads the scene and checks or runs it; returns the exit code.
+int check_or_run(const CommandLine& cl, bool run)
+{
+  std::vector<ddafem::Override> overrides;
+  for (const std::string& s : cl.settings)
+    overrides.push_back(ddafem::parse_override(s));
+  const ddafem::Scene scene = ddafem::read_scene(cl.scene, overrides);
+  try
   {
-    const std::string& a = args[i];
-    const auto next = [&]() -> const std::string&
+    if (!run)
     {
-      if (i + 1 >= args.size())
-        throw ddafem::InputError("option '" + a + "' expects a value");
-      return args[++i];
-    };
-    if (a == "--set")
-      cl.overrides.push_back(ddafem::parse_override(next()));
-    else if (a.rfind("--set=", 0) == 0)
-      cl.overrides.push_back(ddafem::parse_override(a.substr(6)));
-    else if (a == "-o" || a == "--output")
-      cl.output_directory = next();
-    else if (a == "--quiet" || a == "-q")
-      cl.quiet = true;
-    else if (a == "--allow-unstable")
-      cl.allow_unstable = true;
-    else if (!a.empty() && a[0] == '-')
-      throw ddafem::InputError("unknown option '" + a + "'\n" + usage);
-    else if (cl.scene.empty())
-      cl.scene = a;
-    else
-      throw ddafem::InputError("unexpected argument '" + a + "': only one scene file is taken");
+      std::cout << ddafem::check_scene(scene);
+      return 0;
+    }
+    return ddafem::run_scene(scene, cl.options, std::cout);
   }
-  return cl;
+  catch (const ddafem::InputError& e)
+  {
+    // Problems only the engine sees (e.g. blocks sharing an edge without a joint material).
+    throw ddafem::InputError(scene.file + ": " + e.what());
+  }
 }
 } // namespace
 
 int main(int argc, char** argv)
 {
+  CLI::App app("ddafem: jointed rock dynamics, DDA blocks with a deal.II far field.\n"
+               "Exit codes: 0 success, 1 numerical failure, 2 bad input.",
+               "ddafem");
+  app.set_version_flag("--version", std::string("ddafem ") + DDAFEM_VERSION);
+  app.require_subcommand(1);
+  CommandLine cl;
+  CLI::App* check = app.add_subcommand("check", "validate a scene and print a model summary");
+  add_scene_arguments(*check, cl);
+  CLI::App* run = app.add_subcommand("run", "run a scene, results into DIR");
+  add_scene_arguments(*run, cl);
+  run->add_option("-o,--output", cl.options.output_directory,
+                  "output directory (default: the scene's output.directory)")
+      ->type_name("DIR");
+  run->add_flag("-q,--quiet", cl.options.quiet, "no progress line");
+  run->add_flag("--allow-unstable", cl.options.allow_unstable,
+                "run although a boundary feeds energy in at this dt (it will fail)");
+  CLI::App* reference =
+      app.add_subcommand("scene-reference", "print the scene key reference (Markdown)");
+  const auto is_command = [&](const std::string& word)
+  { return word == check->get_name() || word == run->get_name() || word == reference->get_name(); };
+  if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1]))
+  {
+    std::cerr << "error: unknown command '" << argv[1]
+              << "': expected check, run or scene-reference (ddafem --help)\n";
+    return 2;
+  }
   try
   {
-    const CommandLine cl = parse_command_line(argc, argv);
-    if (cl.command == "--help" || cl.command == "-h" || cl.command == "help")
-    {
-      std::cout << usage;
-      return 0;
-    }
-    if (cl.command == "--version")
-    {
-      std::cout << "ddafem " << DDAFEM_VERSION << "\n";
-      return 0;
-    }
-    if (cl.command == "scene-reference")
+    app.parse(argc, argv);
+  }
+  catch (const CLI::ParseError& e)
+  {
+    if (e.get_exit_code() == 0) // --help, --version
+      return app.exit(e);
+    std::cerr << "error: " << e.what() << " (ddafem --help, ddafem COMMAND --help)\n";
+    return 2;
+  }
+  try
+  {
+    if (reference->parsed())
     {
       std::cout << ddafem::scene_reference_markdown();
       return 0;
     }
-    if (cl.command != "check" && cl.command != "run")
-      throw ddafem::InputError("unknown command '" + cl.command + "'\n" + usage);
-    if (cl.scene.empty())
-      throw ddafem::InputError("'" + cl.command + "' expects a scene file\n" + usage);
-
-    const ddafem::Scene scene = ddafem::read_scene(cl.scene, cl.overrides);
-    try
-    {
-      if (cl.command == "check")
-      {
-        std::cout << ddafem::check_scene(scene);
-        return 0;
-      }
-      ddafem::RunOptions options;
-      options.output_directory = cl.output_directory;
-      options.quiet = cl.quiet;
-      options.allow_unstable = cl.allow_unstable;
-      return ddafem::run_scene(scene, options, std::cout);
-    }
-    catch (const ddafem::InputError& e)
-    {
-      // Problems only the engine sees (e.g. blocks sharing an edge without a joint material).
-      throw ddafem::InputError(scene.file + ": " + e.what());
-    }
+    return check_or_run(cl, run->parsed());
   }
   catch (const ddafem::InputError& e)
   {

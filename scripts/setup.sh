@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev           # small dense algebra, sparse Cholesky
   libyaml-cpp-dev         # scene files
   nlohmann-json3-dev      # summary.json and verification records
+  libcli11-dev            # the command line (subcommands, --help, repeatable --set)
   libhdf5-dev             # HDF5 headers (deal.II brings the OpenMPI build it links)
   libcgal-dev libgmp-dev libmpfr-dev
   libgtest-dev googletest # tests
