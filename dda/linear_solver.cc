@@ -1,19 +1,14 @@
 #include "dda/linear_solver.h"
 
+#include "common/amesos_klu.h"
 #include "dda/block_cholesky.h"
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
-#include <Amesos_Klu.h>
-#include <Epetra_CrsMatrix.h>
-#include <Epetra_LinearProblem.h>
-#include <Epetra_Map.h>
-#include <Epetra_MultiVector.h>
-#include <Epetra_SerialComm.h>
-
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 namespace ddafem::dda
 {
@@ -168,15 +163,15 @@ private:
 
 // ---- Trilinos Amesos KLU --------------------------------------------------------------------
 
-/// Trilinos Amesos KLU (sparse LU) on the full symmetric matrix in an Epetra_CrsMatrix over a
-/// serial communicator. Symbolic factorization once, numeric factorization per change.
+/// Trilinos Amesos KLU (sparse LU, common/amesos_klu.h) on the full symmetric matrix. Symbolic
+/// factorization once, numeric factorization per change; a failed symbolic factorization makes
+/// factorize() return false, a failed solve leaves x not finite (the caller checks).
 class AmesosKluSolver final : public SparseDirectSolver
 {
 public:
   void analyze_pattern(const BlockSparseMatrix& a) override
   {
     const int n = static_cast<int>(a.n_rows());
-    map = std::make_unique<Epetra_Map>(n, 0, comm);
     // Column indices per block row: itself and its coupled blocks.
     block_neighbours.assign(a.n_blocks(), {});
     for (std::size_t b = 0; b < a.n_blocks(); ++b)
@@ -192,37 +187,29 @@ public:
       for (int r = 0; r < 6; ++r)
         entries_per_row[6 * b + static_cast<std::size_t>(r)] =
             static_cast<int>(6 * block_neighbours[b].size());
-    matrix = std::make_unique<Epetra_CrsMatrix>(Copy, *map, entries_per_row.data(), true);
-    fill(a, true);
-    matrix->FillComplete();
-    x_vec = std::make_unique<Epetra_MultiVector>(*map, 1);
-    b_vec = std::make_unique<Epetra_MultiVector>(*map, 1);
-    problem = std::make_unique<Epetra_LinearProblem>(matrix.get(), x_vec.get(), b_vec.get());
-    klu = std::make_unique<Amesos_Klu>(*problem);
-    klu->SymbolicFactorization();
+    klu.start_pattern(n, entries_per_row);
+    fill(a);
+    analyzed = klu.finish_pattern();
   }
 
   bool factorize(const BlockSparseMatrix& a) override
   {
-    fill(a, false);
-    return klu->NumericFactorization() == 0;
+    fill(a);
+    return analyzed && klu.factorize();
   }
 
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override
   {
-    for (Eigen::Index i = 0; i < b.size(); ++i)
-      (*b_vec)[0][i] = b[i];
-    klu->Solve();
     x.resize(b.size());
-    for (Eigen::Index i = 0; i < b.size(); ++i)
-      x[i] = (*x_vec)[0][i];
+    if (!klu.solve(b.data(), x.data()))
+      x.setConstant(std::numeric_limits<double>::quiet_NaN());
   }
 
   std::string name() const override { return solver_name(SolverKind::amesos_klu); }
 
 private:
-  /// Writes the values of a into the CRS matrix (inserting on the first call).
-  void fill(const BlockSparseMatrix& a, bool insert)
+  /// Writes the values of a into the matrix (its pattern on the first call).
+  void fill(const BlockSparseMatrix& a)
   {
     std::vector<int> columns;
     std::vector<double> values;
@@ -251,22 +238,12 @@ private:
             // Upper block (i, j) stored for i < j; the lower block is its transpose.
             values.push_back(bi < bj ? a.upper(k)(r, c) : a.upper(k)(c, r));
           }
-        const int row = static_cast<int>(6 * bi) + r;
-        if (insert)
-          matrix->InsertGlobalValues(row, static_cast<int>(columns.size()), values.data(),
-                                     columns.data());
-        else
-          matrix->ReplaceGlobalValues(row, static_cast<int>(columns.size()), values.data(),
-                                      columns.data());
+        klu.set_row(static_cast<int>(6 * bi) + r, columns, values);
       }
   }
 
-  Epetra_SerialComm comm;
-  std::unique_ptr<Epetra_Map> map;
-  std::unique_ptr<Epetra_CrsMatrix> matrix;
-  std::unique_ptr<Epetra_MultiVector> x_vec, b_vec;
-  std::unique_ptr<Epetra_LinearProblem> problem;
-  std::unique_ptr<Amesos_Klu> klu;
+  AmesosKlu klu;
+  bool analyzed = false; ///< the symbolic factorization succeeded
   std::vector<std::vector<std::size_t>> block_neighbours;
 };
 

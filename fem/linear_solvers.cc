@@ -2,17 +2,13 @@
 // matrix.
 #include "fem/linear_solvers.h"
 
+#include "common/amesos_klu.h"
+
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/sparse_direct.h>
 
-#include <Amesos_Klu.h>
-#include <Epetra_CrsMatrix.h>
-#include <Epetra_LinearProblem.h>
-#include <Epetra_Map.h>
-#include <Epetra_MultiVector.h>
-#include <Epetra_SerialComm.h>
 #include <suitesparse/cholmod.h>
 
 #include <stdexcept>
@@ -39,19 +35,18 @@ private:
   SparseDirectUMFPACK solver;
 };
 
-/// Trilinos Amesos KLU on a serial Epetra copy of the matrix.
+/// Trilinos Amesos KLU (common/amesos_klu.h) on a copy of the matrix.
 class KluSolver : public EffectiveSolver
 {
 public:
   void initialize(const SparseMatrix<double>& matrix) override
   {
     const int n = static_cast<int>(matrix.m());
-    map = std::make_unique<Epetra_Map>(n, 0, comm);
     std::vector<int> entries_per_row(static_cast<std::size_t>(n));
     for (int r = 0; r < n; ++r)
       entries_per_row[static_cast<std::size_t>(r)] =
           static_cast<int>(matrix.get_row_length(static_cast<unsigned int>(r)));
-    epetra = std::make_unique<Epetra_CrsMatrix>(Copy, *map, entries_per_row.data(), true);
+    klu.start_pattern(n, entries_per_row);
     std::vector<int> columns;
     std::vector<double> values;
     for (int r = 0; r < n; ++r)
@@ -64,34 +59,21 @@ public:
         columns.push_back(static_cast<int>(entry->column()));
         values.push_back(entry->value());
       }
-      epetra->InsertGlobalValues(r, static_cast<int>(columns.size()), values.data(),
-                                 columns.data());
+      klu.set_row(r, columns, values);
     }
-    epetra->FillComplete();
-    x_vec = std::make_unique<Epetra_MultiVector>(*map, 1);
-    b_vec = std::make_unique<Epetra_MultiVector>(*map, 1);
-    problem = std::make_unique<Epetra_LinearProblem>(epetra.get(), x_vec.get(), b_vec.get());
-    klu = std::make_unique<Amesos_Klu>(*problem);
-    if (klu->SymbolicFactorization() != 0 || klu->NumericFactorization() != 0)
+    if (!klu.finish_pattern() || !klu.factorize())
       throw std::runtime_error("Amesos KLU could not factorize the effective matrix");
   }
   void solve(const Vector<double>& b, Vector<double>& x) override
   {
-    std::copy(b.begin(), b.end(), (*b_vec)[0]);
-    if (klu->Solve() != 0)
-      throw std::runtime_error("Amesos KLU solve failed");
     x.reinit(b.size(), true);
-    std::copy((*x_vec)[0], (*x_vec)[0] + b.size(), x.begin());
+    if (!klu.solve(b.begin(), x.begin()))
+      throw std::runtime_error("Amesos KLU solve failed");
   }
   std::string name() const override { return "klu"; }
 
 private:
-  Epetra_SerialComm comm;
-  std::unique_ptr<Epetra_Map> map;
-  std::unique_ptr<Epetra_CrsMatrix> epetra;
-  std::unique_ptr<Epetra_MultiVector> x_vec, b_vec;
-  std::unique_ptr<Epetra_LinearProblem> problem;
-  std::unique_ptr<Amesos_Klu> klu;
+  AmesosKlu klu;
 };
 
 /// SuiteSparse CHOLMOD (Cholesky L L^T, fill-reducing ordering) of the upper triangle: the
