@@ -2,6 +2,7 @@
 
 #include "common/elasticity.h"
 #include "common/input_error.h"
+#include "common/newmark.h"
 
 #include <algorithm>
 #include <cmath>
@@ -251,7 +252,7 @@ BoundaryStep boundary_step(BoundaryType type, const BoundaryEdge& edge, const Ve
     // Force -C v1 with Newmark's v1 = gamma / (beta dt) d + (1 - gamma / beta) v0
     // + dt (1 - gamma / (2 beta)) a0 (both integrators: 2 d / dt - v0).
     const Eigen::Matrix2d cg = r.transpose() * c * r;
-    step.k = gamma / (beta * dt) * cg;
+    step.k = newmark_coefficients(beta, gamma, dt).damping_u * cg;
     step.f = -cg *
              ((1.0 - gamma / beta) * velocity0 + dt * (1.0 - gamma / (2.0 * beta)) * acceleration0);
     break;
