@@ -7,6 +7,7 @@
 #include "app/run_support.h"
 #include "app/stage_records.h"
 
+#include "common/elasticity.h"
 #include "common/history_writer.h"
 #include "common/input_error.h"
 #include "coupling/far_field_ties.h"
@@ -233,10 +234,10 @@ WaveSpeeds wave_speeds(const dda::Material& m)
 {
   const double e = m.youngs_modulus, nu = m.poisson_ratio, rho = m.density;
   WaveSpeeds c;
-  c.p_body = std::sqrt(e * (1.0 - nu) / (rho * (1.0 + nu) * (1.0 - 2.0 * nu)));
+  c.p_body = p_wave_speed(e, nu, rho);
   c.p_plate = std::sqrt(e / (rho * (1.0 - nu * nu)));
   c.p_bar = std::sqrt(e / rho);
-  c.s = std::sqrt(e / (2.0 * rho * (1.0 + nu)));
+  c.s = s_wave_speed(e, nu, rho);
   return c;
 }
 

@@ -321,8 +321,7 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
   if (degree != 1 && degree != 2)
     throw f.error("degree", "expected 1 or 2");
   d.degree = static_cast<unsigned int>(degree);
-  d.plane_mode =
-      model.plane_mode == dda::PlaneMode::stress ? fem::PlaneMode::stress : fem::PlaneMode::strain;
+  d.plane_mode = model.plane_mode;
   std::set<std::string> parts;
   for (const MapReader& r : f.section_list("boundaries"))
     d.boundaries.push_back(read_far_field_boundary(r, d, parts));

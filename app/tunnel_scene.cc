@@ -3,6 +3,7 @@
 #include "app/keyblocks.h"
 #include "app/run_support.h"
 
+#include "common/elasticity.h"
 #include "common/input_error.h"
 #include "dda/geometry.h"
 
@@ -314,9 +315,7 @@ BlockMeasures plan_rock_mass(const TunnelDescription& t, TunnelPlan& plan)
   const double tolerance = 1e-9 * (plan.near_upper - plan.near_lower).norm();
   BlockMeasures measures;
   double sum = 0.0, weight = 0.0;
-  const double vp_rock =
-      std::sqrt(t.youngs_modulus * (1.0 - t.poisson_ratio) /
-                (t.density * (1.0 + t.poisson_ratio) * (1.0 - 2.0 * t.poisson_ratio)));
+  const double vp_rock = p_wave_speed(t.youngs_modulus, t.poisson_ratio, t.density);
   for (const dda::RockMassBlock& b : blocks.blocks)
   {
     const double length =
@@ -334,8 +333,8 @@ BlockMeasures plan_rock_mass(const TunnelDescription& t, TunnelPlan& plan)
   }
   plan.rock_mass_modulus = weight > 0.0 ? sum / weight : t.youngs_modulus;
   const double nu = t.poisson_ratio, rho = t.density, e = plan.rock_mass_modulus;
-  plan.vp = std::sqrt(e * (1.0 - nu) / (rho * (1.0 + nu) * (1.0 - 2.0 * nu)));
-  plan.vs = std::sqrt(e / (2.0 * rho * (1.0 + nu)));
+  plan.vp = p_wave_speed(e, nu, rho);
+  plan.vs = s_wave_speed(e, nu, rho);
   plan.wave_speed = t.wave_type == "p" ? plan.vp : plan.vs;
   why.push_back("blocks: " + std::to_string(plan.n_blocks) + ", mean size " +
                 format(plan.mean_block_size) + " m, shortest edge " +

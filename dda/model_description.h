@@ -1,6 +1,7 @@
 // Input of a DDA model, as read from a scene: plain data, validated by the scene reader.
 #pragma once
 
+#include "common/elasticity.h"
 #include "common/time_function.h"
 #include "dda/integrator.h"
 #include "dda/types.h"
@@ -13,12 +14,8 @@
 
 namespace ddafem::dda
 {
-/// 2D idealisation of the blocks' elasticity.
-enum class PlaneMode
-{
-  stress, ///< plane stress (Shi's default; a thin slab or a one-block-high bar)
-  strain  ///< plane strain (a section through a long tunnel)
-};
+/// 2D idealisation of the blocks' elasticity (common/elasticity.h).
+using PlaneMode = ddafem::PlaneMode;
 
 /// Which configuration each step is linearised about.
 enum class GeometryMode

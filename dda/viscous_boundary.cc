@@ -1,6 +1,8 @@
 #include "dda/viscous_boundary.h"
 
+#include "common/elasticity.h"
 #include "common/input_error.h"
+#include "common/newmark.h"
 
 #include <algorithm>
 #include <cmath>
@@ -33,8 +35,7 @@ double vb1_source_threshold()
 BoundaryWaveSpeeds textbook_wave_speeds(const Material& m)
 {
   const double e = m.youngs_modulus, nu = m.poisson_ratio, rho = m.density;
-  return {std::sqrt(e * (1.0 - nu) / (rho * (1.0 + nu) * (1.0 - 2.0 * nu))),
-          std::sqrt(e / (2.0 * rho * (1.0 + nu)))};
+  return {p_wave_speed(e, nu, rho), s_wave_speed(e, nu, rho)};
 }
 
 namespace
@@ -74,7 +75,7 @@ BoundaryWaveSpeeds effective_wave_speeds(const ModelDescription& model,
   const Block& b = blocks[block];
   const Material& mat = model.materials[b.material];
   const double e = mat.youngs_modulus, nu = mat.poisson_ratio;
-  const double g_modulus = e / (2.0 * (1.0 + nu));
+  const double g_modulus = shear_modulus(e, nu);
   const Vector2 t = edge_direction(b.vertices, edge);
   const Vector2 n(t.y(), -t.x());
 
@@ -110,7 +111,7 @@ BoundaryWaveSpeeds effective_wave_speeds(const ModelDescription& model,
   }
 
   // P modulus: plane strain, plane-stress plate, or a plane-stress bar (side edges free).
-  double p_modulus = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  double p_modulus = p_wave_modulus(e, nu);
   if (model.plane_mode == PlaneMode::stress)
     p_modulus = sides_free ? e : e / (1.0 - nu * nu);
 
@@ -251,7 +252,7 @@ BoundaryStep boundary_step(BoundaryType type, const BoundaryEdge& edge, const Ve
     // Force -C v1 with Newmark's v1 = gamma / (beta dt) d + (1 - gamma / beta) v0
     // + dt (1 - gamma / (2 beta)) a0 (both integrators: 2 d / dt - v0).
     const Eigen::Matrix2d cg = r.transpose() * c * r;
-    step.k = gamma / (beta * dt) * cg;
+    step.k = newmark_coefficients(beta, gamma, dt).damping_u * cg;
     step.f = -cg *
              ((1.0 - gamma / beta) * velocity0 + dt * (1.0 - gamma / (2.0 * beta)) * acceleration0);
     break;

@@ -3,6 +3,8 @@
 // ElasticWaveModel::Impl (fem/elastic_wave_model_impl.h lists the files of each concern).
 #include "fem/elastic_wave_model_impl.h"
 
+#include "common/elasticity.h"
+
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/grid/grid_tools.h>
 
@@ -25,8 +27,8 @@ ElasticWaveModel::Impl::Impl(const FarFieldDescription& description_)
   const double E = description.youngs_modulus;
   const double nu = description.poisson_ratio;
   const double rho = description.density;
-  const double lambda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-  const double mu = E / (2.0 * (1.0 + nu));
+  const double lambda = lame_lambda(E, nu);
+  const double mu = shear_modulus(E, nu);
   elasticity.mu = mu;
   elasticity.nu = nu;
   elasticity.mode = description.plane_mode;

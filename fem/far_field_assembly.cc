@@ -2,6 +2,8 @@
 // shape, and the effective matrix P = K + gamma/(beta dt) C + 1/(beta dt^2) M factorized per dt.
 #include "fem/elastic_wave_model_impl.h"
 
+#include "common/newmark.h"
+
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -237,8 +239,9 @@ void ElasticWaveModel::Impl::damping_vmult(Vector<double>& out, const Vector<dou
 
 void ElasticWaveModel::Impl::factorize(const double dt)
 {
-  const double c_mass = 1.0 / (beta * dt * dt);
-  const double c_damping = gamma / (beta * dt);
+  const NewmarkCoefficients newmark = newmark_coefficients(beta, gamma, dt);
+  const double c_mass = newmark.mass_u;
+  const double c_damping = newmark.damping_u;
   auto f = std::make_unique<Factorization>();
   SparseMatrix<double>& effective = f->matrix;
   effective.reinit(sparsity);

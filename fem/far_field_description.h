@@ -1,6 +1,7 @@
 // Input of a deal.II far-field model (plain data, validated by the scene reader).
 #pragma once
 
+#include "common/elasticity.h"
 #include "common/time_function.h"
 
 #include <array>
@@ -10,12 +11,9 @@
 
 namespace ddafem::fem
 {
-/// 2D idealisation of the continuum.
-enum class PlaneMode
-{
-  strain, ///< plane strain (default for a far field around a long tunnel)
-  stress
-};
+/// 2D idealisation of the continuum (common/elasticity.h); plane strain is the default for a far
+/// field around a long tunnel.
+using PlaneMode = ddafem::PlaneMode;
 
 /// Time integrator of the far field: both are Newmark schemes (physics.md section 2).
 enum class Integrator

@@ -2,6 +2,8 @@
 // (prepare_step: predictor solve; finish_step: point loads, update, energies).
 #include "fem/elastic_wave_model_impl.h"
 
+#include "common/newmark.h"
+
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
@@ -178,10 +180,11 @@ StepStatus ElasticWaveModel::Impl::newmark_rhs(const double dt, Vector<double>& 
       return column_status;
     add_free_field_load(pending.force_new);
   }
-  const double m_u = 1.0 / (beta * dt * dt);
-  const double m_v = 1.0 / (beta * dt);
+  const NewmarkCoefficients newmark = newmark_coefficients(beta, gamma, dt);
+  const double m_u = newmark.mass_u;
+  const double m_v = newmark.mass_v;
   const double m_a = 1.0 / (2.0 * beta) - 1.0;
-  const double c_u = gamma / (beta * dt);
+  const double c_u = newmark.damping_u;
   const double c_v = gamma / beta - 1.0;
   const double c_a = dt * (gamma / (2.0 * beta) - 1.0);
   Vector<double> combination(u.size()), product(u.size());
@@ -241,8 +244,9 @@ StepStatus ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_
       timings.update += seconds_since(start);
       return status;
     }
-    const double m_u = 1.0 / (beta * dt * dt);
-    const double m_v = 1.0 / (beta * dt);
+    const NewmarkCoefficients newmark = newmark_coefficients(beta, gamma, dt);
+    const double m_u = newmark.mass_u;
+    const double m_v = newmark.mass_v;
     const double m_a = 1.0 / (2.0 * beta) - 1.0;
     Vector<double> a_new(u.size()), v_new(v);
     a_new.equ(m_u, u_new);

@@ -1,0 +1,27 @@
+// Coefficients of Newmark's scheme (physics.md section 2) shared by the blocks' boundary dashpots
+// (dda/) and the far field (fem/): with u1 - u0 = d over a step dt,
+//   a1 = d / (beta dt^2) - v0 / (beta dt) - (1 / (2 beta) - 1) a0,
+//   v1 = gamma / (beta dt) d + (1 - gamma / beta) v0 + dt (1 - gamma / (2 beta)) a0.
+#pragma once
+
+namespace ddafem
+{
+/// The factors of the new displacement in Newmark's a1 and v1 (and so of the mass and the
+/// damping in the effective stiffness), for beta [-], gamma [-] and a step dt [s].
+struct NewmarkCoefficients
+{
+  double mass_u = 0.0;    ///< 1 / (beta dt^2) [1/s^2]: d(a1)/d(u1)
+  double mass_v = 0.0;    ///< 1 / (beta dt) [1/s]: the factor of v0 in a1 (with a minus sign)
+  double damping_u = 0.0; ///< gamma / (beta dt) [1/s]: d(v1)/d(u1)
+};
+
+inline NewmarkCoefficients newmark_coefficients(double beta, double gamma, double dt)
+{
+  NewmarkCoefficients c;
+  c.mass_u = 1.0 / (beta * dt * dt);
+  c.mass_v = 1.0 / (beta * dt);
+  c.damping_u = gamma / (beta * dt);
+  return c;
+}
+
+} // namespace ddafem
