@@ -47,6 +47,7 @@ import hashlib
 import json
 import os
 import re
+from statistics import median
 import sys
 import tempfile
 import time
@@ -120,7 +121,7 @@ def residuals_final_from(out, tolerance=FINAL_TOLERANCE_M):
     within `tolerance` [m] of its last value (OUT/histories.h5; None without it). A run that ends
     at the settle stage's bound with blocks still vibrating has its residuals final from then."""
     try:
-        import h5py  # noqa: E402  (only here: the rest of the tool needs no HDF5)
+        import h5py  # only here: the rest of the tool needs no HDF5
         with open(os.path.join(out, "summary.json")) as f:
             fell = {f"block_{b['id']}" for b in json.load(f)["keyblocks"]["blocks"] if b["fell"]}
         with h5py.File(os.path.join(out, "histories.h5"), "r") as f:
@@ -168,8 +169,6 @@ def row(r):
                 "smallest_dt_s": s.get("time_step", {}).get("smallest_dt_s"),
                 "timeline": r.get("timeline", []),
                 "residuals_final_from_s": r.get("residuals_final_from_s")})
-    if r.get("stopped") and out["timeline"]:
-        out["time_reached_s"], out["wall_at_time_reached_s"] = out["timeline"][-1]
     return out
 
 
@@ -192,12 +191,6 @@ def compare(a, ref):
     out["same_loosened"] = ({k for k in common if ka[k]["loosened"]} ==
                             {k for k in common if kr[k]["loosened"]})
     return out
-
-
-def median(values):
-    v = sorted(values)
-    n = len(v)
-    return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
 
 
 def ensemble_compare(hybrid, reference):
@@ -342,8 +335,8 @@ def speed_findings(speed):
             f"wall time; the hybrid reached the same simulated time in "
             f"{FM.fmt(speed['hybrid_wall_s'], '.0f')} s (and its whole run, settle stage "
             f"included, took {FM.fmt(speed['hybrid_run_wall_s'], '.0f')} s): at least "
-            f"{FM.fmt(speed['ratio_at_least'], '.0f')} times faster (a lower bound: the blocks-only "
-            "run was not finished, and it is slowest once the joints break)."]
+            f"{FM.fmt(speed['ratio_at_least'], '.0f')} times faster (a lower bound: the "
+            "blocks-only run was not finished, and it is slowest once the joints break)."]
 
 
 def findings(rows, ensemble):
