@@ -197,7 +197,7 @@ EnergyBalance ElasticWaveModel::energy() const
   // Kinetic and strain energy on demand: two products with the global matrices, as costly as
   // a step's right-hand side.
   EnergyBalance e = impl->energies;
-  e.kinetic = 0.5 * impl->mass.matrix_norm_square(impl->v);
+  e.kinetic = 0.5 * norm_square(impl->mass, impl->v);
   e.strain = impl->strain_energy();
   e.dissipated = e.initial + e.work_of_input + e.work_of_dashpots + e.work_of_rayleigh +
                  e.work_of_springs - e.stored();

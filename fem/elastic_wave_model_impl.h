@@ -54,6 +54,16 @@ inline std::string str(const double x)
   return s.str();
 }
 
+/// x^T A x with the same bits whatever the threads do: SparseMatrix::matrix_norm_square sums
+/// the row ranges that TBB hands out as it goes, so its last bits changed from run to run;
+/// vmult computes each row alone and Vector's scalar product sums in fixed blocks.
+inline double norm_square(const SparseMatrix<double>& a, const Vector<double>& x)
+{
+  Vector<double> ax(x.size());
+  a.vmult(ax, x);
+  return x * ax;
+}
+
 /// Isotropic elastic constants of the plane mode.
 struct PlaneElasticity
 {

@@ -35,7 +35,7 @@ Vector<double> ElasticWaveModel::Impl::relative_displacement() const
 
 double ElasticWaveModel::Impl::strain_energy() const
 {
-  return 0.5 * stiffness.matrix_norm_square(relative_displacement());
+  return 0.5 * norm_square(stiffness, relative_displacement());
 }
 
 void ElasticWaveModel::Impl::solve_static_stage()

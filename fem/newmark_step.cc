@@ -105,7 +105,7 @@ void ElasticWaveModel::Impl::set_initial_state(const ElasticWaveModel::VectorFie
   compute_initial_acceleration();
   a_previous.reinit(0);
   energies = EnergyBalance{};
-  energies.kinetic = 0.5 * mass.matrix_norm_square(v);
+  energies.kinetic = 0.5 * norm_square(mass, v);
   energies.strain = strain_energy();
   energies.initial = energies.stored();
   timings.setup += seconds_since(start);
