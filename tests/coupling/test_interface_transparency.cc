@@ -212,17 +212,16 @@ constexpr Crossing crossings[] = {
 // Every crossing on both of the blocks' integrators: the trapezoidal rule and Bathe's composite
 // scheme (the coupled scenes' default); the far field takes the trapezoidal rule on each of the
 // blocks' (half) steps. The energy that crosses arrives within 1 %.
-class InterfaceTransparency
-    : public ::testing::TestWithParam<std::tuple<Crossing, dda::Integrator>>
+class InterfaceTransparency : public ::testing::TestWithParam<std::tuple<Crossing, dda::Integrator>>
 {
 };
 
 TEST_P(InterfaceTransparency, ReflectsLittleAndKeepsEnergy)
 {
   const auto& [crossing, integrator] = GetParam();
-  const Transparency t =
-      crossing.from_blocks ? blocks_into_far_field(crossing.wave, crossing.size_ratio, integrator)
-                           : far_field_into_blocks(crossing.wave, integrator);
+  const Transparency t = crossing.from_blocks
+                             ? blocks_into_far_field(crossing.wave, crossing.size_ratio, integrator)
+                             : far_field_into_blocks(crossing.wave, integrator);
   EXPECT_LT(t.reflection, crossing.max_reflection);
   EXPECT_LT(t.energy_mismatch, 0.01);
 }
