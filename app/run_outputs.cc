@@ -2,8 +2,7 @@
 
 #include "app/run_support.h"
 
-#include <sstream>
-#include <utility>
+#include "common/vtk_collection.h"
 
 namespace ddafem
 {
@@ -46,22 +45,21 @@ void append_coupled_row(std::vector<double>& row, const fem::ElasticWaveModel& f
                          static_cast<double>(n.slide), static_cast<double>(n.open)});
 }
 
-/// DIR/model.pvd: every snapshot's parts (blocks, far field, contacts, ties) at one time, so
-/// that ParaView opens the whole model from one file.
-void write_model_pvd(const std::filesystem::path& dir,
-                     const std::vector<std::pair<double, std::vector<std::string>>>& snapshots)
+/// The far field's channels in a run of it alone: its monitors and energies.
+std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& d)
 {
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\"?>\n"
-         "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-         "  <Collection>\n";
-  out.precision(17);
-  for (const auto& [time, files] : snapshots)
-    for (std::size_t part = 0; part < files.size(); ++part)
-      out << "    <DataSet timestep=\"" << time << "\" group=\"\" part=\"" << part << "\" file=\""
-          << files[part] << "\"/>\n";
-  out << "  </Collection>\n</VTKFile>\n";
-  run_support::write_text_file(dir / "model.pvd", out.str());
+  std::vector<HistoryChannel> channels;
+  for (const fem::Monitor& m : d.monitors)
+    run_support::add_monitor_channels(channels, m.name, "at the point", "at the point");
+  channels.push_back({"energy/kinetic", 1, "J", "v^T M v / 2 per unit thickness"});
+  channels.push_back({"energy/strain", 1, "J", "u^T K u / 2 per unit thickness"});
+  channels.push_back({"energy/work_of_input", 1, "J", "incident-wave tractions since t = 0"});
+  channels.push_back(
+      {"energy/work_of_dashpots", 1, "J", "Lysmer dashpots since t = 0 (negative: absorbed)"});
+  channels.push_back(
+      {"energy/work_of_rayleigh", 1, "J", "Rayleigh damping since t = 0 (negative: absorbed)"});
+  channels.push_back({"energy/dissipated", 1, "J", "initial + work - stored: the integrator's"});
+  return channels;
 }
 
 /// The blocks' channels, the coupled parts' and the keyblocks'.
@@ -224,8 +222,40 @@ void RunOutputs::write_snapshot()
     time_far_field += elapsed(far_field_start);
     files.push_back(name(ties_vtu.write(system.time(), tie_snapshot(*coupled.ties, system))));
   }
-  snapshots.emplace_back(system.time(), files);
-  write_model_pvd(dir, snapshots);
+  for (std::size_t part = 0; part < files.size(); ++part)
+    model_data_sets.push_back({system.time(), static_cast<unsigned>(part), files[part]});
+  CollectionStyle style;
+  style.time_precision = 17;
+  write_collection(dir / "model.pvd", model_data_sets, style);
+}
+
+FarFieldOutputs::FarFieldOutputs(const std::filesystem::path& dir_, const std::string& scene_file,
+                                 fem::ElasticWaveModel& model_,
+                                 const fem::FarFieldDescription& description,
+                                 fem::VtuCompression vtu_compression_)
+    : dir(dir_), model(model_), n_monitors(description.monitors.size()),
+      vtu_compression(vtu_compression_),
+      history((dir / "histories.h5").string(), far_field_channels(description))
+{
+  history.set_attribute("scene", scene_file);
+  history.set_attribute("version", DDAFEM_VERSION);
+}
+
+void FarFieldOutputs::write_state(bool snapshot)
+{
+  const auto start = Clock::now();
+  std::vector<double> row;
+  append_far_field_monitors(row, model, n_monitors);
+  const fem::EnergyBalance e = model.energy();
+  row.insert(row.end(), {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots,
+                         e.work_of_rayleigh, e.dissipated});
+  history.append(model.time(), row);
+  if (snapshot)
+  {
+    model.write_snapshot(dir.string(), "far_field", vtu_compression);
+    ++n_written;
+  }
+  time_output += elapsed(start);
 }
 
 } // namespace ddafem

@@ -1,12 +1,14 @@
-// What a run of blocks (alone or tied to a far field) writes while it runs: histories.h5 (the
+// What a run writes while it runs. Blocks (alone or tied to a far field): histories.h5 (the
 // blocks' monitors, energies, contact counts and steps, the far field's and the interface's,
 // the keyblocks'), and the snapshots: blocks, contacts, far field and ties as VTU series, all
-// of one time gathered in model.pvd.
+// of one time gathered in model.pvd. A far field alone: histories.h5 (its monitors and
+// energies) and far_field.pvd.
 #pragma once
 
 #include "app/keyblocks.h"
 
 #include "common/history_writer.h"
+#include "common/vtk_collection.h"
 #include "coupling/far_field_ties.h"
 #include "dda/system.h"
 #include "dda/vtu_writer.h"
@@ -17,7 +19,6 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace ddafem
@@ -74,7 +75,7 @@ public:
   std::size_t n_snapshots() const { return blocks_vtu.n_written(); }
 
 private:
-  /// Writes the snapshot's parts and model.pvd.
+  /// Writes the snapshot's parts and rewrites model.pvd.
   void write_snapshot();
 
   std::filesystem::path dir;
@@ -84,9 +85,37 @@ private:
   fem::VtuCompression vtu_compression;
   HistoryWriter history;
   dda::VtuSeriesWriter blocks_vtu, contacts_vtu, ties_vtu;
-  /// Per snapshot: its time [s] and the files of its parts, for model.pvd.
-  std::vector<std::pair<double, std::vector<std::string>>> snapshots;
+  /// model.pvd's: every snapshot's parts (blocks, contacts, far field, ties) at their time, so
+  /// that ParaView opens the whole model from one file.
+  std::vector<CollectionDataSet> model_data_sets;
   double time_output = 0.0, time_far_field = 0.0;
+};
+
+/// Writes the histories and snapshots of a far field alone into one directory, timing itself.
+class FarFieldOutputs
+{
+public:
+  /// Opens DIR/histories.h5 with the far field's monitors and energies; `scene_file` goes into
+  /// its attributes.
+  FarFieldOutputs(const std::filesystem::path& dir, const std::string& scene_file,
+                  fem::ElasticWaveModel& model, const fem::FarFieldDescription& description,
+                  fem::VtuCompression vtu_compression);
+
+  /// A history row of the state now, and with `snapshot` far_field_NNNNN.vtu and far_field.pvd.
+  void write_state(bool snapshot);
+  void flush() { history.flush(); }
+
+  double seconds() const { return time_output; } ///< all writing [s]
+  std::size_t n_snapshots() const { return n_written; }
+
+private:
+  std::filesystem::path dir;
+  fem::ElasticWaveModel& model;
+  std::size_t n_monitors;
+  fem::VtuCompression vtu_compression;
+  HistoryWriter history;
+  std::size_t n_written = 0;
+  double time_output = 0.0;
 };
 
 } // namespace ddafem

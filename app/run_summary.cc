@@ -8,6 +8,34 @@ namespace ddafem
 {
 namespace
 {
+/// The fields every summary.json opens with: the scene, the program's version, the status (and
+/// the failure), the time reached and the end time [s], the steps and dt [s].
+nlohmann::json summary_head(const Scene& scene, bool failed, const std::string& failure,
+                            double time_reached, double end_time, std::size_t n_steps, double dt)
+{
+  nlohmann::json summary;
+  summary["scene"] = scene.file;
+  summary["name"] = scene.name;
+  summary["version"] = DDAFEM_VERSION;
+  summary["status"] = failed ? "numerical_failure" : "completed";
+  if (failed)
+    summary["failure"] = failure;
+  summary["time_reached_s"] = time_reached;
+  summary["end_time_s"] = end_time;
+  summary["steps"] = n_steps;
+  summary["dt_s"] = dt;
+  return summary;
+}
+
+/// The wall time [s], the peak memory and the warnings of a run.
+void add_run_facts(nlohmann::json& summary, double wall_time,
+                   const std::vector<std::string>& warnings)
+{
+  summary["wall_time_s"] = wall_time;
+  summary["peak_memory_mb"] = run_support::peak_memory_mb();
+  summary["warnings"] = warnings;
+}
+
 nlohmann::json time_step_summary(const dda::TimeSettings& time, const StageTotals& stages,
                                  std::size_t n_attempts)
 {
@@ -143,17 +171,8 @@ nlohmann::json run_summary(const RunRecord& run)
 {
   const dda::TimeSettings& time = run.scene.model.time;
   const dda::System& system = run.system;
-  nlohmann::json summary;
-  summary["scene"] = run.scene.file;
-  summary["name"] = run.scene.name;
-  summary["version"] = DDAFEM_VERSION;
-  summary["status"] = run.stages.failed() ? "numerical_failure" : "completed";
-  if (run.stages.failed())
-    summary["failure"] = run.stages.failure.message;
-  summary["time_reached_s"] = system.time();
-  summary["end_time_s"] = time.end_time;
-  summary["steps"] = system.n_steps();
-  summary["dt_s"] = time.dt;
+  nlohmann::json summary = summary_head(run.scene, run.stages.failed(), run.stages.failure.message,
+                                        system.time(), time.end_time, system.n_steps(), time.dt);
   summary["time_step"] = time_step_summary(time, run.stages, system.get_timings().n_attempts);
   summary["stages"] = run.stages.records;
   if (run.scene.tunnel)
@@ -164,11 +183,9 @@ nlohmann::json run_summary(const RunRecord& run)
   add_blocks_summary(summary, system, run.outputs);
   if (run.coupled.ties)
     add_coupled_summary(summary, run.coupled);
-  summary["wall_time_s"] = run.wall_time;
-  summary["peak_memory_mb"] = run_support::peak_memory_mb();
+  add_run_facts(summary, run.wall_time, run.warnings);
   if (!run.keyblocks.empty())
     summary["keyblocks"] = run.keyblocks.summary(system);
-  summary["warnings"] = run.warnings;
   summary["outputs"] = {{"histories", "histories.h5"},
                         {"model", "model.pvd"},
                         {"blocks", "blocks.pvd"},
@@ -179,6 +196,41 @@ nlohmann::json run_summary(const RunRecord& run)
     summary["outputs"]["far_field"] = "far_field.pvd";
     summary["outputs"]["ties"] = "ties.pvd";
   }
+  return summary;
+}
+
+nlohmann::json far_field_run_summary(const FarFieldRunRecord& run)
+{
+  const fem::FarFieldDescription& d = *run.scene.far_field;
+  const fem::ElasticWaveModel& model = run.model;
+  const bool failed = run.failure.outcome != fem::StepOutcome::success;
+  const fem::Timings& t = model.timings();
+  const fem::EnergyBalance e = model.energy();
+  nlohmann::json summary = summary_head(run.scene, failed, run.failure.message, model.time(),
+                                        d.end_time, t.n_steps, d.dt);
+  summary["integrator"] = d.integrator == fem::Integrator::dda ? "dda" : "newmark_trapezoidal";
+  summary["solver"] = {{"name", model.solver_name()},
+                       {"factorizations", 1},
+                       {"linear_iterations", t.linear_iterations}};
+  summary["model"] = {{"far_field_cells", model.n_cells()},
+                      {"far_field_dofs", model.n_dofs()},
+                      {"element_size_m", model.element_size()},
+                      {"smallest_element_size_m", model.smallest_element_size()},
+                      {"degree", d.degree},
+                      {"blocks", 0}};
+  add_run_facts(summary, run.wall_time, run.warnings);
+  summary["timings_s"] = far_field_timings(t);
+  summary["timings_s"]["output"] = run.outputs.seconds();
+  summary["energy_J"] = {{"kinetic", e.kinetic},
+                         {"strain", e.strain},
+                         {"work_of_input", e.work_of_input},
+                         {"work_of_dashpots", e.work_of_dashpots},
+                         {"work_of_rayleigh", e.work_of_rayleigh},
+                         {"initial", e.initial},
+                         {"dissipated", e.dissipated}};
+  summary["outputs"] = {{"histories", "histories.h5"},
+                        {"far_field", "far_field.pvd"},
+                        {"snapshots", run.outputs.n_snapshots()}};
   return summary;
 }
 

@@ -1,6 +1,7 @@
-// summary.json of a run of blocks (alone or tied to a far field): status, time steps and their
-// cuts, stages, the model, the far field and the interface, contacts, timings, energies,
-// keyblocks and outputs (docs/outputs.md).
+// summary.json of a run (docs/outputs.md). Blocks (alone or tied to a far field): status, time
+// steps and their cuts, stages, the model, the far field and the interface, contacts, timings,
+// energies, keyblocks and outputs. A far field alone: status, steps, solver, model, timings,
+// energies and outputs.
 #pragma once
 
 #include "app/keyblocks.h"
@@ -47,5 +48,18 @@ struct RunRecord
 };
 
 nlohmann::json run_summary(const RunRecord& run);
+
+/// Everything summary.json says about a run of a far field alone that has ended.
+struct FarFieldRunRecord
+{
+  const Scene& scene;
+  const fem::ElasticWaveModel& model;
+  const fem::StepStatus& failure; ///< outcome success if the run completed
+  const FarFieldOutputs& outputs;
+  const std::vector<std::string>& warnings;
+  double wall_time = 0.0; ///< [s]
+};
+
+nlohmann::json far_field_run_summary(const FarFieldRunRecord& run);
 
 } // namespace ddafem

@@ -116,13 +116,6 @@ const char* name_of(TunnelTruncation truncation)
   return "hybrid";
 }
 
-double jointed_block_modulus(double youngs_modulus, double normal_stiffness, double area,
-                             double length)
-{
-  const double depth = area / length;
-  return 1.0 / (1.0 / youngs_modulus + length / (2.0 * normal_stiffness * depth));
-}
-
 double outer_block_modulus(double grid_modulus, double normal_stiffness)
 {
   // A square block of side s [m] (1 m thick) under a stress sigma [Pa] across two opposite

@@ -4,6 +4,7 @@
 // in_situ_stress, stages, monitors, time) that the scene reader then reads like any others.
 #pragma once
 
+#include "dda/jointed_block_modulus.h"
 #include "dda/model_description.h"
 #include "dda/rock_mass.h"
 
@@ -17,6 +18,7 @@
 
 namespace ddafem
 {
+using dda::jointed_block_modulus;
 using dda::Point;
 
 /// How the model around the near field (the blocks) is truncated.
@@ -136,13 +138,6 @@ struct TunnelPlan
   std::optional<dda::SettleCriterion> settle;
   std::vector<std::string> reasons; ///< one line per choice, for `check`
 };
-
-/// E_eff = 1 / (1/E + L / (2 p d)) [Pa] of a block of modulus E [Pa] and area [m^2] with a
-/// boundary of `length` L [m] on a line, d = area / L its depth behind it, and a joint of
-/// springs p [N/m] at both ends of that edge behind it: the block and its joint as one
-/// continuum normal to the line.
-double jointed_block_modulus(double youngs_modulus, double normal_stiffness, double area,
-                             double length);
 
 /// Young's modulus E_o [Pa] of square blocks that, bonded to their neighbours by two springs
 /// `normal_stiffness` p [N/m] per shared edge, make a grid of modulus `grid_modulus` E_grid

@@ -1,11 +1,12 @@
 #include "dda/vtu_writer.h"
 
+#include "common/vtk_collection.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <system_error>
 #include <type_traits>
@@ -36,33 +37,6 @@ void append_integer(std::string& out, Integer value)
   out.append(buffer, result.ptr);
 }
 
-/// Escapes the characters that cannot appear literally in an XML attribute value.
-std::string xml_escape(const std::string& text)
-{
-  std::string escaped;
-  for (const char c : text)
-  {
-    switch (c)
-    {
-    case '&':
-      escaped += "&amp;";
-      break;
-    case '<':
-      escaped += "&lt;";
-      break;
-    case '>':
-      escaped += "&gt;";
-      break;
-    case '"':
-      escaped += "&quot;";
-      break;
-    default:
-      escaped += c;
-    }
-  }
-  return escaped;
-}
-
 /// Von Mises equivalent stress [Pa] of a plane stress state (sxx, syy, sxy) [Pa]:
 /// sqrt(sxx^2 - sxx syy + syy^2 + 3 sxy^2).
 double von_mises(const Voigt& stress)
@@ -71,36 +45,6 @@ double von_mises(const Voigt& stress)
   const double syy = stress[1];
   const double sxy = stress[2];
   return std::sqrt(std::max(0.0, sxx * sxx - sxx * syy + syy * syy + 3.0 * sxy * sxy));
-}
-
-/// Writes `content` to PATH.tmp and renames it to `path`, so that readers never see a
-/// half-written file. Throws std::runtime_error naming the path on failure.
-void write_file_atomically(const fs::path& path, const std::string& content)
-{
-  fs::path temporary = path;
-  temporary += ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw std::runtime_error("cannot open '" + temporary.string() + "' for writing");
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.close();
-    if (!out)
-    {
-      std::error_code ignored;
-      fs::remove(temporary, ignored);
-      throw std::runtime_error("cannot write '" + temporary.string() + "'");
-    }
-  }
-  std::error_code error;
-  fs::rename(temporary, path, error);
-  if (error)
-  {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    throw std::runtime_error("cannot rename '" + temporary.string() + "' to '" + path.string() +
-                             "': " + error.message());
-  }
 }
 
 /// Opens a cell-data DataArray element.
@@ -366,19 +310,11 @@ std::string VtuSeriesWriter::write_text(double time, const std::string& text)
 
 void VtuSeriesWriter::write_pvd() const
 {
-  std::string out = "<?xml version=\"1.0\"?>\n"
-                    "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-                    "  <Collection>\n";
+  std::vector<CollectionDataSet> data_sets;
   for (const auto& [time, name] : entries)
-  {
-    out += "    <DataSet timestep=\"";
-    append_number(out, time);
-    out += "\" group=\"\" part=\"0\" file=\"" + xml_escape(name) + "\"/>\n";
-  }
-  out += "  </Collection>\n"
-         "</VTKFile>\n";
+    data_sets.push_back({time, 0, name});
   const fs::path dir = directory.empty() ? fs::path(".") : fs::path(directory);
-  write_file_atomically(dir / (basename + ".pvd"), out);
+  write_collection(dir / (basename + ".pvd"), data_sets);
 }
 
 } // namespace ddafem::dda

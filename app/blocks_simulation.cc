@@ -1,0 +1,213 @@
+// A run of blocks, alone or tied to a far field, behind the driver's Simulation interface: the
+// scene's stages (or one dynamic stage to the end time), each static or dynamic, with the
+// keyblocks followed and the outputs written as the steps go.
+#include "app/keyblocks.h"
+#include "app/run_outputs.h"
+#include "app/run_summary.h"
+#include "app/run_support.h"
+#include "app/run_warnings.h"
+#include "app/simulation.h"
+#include "app/stage_records.h"
+
+#include "common/input_error.h"
+#include "coupling/far_field_ties.h"
+#include "coupling/interface_impedance.h"
+#include "dda/dynamic_stage.h"
+#include "dda/static_stage.h"
+#include "dda/system.h"
+#include "dda/time_step_advice.h"
+#include "dda/time_stepper.h"
+#include "fem/elastic_wave_model.h"
+
+#include <optional>
+
+namespace ddafem
+{
+namespace
+{
+using run_support::format;
+
+/// The scene's stages, or one dynamic stage to the end time if it has none.
+std::vector<dda::Stage> stage_plan(const dda::ModelDescription& model)
+{
+  std::vector<dda::Stage> plan = model.stages;
+  if (plan.empty())
+  {
+    dda::Stage only;
+    only.name = "dynamic";
+    only.end_time = model.time.end_time;
+    plan.push_back(only);
+  }
+  return plan;
+}
+
+class BlocksSimulation : public Simulation
+{
+public:
+  explicit BlocksSimulation(const Scene& scene);
+
+  std::vector<std::string> collect_warnings(bool allow_unstable) const override;
+  void open_outputs(const std::filesystem::path& dir) override
+  {
+    outputs.emplace(dir, scene.file, system, coupled_parts(), keyblocks,
+                    scene.output.vtu_compression);
+  }
+  std::size_t n_stages() const override { return plan.size(); }
+  bool run_stage(std::size_t k, const std::function<void()>& report) override;
+  void close_outputs() override;
+  std::size_t n_steps() const override { return system.n_steps(); }
+  double time() const override { return system.time(); }
+  double end_time() const override { return scene.model.time.end_time; }
+  nlohmann::json summary(const std::vector<std::string>& warnings, double wall_time) const override
+  {
+    return run_summary(
+        {scene, system, coupled_parts(), stages, *outputs, keyblocks, warnings, wall_time});
+  }
+  RunEnd end() const override;
+
+private:
+  void run_static_stage(const dda::Stage& stage, const std::function<void()>& report);
+  void run_dynamic_stage(const dda::Stage& stage, const std::function<void()>& report);
+  CoupledParts coupled_parts() const
+  {
+    return {far_field.get(), ties.get(), scene.far_field ? &*scene.far_field : nullptr};
+  }
+
+  const Scene& scene;
+  const std::vector<dda::Stage> plan;
+  dda::System system;
+  std::unique_ptr<fem::ElasticWaveModel> far_field;
+  std::unique_ptr<coupling::FarFieldTies> ties;
+  KeyblockRecorder keyblocks;
+  std::optional<RunOutputs> outputs;
+  StageTotals stages;
+  LastStep last_step;
+  bool initial_written = false;
+  std::optional<std::vector<dda::Vector2>> fall_reference; ///< per block [m]
+};
+
+BlocksSimulation::BlocksSimulation(const Scene& scene_)
+    : scene(scene_), plan(stage_plan(scene.model)), system(scene.model), keyblocks(scene.model)
+{
+  if (scene.coupled())
+  {
+    far_field = std::make_unique<fem::ElasticWaveModel>(*scene.far_field);
+    ties = std::make_unique<coupling::FarFieldTies>(system, *far_field, *scene.interface);
+  }
+  stages.smallest_dt = scene.model.time.dt;
+}
+
+std::vector<std::string> BlocksSimulation::collect_warnings(bool allow_unstable) const
+{
+  const dda::TimeSettings& time = scene.model.time;
+  std::vector<std::string> found;
+  for (const std::string& w : unstable_boundary_messages(system, time.dt))
+  {
+    if (!allow_unstable)
+      throw InputError(w + ": expected a smaller time.dt, or --allow-unstable to watch it fail");
+    found.push_back(w + " (run with --allow-unstable)");
+  }
+  if (ties)
+    if (const auto z = coupling::interface_impedance(scene.model, system, *ties,
+                                                     scene.far_field->youngs_modulus);
+        z && z->reflection > 0.01)
+      found.push_back(impedance_warning(*z));
+  const dda::TimeStepAdvice advice = dda::suggest_time_step(scene.model);
+  if (time.dt > advice.dt_max)
+    found.push_back("dt = " + format(time.dt) + " s exceeds the suggested " +
+                    format(advice.dt_max, 3) + " s (" + time_step_reason(advice) + ")");
+  if (scene.rock_mass && !scene.rock_mass->slivers.empty())
+    found.push_back("rock_mass: " + std::to_string(scene.rock_mass->slivers.size()) +
+                    " blocks below the sliver threshold kept (`check` lists them)");
+  return found;
+}
+
+bool BlocksSimulation::run_stage(std::size_t k, const std::function<void()>& report)
+{
+  const dda::Stage& stage = plan[k];
+  if (stage.mode == dda::StageMode::static_equilibrium)
+    run_static_stage(stage, report);
+  else
+    run_dynamic_stage(stage, report);
+  return !stages.failed();
+}
+
+void BlocksSimulation::run_static_stage(const dda::Stage& stage,
+                                        const std::function<void()>& report)
+{
+  const dda::StaticStageResult result =
+      dda::run_static_stage(system, stage, scene.model.time, report);
+  stages.add(result);
+  for (const dda::ReleasedBlock& r : result.released)
+  {
+    keyblocks.mark_released(r.block);
+    if (stage.release == dda::ReleaseAction::remove)
+      keyblocks.mark_removed(r.block);
+  }
+  stages.records.push_back(static_stage_record(stage, result, system, keyblocks));
+  stages.failure = static_stage_failure(stage, result, system);
+}
+
+void BlocksSimulation::run_dynamic_stage(const dda::Stage& stage,
+                                         const std::function<void()>& report)
+{
+  system.begin_stage(dda::StageMode::dynamic);
+  if (!fall_reference)
+  {
+    // Falls in settle stages are measured from the first dynamic stage's start.
+    fall_reference.emplace();
+    for (const dda::Block& b : system.get_blocks())
+      fall_reference->push_back(b.displacement());
+  }
+  if (!initial_written)
+  {
+    outputs->write_state(true, last_step);
+    initial_written = true;
+  }
+  const dda::TimeSettings& time = scene.model.time;
+  // Steps of this stage as the user sets dt: with bathe one step is two System half steps.
+  std::size_t stage_steps = 0;
+  double next_snapshot = system.time() + scene.output.interval;
+  const dda::DynamicStageResult result = dda::run_dynamic_stage(
+      system, stage, time, *fall_reference,
+      [&](const dda::TimeStepper& stepper, const dda::StepStatus& status, bool last)
+      {
+        last_step = {stepper.last_dt(), status.n_open_close_iterations, stepper.n_last_step_cuts()};
+        const bool snapshot = run_support::snapshot_due(system.time(), scene.output.interval,
+                                                        time.dt, next_snapshot) ||
+                              last;
+        ++stage_steps;
+        if (stage_steps % scene.output.history_every == 0 || last || snapshot)
+          outputs->write_state(snapshot, last_step);
+        report();
+      });
+  stages.add(result);
+  for (const auto& [block, when] : result.removed)
+    keyblocks.mark_removed(block);
+  stages.records.push_back(dynamic_stage_record(stage, result, system, keyblocks));
+  stages.failure = result.failure;
+}
+
+void BlocksSimulation::close_outputs()
+{
+  // Keep the state reached readable (a static-only analysis writes its equilibrium here).
+  if (stages.failed() || !initial_written)
+    outputs->write_state(true, last_step);
+  outputs->flush();
+}
+
+RunEnd BlocksSimulation::end() const
+{
+  return {stages.failed() ? stages.failure.message : std::string(),
+          std::to_string(system.n_steps()) +
+              (scene.model.time.integrator == dda::Integrator::bathe ? " half steps" : " steps"),
+          system.time(), "model.pvd"};
+}
+} // namespace
+
+std::unique_ptr<Simulation> make_blocks_simulation(const Scene& scene)
+{
+  return std::make_unique<BlocksSimulation>(scene);
+}
+
+} // namespace ddafem

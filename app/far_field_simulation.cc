@@ -1,0 +1,93 @@
+// A run of a far field alone (deal.II continuum, issue 5) behind the driver's Simulation
+// interface: one stage of the scene's steps of dt to its end time.
+#include "app/run_outputs.h"
+#include "app/run_summary.h"
+#include "app/run_support.h"
+#include "app/simulation.h"
+
+#include "fem/elastic_wave_model.h"
+
+#include <cmath>
+#include <optional>
+
+namespace ddafem
+{
+namespace
+{
+class FarFieldSimulation : public Simulation
+{
+public:
+  explicit FarFieldSimulation(const Scene& scene_)
+      : scene(scene_), description(*scene.far_field), model(description)
+  {
+  }
+
+  /// A far field alone has nothing to warn about.
+  std::vector<std::string> collect_warnings(bool) const override { return {}; }
+  /// Opens the outputs and writes the initial state.
+  void open_outputs(const std::filesystem::path& dir) override
+  {
+    outputs.emplace(dir, scene.file, model, description, scene.output.vtu_compression);
+    outputs->write_state(true);
+  }
+  std::size_t n_stages() const override { return 1; }
+  bool run_stage(std::size_t k, const std::function<void()>& report) override;
+  void close_outputs() override
+  {
+    if (failed())
+      outputs->write_state(true);
+    outputs->flush();
+  }
+  std::size_t n_steps() const override { return model.timings().n_steps; }
+  double time() const override { return model.time(); }
+  double end_time() const override { return description.end_time; }
+  nlohmann::json summary(const std::vector<std::string>& warnings, double wall_time) const override
+  {
+    return far_field_run_summary({scene, model, failure, *outputs, warnings, wall_time});
+  }
+  RunEnd end() const override
+  {
+    return {failed() ? failure.message : std::string(),
+            std::to_string(model.timings().n_steps) + " steps", model.time(), "far_field.pvd"};
+  }
+
+private:
+  bool failed() const { return failure.outcome != fem::StepOutcome::success; }
+
+  const Scene& scene;
+  const fem::FarFieldDescription& description;
+  fem::ElasticWaveModel model;
+  std::optional<FarFieldOutputs> outputs;
+  fem::StepStatus failure; ///< outcome success unless a step failed
+};
+
+bool FarFieldSimulation::run_stage(std::size_t, const std::function<void()>& report)
+{
+  const double dt = description.dt;
+  const auto n_steps = static_cast<std::size_t>(std::llround(description.end_time / dt));
+  double next_snapshot = scene.output.interval;
+  for (std::size_t step = 1; step <= n_steps; ++step)
+  {
+    const fem::StepStatus status = model.advance(dt);
+    if (status.outcome != fem::StepOutcome::success)
+    {
+      failure = status;
+      return false;
+    }
+    const bool last = step == n_steps;
+    const bool snapshot =
+        run_support::snapshot_due(model.time(), scene.output.interval, dt, next_snapshot) || last;
+    if (step % scene.output.history_every == 0 || snapshot)
+      outputs->write_state(snapshot);
+    report();
+  }
+  return true;
+}
+} // namespace
+
+std::unique_ptr<Simulation> make_far_field_simulation(const Scene& scene)
+{
+  return std::make_unique<FarFieldSimulation>(scene);
+}
+
+} // namespace ddafem

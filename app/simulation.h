@@ -1,0 +1,62 @@
+// What the run driver (app/run.cc) needs of a model: blocks (alone or tied to a far field) and a
+// far field alone are two simulations behind one interface, so that every run reads
+// `setup(); for each stage run_stage(); write_summary();`.
+#pragma once
+
+#include "app/scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ddafem
+{
+/// How a run ended, for its last lines on the log.
+struct RunEnd
+{
+  std::string failure;   ///< the numerical failure that stopped the run; empty if it completed
+  std::string steps;     ///< e.g. "300 steps" or "600 half steps"
+  double time = 0.0;     ///< simulated time reached [s]
+  std::string view_file; ///< the PVD file that opens the results in ParaView
+};
+
+/// A model the driver runs stage by stage. Constructing one builds the models: input errors
+/// surface there, before anything is written.
+class Simulation
+{
+public:
+  virtual ~Simulation() = default;
+
+  /// The run's warnings; throws InputError for what `run` refuses (a boundary that is an energy
+  /// source at the scene's dt, unless `allow_unstable`).
+  virtual std::vector<std::string> collect_warnings(bool allow_unstable) const = 0;
+  /// Opens histories.h5 and the snapshot series in `dir`.
+  virtual void open_outputs(const std::filesystem::path& dir) = 0;
+
+  virtual std::size_t n_stages() const = 0;
+  /// Runs stage k, calling `report` as steps are taken; false if it failed (the run stops).
+  virtual bool run_stage(std::size_t k, const std::function<void()>& report) = 0;
+  /// Writes the state reached where it is not yet a snapshot and flushes the outputs.
+  virtual void close_outputs() = 0;
+
+  virtual std::size_t n_steps() const = 0; ///< steps taken so far
+  virtual double time() const = 0;         ///< simulated time reached [s]
+  virtual double end_time() const = 0;     ///< the scene's end time [s]
+
+  /// summary.json of the ended run, with its `warnings` and wall time [s].
+  virtual nlohmann::json summary(const std::vector<std::string>& warnings,
+                                 double wall_time) const = 0;
+  virtual RunEnd end() const = 0;
+};
+
+/// Blocks alone or tied to a far field (app/blocks_simulation.cc).
+std::unique_ptr<Simulation> make_blocks_simulation(const Scene& scene);
+/// A far field alone (app/far_field_simulation.cc).
+std::unique_ptr<Simulation> make_far_field_simulation(const Scene& scene);
+
+} // namespace ddafem
