@@ -2,23 +2,13 @@
 
 #include "app/schema_sections.h"
 
+#include "common/format.h"
+
 #include <cassert>
-#include <sstream>
 #include <utility>
 
 namespace ddafem::schema
 {
-namespace
-{
-std::string format_number(double v)
-{
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-} // namespace
-
 std::string describe(ValueType type)
 {
   switch (type)
