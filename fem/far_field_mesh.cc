@@ -563,44 +563,6 @@ types::boundary_id boundary_id_of(const BoundaryPart part)
   return untagged_boundary_id;
 }
 
-const char* name_of(const BoundaryPart part)
-{
-  switch (part)
-  {
-  case BoundaryPart::left:
-    return "left";
-  case BoundaryPart::right:
-    return "right";
-  case BoundaryPart::bottom:
-    return "bottom";
-  case BoundaryPart::top:
-    return "top";
-  case BoundaryPart::hole:
-    return "hole";
-  }
-  return "?";
-}
-
-const char* name_of(const BoundaryKind kind)
-{
-  switch (kind)
-  {
-  case BoundaryKind::free:
-    return "free";
-  case BoundaryKind::fixed:
-    return "fixed";
-  case BoundaryKind::lysmer:
-    return "lysmer";
-  case BoundaryKind::input:
-    return "input";
-  case BoundaryKind::roller:
-    return "roller";
-  case BoundaryKind::free_field:
-    return "free_field";
-  }
-  return "?";
-}
-
 double distance_from_hole(const HoleDescription& hole, const double x, const double y)
 {
   if (hole.shape == HoleShape::none)
