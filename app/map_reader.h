@@ -5,6 +5,7 @@
 #include "app/scene.h"
 #include "app/scene_schema.h"
 #include "app/scene_text.h"
+#include "common/enum_names.h"
 #include "common/input_error.h"
 
 #include <yaml-cpp/yaml.h>
@@ -98,6 +99,14 @@ public:
   std::string string(const std::string& name) const;
 
   std::string choice(const std::string& name) const;
+
+  /// The enumerator a choice names: the key's choices are names of E's table
+  /// (common/enum_names.h), so choice() has already refused any other name.
+  template <typename E>
+  E choice_of(const std::string& name) const
+  {
+    return *value_of<E>(choice(name));
+  }
 
   Vector2 vector2(const std::string& name) const;
 

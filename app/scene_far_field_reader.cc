@@ -13,15 +13,6 @@ namespace ddafem::scene_reading
 {
 namespace
 {
-fem::BoundaryPart part_of(const std::string& name)
-{
-  return name == "bottom"  ? fem::BoundaryPart::bottom
-         : name == "right" ? fem::BoundaryPart::right
-         : name == "top"   ? fem::BoundaryPart::top
-         : name == "left"  ? fem::BoundaryPart::left
-                           : fem::BoundaryPart::hole;
-}
-
 /// `far_field.rayleigh`: {alpha, beta} or {ratio, frequencies}.
 fem::RayleighDamping read_rayleigh(const MapReader& r)
 {
@@ -70,7 +61,7 @@ fem::MeshFile read_mesh_file(const MapReader& f)
     throw r.error("file", "cannot open mesh file '" + mesh.file + "': expected a Gmsh .msh file");
   const MapReader parts = r.section_reader("parts");
   std::map<long long, std::string> seen;
-  for (const char* part : {"bottom", "right", "top", "left", "hole"})
+  for (const auto& [value, part] : enum_names(fem::BoundaryPart{}))
     if (parts.has(part))
     {
       const long long tag = parts.integer(part);
@@ -78,7 +69,7 @@ fem::MeshFile read_mesh_file(const MapReader& f)
       if (!inserted)
         throw parts.error(part, "the tag is also given to `" + it->second +
                                     "`: expected one physical tag per part");
-      mesh.parts[part_of(part)] = static_cast<unsigned int>(tag);
+      mesh.parts[value] = static_cast<unsigned int>(tag);
     }
   return mesh;
 }
@@ -102,9 +93,7 @@ fem::HoleDescription read_hole(const MapReader& r, const fem::FarFieldDescriptio
         throw r.error(name, "expected only the keys of shape " + shape + " (" +
                                 join(keys.at(shape), ", ") + ")");
     }
-  hole.shape = shape == "rectangle" ? fem::HoleShape::rectangle
-               : shape == "polygon" ? fem::HoleShape::polygon
-                                    : fem::HoleShape::circle;
+  hole.shape = *value_of<fem::HoleShape>(shape);
   std::array<double, 4> box{}; // x0, x1, y0, y1 of the hole
   if (hole.shape == fem::HoleShape::rectangle)
   {
@@ -159,8 +148,7 @@ fem::StaticStage read_static_stage(const MapReader& r, const fem::FarFieldDescri
   s.stress = {stress[0], stress[1], stress[2]};
   s.stress_gradient = {gradient[0], gradient[1], gradient[2]};
   s.reference_y = r.has("reference_y") ? r.number("reference_y") : d.upper[1];
-  s.support =
-      r.choice("support") == "roller" ? fem::StaticSupport::roller : fem::StaticSupport::fixed;
+  s.support = r.choice_of<fem::StaticSupport>("support");
   return s;
 }
 
@@ -173,18 +161,12 @@ fem::BoundaryCondition read_far_field_boundary(const MapReader& r,
   const std::string part = r.choice("part");
   if (!parts.insert(part).second)
     throw r.error("part", "side '" + part + "' is listed twice: expected each side once");
-  bc.part = part_of(part);
+  bc.part = *value_of<fem::BoundaryPart>(part);
   if (bc.part == fem::BoundaryPart::hole && d.hole.shape == fem::HoleShape::none &&
       d.mesh_file.parts.count(fem::BoundaryPart::hole) == 0)
     throw r.error("part", "the far field has no hole: expected a `far_field.hole` section or "
                           "a `hole` tag in `far_field.mesh.parts`");
-  const std::string type = r.choice("type");
-  bc.kind = type == "fixed"        ? fem::BoundaryKind::fixed
-            : type == "lysmer"     ? fem::BoundaryKind::lysmer
-            : type == "input"      ? fem::BoundaryKind::input
-            : type == "roller"     ? fem::BoundaryKind::roller
-            : type == "free_field" ? fem::BoundaryKind::free_field
-                                   : fem::BoundaryKind::free;
+  bc.kind = r.choice_of<fem::BoundaryKind>("type");
   bc.a = r.number("a");
   bc.b = r.number("b");
   if (r.has("springs"))
@@ -237,7 +219,7 @@ coupling::InterfaceDescription read_interface(const MapReader& r,
                                               const std::vector<std::string>& joint_names)
 {
   coupling::InterfaceDescription d;
-  d.part = part_of(r.choice("part"));
+  d.part = r.choice_of<fem::BoundaryPart>("part");
   // Springs from the named joint material (and its strength), else from joints.default.
   const dda::JointMaterial* source = nullptr;
   if (r.has("joint_material"))
@@ -311,7 +293,7 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
     throw f.error("element_size", "expected element_size > 0, or max_frequency > 0 to choose it");
   if (f.has("hole"))
     d.hole = read_hole(f.section_reader("hole"), d);
-  d.solver = f.choice("solver") == "cg" ? fem::LinearSolver::cg : fem::LinearSolver::direct;
+  d.solver = f.choice_of<fem::LinearSolver>("solver");
   if (f.has("static_stage"))
     d.static_stage = read_static_stage(f.section_reader("static_stage"), d);
   if (f.has("rayleigh"))
@@ -328,8 +310,7 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
   if (f.has("incident"))
   {
     const MapReader inc = f.section_reader("incident");
-    d.incident.type =
-        inc.choice("type") == "p" ? fem::IncidentWave::Type::p : fem::IncidentWave::Type::sv;
+    d.incident.type = inc.choice_of<WaveType>("type");
     d.incident.velocity = read_time_function(inc, "velocity");
   }
   return d;
@@ -353,10 +334,10 @@ void complete_far_field(const MapReader& top, const std::vector<std::string>& jo
     scene.far_field->dt = model.time.dt;
     scene.far_field->end_time = model.time.end_time;
     const MapReader f = top.section_reader("far_field");
-    const bool dda_scheme = f.has("integrator") ? f.choice("integrator") == "dda"
-                                                : model.time.integrator == dda::Integrator::dda;
-    scene.far_field->integrator =
-        dda_scheme ? fem::Integrator::dda : fem::Integrator::newmark_trapezoidal;
+    scene.far_field->integrator = f.has("integrator") ? f.choice_of<fem::Integrator>("integrator")
+                                  : model.time.integrator == dda::Integrator::dda
+                                      ? fem::Integrator::dda
+                                      : fem::Integrator::newmark_trapezoidal;
   }
   if (scene.coupled())
   {

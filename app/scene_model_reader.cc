@@ -161,16 +161,15 @@ dda::Stage read_stage(const MapReader& r, const dda::ModelDescription& model)
                               "stage last");
   dda::Stage stage;
   stage.name = r.string("name");
-  stage.mode =
-      r.choice("mode") == "static" ? dda::StageMode::static_equilibrium : dda::StageMode::dynamic;
-  if (r.choice("mode") == "settle")
+  const std::string mode = r.choice("mode");
+  stage.mode = value_of<dda::StageMode>(mode).value_or(dda::StageMode::dynamic);
+  if (mode == dda::settle_mode_name)
     stage.settle = read_settle_criterion(r);
   stage.dt = r.has("dt") ? r.number("dt") : model.time.dt;
   stage.end_time = r.has("end_time") ? r.number("end_time") : model.time.end_time;
   stage.max_steps = static_cast<std::size_t>(r.integer("max_steps"));
   stage.tolerance = r.number("tolerance");
-  stage.release =
-      r.choice("release") == "remove" ? dda::ReleaseAction::remove : dda::ReleaseAction::fall;
+  stage.release = r.choice_of<dda::ReleaseAction>("release");
   if (stage.mode == dda::StageMode::dynamic && !stage.settle)
   {
     if (r.has("dt"))
@@ -213,11 +212,8 @@ TimeFunction read_time_function(const MapReader& parent, const std::string& name
 void read_analysis(const MapReader& top, dda::ModelDescription& model)
 {
   const MapReader analysis = top.section_reader("analysis");
-  model.plane_mode =
-      analysis.choice("plane") == "strain" ? dda::PlaneMode::strain : dda::PlaneMode::stress;
-  model.geometry = analysis.choice("geometry") == "small_displacement"
-                       ? dda::GeometryMode::small_displacement
-                       : dda::GeometryMode::updated;
+  model.plane_mode = analysis.choice_of<PlaneMode>("plane");
+  model.geometry = analysis.choice_of<dda::GeometryMode>("geometry");
 }
 
 SceneNames read_materials(const MapReader& top, dda::ModelDescription& model)
@@ -276,13 +272,8 @@ dda::BoundaryDescription read_boundary(const MapReader& r, const dda::ModelDescr
 {
   dda::BoundaryDescription b;
   b.origin = r.key_path();
-  const std::string type = r.choice("type");
-  b.type = type == "vb1"       ? dda::BoundaryType::vb1
-           : type == "vb2"     ? dda::BoundaryType::vb2
-           : type == "dashpot" ? dda::BoundaryType::dashpot
-                               : dda::BoundaryType::free;
-  b.impedance = r.choice("impedance") == "effective" ? dda::ImpedanceKind::effective
-                                                     : dda::ImpedanceKind::textbook;
+  b.type = r.choice_of<dda::BoundaryType>("type");
+  b.impedance = r.choice_of<dda::ImpedanceKind>("impedance");
   b.a_n = r.number("a_n");
   b.a_t = r.number("a_t");
   b.outer = r.boolean("outer");
@@ -293,8 +284,7 @@ dda::BoundaryDescription read_boundary(const MapReader& r, const dda::ModelDescr
                              "boundary: expected `type: vb1`, `vb2` or `dashpot`");
     const MapReader in = r.section_reader("input");
     b.has_input = true;
-    b.input.type =
-        in.choice("type") == "p" ? dda::BoundaryInput::Type::p : dda::BoundaryInput::Type::sv;
+    b.input.type = in.choice_of<WaveType>("type");
     b.input.velocity = read_time_function(in, "velocity");
   }
   check_boundary_selector(r, b.outer);
@@ -324,13 +314,9 @@ void read_time(const MapReader& top, dda::TimeSettings& time_settings)
   if (time_settings.end_time < time_settings.dt)
     throw time.error("end_time",
                      "expected end_time >= dt = " + format_number(time_settings.dt) + " s");
-  for (const dda::Integrator i : {dda::Integrator::generalized_alpha, dda::Integrator::bathe,
-                                  dda::Integrator::dda, dda::Integrator::newmark_trapezoidal})
-    if (time.choice("integrator") == dda::integrator_name(i))
-      time_settings.integrator = i;
+  time_settings.integrator = time.choice_of<dda::Integrator>("integrator");
   time_settings.spectral_radius = time.number("spectral_radius");
-  time_settings.control =
-      time.choice("control") == "fixed" ? dda::TimeControl::fixed : dda::TimeControl::adaptive;
+  time_settings.control = time.choice_of<dda::TimeControl>("control");
   if (time.has("dt_min"))
   {
     time_settings.dt_min = time.number("dt_min");
@@ -366,11 +352,7 @@ void read_stages(const MapReader& top, dda::ModelDescription& model)
 
 dda::SolverKind read_solver(const MapReader& top)
 {
-  const MapReader solver = top.section_reader("solver");
-  const std::string solver_type = solver.choice("type");
-  return solver_type == "amesos_klu"   ? dda::SolverKind::amesos_klu
-         : solver_type == "eigen_ldlt" ? dda::SolverKind::eigen_ldlt
-                                       : dda::SolverKind::block_ldlt;
+  return top.section_reader("solver").choice_of<dda::SolverKind>("type");
 }
 
 OutputSettings read_output(const MapReader& top)
@@ -382,11 +364,7 @@ OutputSettings read_output(const MapReader& top)
     throw output.error("directory", "expected a non-empty directory name");
   settings.interval = output.number("interval");
   settings.history_every = static_cast<std::size_t>(output.integer("history_every"));
-  const std::string compression = output.choice("vtu_compression");
-  settings.vtu_compression = compression == "none" ? fem::VtuCompression::none
-                             : compression == "best_compression"
-                                 ? fem::VtuCompression::best_compression
-                                 : fem::VtuCompression::best_speed;
+  settings.vtu_compression = output.choice_of<fem::VtuCompression>("vtu_compression");
   return settings;
 }
 

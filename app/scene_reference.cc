@@ -36,11 +36,11 @@ std::string type_cell(const Key& k)
   case ValueType::section:
   case ValueType::section_map:
   case ValueType::section_list:
-    return schema::describe(k.type) + ", see `" + k.section + "`";
+    return std::string(name_of(k.type)) + ", see `" + k.section + "`";
   case ValueType::time_function:
     return "time function, see below";
   default:
-    return schema::describe(k.type);
+    return name_of(k.type);
   }
 }
 

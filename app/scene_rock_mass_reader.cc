@@ -58,8 +58,7 @@ dda::JointSet read_joint_set(const MapReader& r)
   const MapReader p = r.section_reader("perturbation");
   set.perturbation.spacing = p.number("spacing");
   set.perturbation.position = p.number("position");
-  set.perturbation.distribution =
-      p.choice("distribution") == "normal" ? dda::Distribution::normal : dda::Distribution::uniform;
+  set.perturbation.distribution = p.choice_of<dda::Distribution>("distribution");
   return set;
 }
 
@@ -148,8 +147,7 @@ RockMassReport read_rock_mass(const MapReader& r, const SceneNames& names,
   if (r.has("min_block_area"))
     d.slivers.min_area = r.number("min_block_area");
   d.slivers.min_inscribed_radius = r.number("min_inscribed_radius");
-  d.slivers.action =
-      r.choice("slivers") == "report" ? dda::SliverAction::report : dda::SliverAction::merge;
+  d.slivers.action = r.choice_of<dda::SliverAction>("slivers");
 
   dda::RockMassResult result;
   try

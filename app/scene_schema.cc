@@ -2,63 +2,13 @@
 
 #include "app/schema_sections.h"
 
+#include "common/format.h"
+
 #include <cassert>
-#include <sstream>
 #include <utility>
 
 namespace ddafem::schema
 {
-namespace
-{
-std::string format_number(double v)
-{
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-} // namespace
-
-std::string describe(ValueType type)
-{
-  switch (type)
-  {
-  case ValueType::string:
-    return "string";
-  case ValueType::number:
-    return "number";
-  case ValueType::integer:
-    return "integer";
-  case ValueType::boolean:
-    return "boolean";
-  case ValueType::choice:
-    return "choice";
-  case ValueType::vector2:
-    return "[x, y]";
-  case ValueType::integer_pair:
-    return "[integer, integer]";
-  case ValueType::integer_pair_list:
-    return "list of [integer, integer]";
-  case ValueType::name_pair:
-    return "[name, name]";
-  case ValueType::voigt:
-    return "[xx, yy, xy]";
-  case ValueType::point_list:
-    return "list of [x, y]";
-  case ValueType::table:
-    return "list of [t, value]";
-  case ValueType::section:
-    return "map";
-  case ValueType::section_map:
-    return "map of named maps";
-  case ValueType::section_list:
-    return "list of maps";
-  case ValueType::time_function:
-    return "time function";
-  }
-  return "";
-}
-
 bool Range::contains(double value) const
 {
   if (min && (min_inclusive ? value < *min : value <= *min))

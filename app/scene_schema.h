@@ -3,6 +3,9 @@
 // rendered from it, so the two cannot drift apart.
 #pragma once
 
+#include "common/enum_names.h"
+
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,8 +33,26 @@ enum class ValueType
   time_function      ///< a map whose `type` selects one of the time-function sections
 };
 
-/// Name of a value type as shown in the reference ("number", "[x, y]", ...).
-std::string describe(ValueType type);
+/// Name of a value type as the reference and messages show it ("number", "[x, y]", ...).
+constexpr std::array<EnumName<ValueType>, 16> enum_names(ValueType)
+{
+  return {{{ValueType::string, "string"},
+           {ValueType::number, "number"},
+           {ValueType::integer, "integer"},
+           {ValueType::boolean, "boolean"},
+           {ValueType::choice, "choice"},
+           {ValueType::vector2, "[x, y]"},
+           {ValueType::integer_pair, "[integer, integer]"},
+           {ValueType::integer_pair_list, "list of [integer, integer]"},
+           {ValueType::name_pair, "[name, name]"},
+           {ValueType::voigt, "[xx, yy, xy]"},
+           {ValueType::point_list, "list of [x, y]"},
+           {ValueType::table, "list of [t, value]"},
+           {ValueType::section, "map"},
+           {ValueType::section_map, "map of named maps"},
+           {ValueType::section_list, "list of maps"},
+           {ValueType::time_function, "time function"}}};
+}
 
 /// Allowed interval of a number (or of each component of a vector of numbers).
 struct Range

@@ -4,7 +4,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <sstream>
 #include <utility>
 
 namespace ddafem::scene_reading
@@ -58,13 +57,6 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
   for (std::size_t i = 0; i < items.size(); ++i)
     s += (i == 0 ? "" : separator) + items[i];
   return s;
-}
-
-std::string format_number(double v)
-{
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 std::string format_point(const dda::Point& p)

@@ -2,6 +2,7 @@
 // nearest name for "did you mean", YAML nodes in messages.
 #pragma once
 
+#include "common/format.h"
 #include "dda/types.h"
 
 #include <yaml-cpp/yaml.h>
@@ -18,8 +19,8 @@ std::vector<std::string> split(const std::string& s, char separator);
 std::string join(const std::vector<std::string>& items, const std::string& separator);
 /// "'a', 'b'".
 std::string quoted_list(const std::vector<std::string>& names);
-std::string format_number(double v);
-/// "[x, y]".
+/// "[x, y]": a point as a scene spells it (a YAML flow sequence), where common/format.h's
+/// format_point writes "(x, y)" for messages.
 std::string format_point(const dda::Point& p);
 
 /// "; did you mean 'X'?" for the candidate closest to `name`, if it is close; else "".

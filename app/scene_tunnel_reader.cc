@@ -59,7 +59,8 @@ void read_tunnel_rock(const MapReader& r, const YAML::Node& root, const Context&
     t.gravity = -g.y();
   }
   const YAML::Node plane = nested(root, {"analysis", "plane"});
-  if (plane.IsDefined() && plane.IsScalar() && plane.Scalar() != "strain")
+  if (plane.IsDefined() && plane.IsScalar() &&
+      value_of<PlaneMode>(plane.Scalar()) != PlaneMode::strain)
     throw context.locator.error(plane, "analysis.plane", plane.Scalar(),
                                 "expected strain (or nothing) with a tunnel: a section through "
                                 "a long tunnel is in plane strain");
@@ -69,7 +70,7 @@ void read_tunnel_rock(const MapReader& r, const YAML::Node& root, const Context&
 void read_tunnel_wave(const MapReader& r, const YAML::Node& tunnel_node, TunnelDescription& t)
 {
   const MapReader wave = r.section_reader("wave");
-  t.wave_type = wave.choice("type");
+  t.wave_type = wave.choice_of<WaveType>("type");
   const TimeFunction velocity = read_time_function(wave, "velocity");
   const bool pulse = nested(tunnel_node, {"wave", "velocity", "type"}).Scalar() == "sine_pulse";
   if (wave.has("frequency"))
@@ -98,12 +99,7 @@ void read_tunnel_domain(const MapReader& r, TunnelDescription& t)
       throw near.error("upper", "expected upper > lower in both x and y");
     t.near_field = std::array<Point, 2>{lower, upper};
   }
-  const std::string truncation = r.choice("truncation");
-  t.truncation = truncation == "vb1"         ? TunnelTruncation::vb1
-                 : truncation == "dashpot"   ? TunnelTruncation::dashpot
-                 : truncation == "reference" ? TunnelTruncation::reference
-                 : truncation == "blocks"    ? TunnelTruncation::blocks
-                                             : TunnelTruncation::hybrid;
+  t.truncation = r.choice_of<TunnelTruncation>("truncation");
   if (r.has("margin"))
     t.margin = r.number("margin");
   if (r.has("reference_margin"))
@@ -124,7 +120,7 @@ void read_tunnel_stages(const MapReader& r, TunnelDescription& t)
     t.static_dt = stage.number("dt");
   t.static_tolerance = stage.number("tolerance");
   t.static_max_steps = stage.integer("max_steps");
-  t.static_release = stage.choice("release");
+  t.static_release = stage.choice_of<dda::ReleaseAction>("release");
   const MapReader settle = r.section_reader("settle");
   if (settle.has("enabled"))
     t.settle = settle.boolean("enabled");

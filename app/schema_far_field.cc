@@ -1,5 +1,7 @@
 // The scene schema: the deal.II far field and its interface with the blocks.
 #include "app/schema_sections.h"
+#include "common/wave_type.h"
+#include "fem/far_field_description.h"
 
 namespace ddafem::schema
 {
@@ -48,7 +50,7 @@ Section far_field_section()
            .meaning("a Gmsh mesh instead of the rectangle"),
        key("solver", T::choice)
            .default_yaml("direct")
-           .choices({"direct", "cg"})
+           .choices(names_of<fem::LinearSolver>())
            .meaning("direct: sparse LU factorized once; cg: conjugate gradients (Jacobi), "
                     "warm-started from the predicted displacement: faster on large models"),
        key("solver_tolerance", T::number)
@@ -74,7 +76,7 @@ Section far_field_section()
            .default_note("none")
            .meaning("a vertically incident plane wave entering through an `input` side"),
        key("integrator", T::choice)
-           .choices({"dda", "newmark_trapezoidal"})
+           .choices(names_of<fem::Integrator>())
            .default_note("dda with time.integrator dda, else newmark_trapezoidal")
            .meaning("the far field's Newmark scheme")}};
 }
@@ -91,7 +93,7 @@ Section interface_section()
       "`time.dt` (`time.control` must be fixed). The blocks must cover the part exactly.",
       {key("part", T::choice)
            .required()
-           .choices({"bottom", "right", "top", "left", "hole"})
+           .choices(names_of<fem::BoundaryPart>())
            .meaning("the far field's part the blocks fill or adjoin"),
        key("normal_stiffness", T::number)
            .unit("N/m")
@@ -129,11 +131,11 @@ Section far_field_boundaries_section()
       "One side of the far-field rectangle. Sides not listed are traction free.",
       {key("part", T::choice)
            .required()
-           .choices({"bottom", "right", "top", "left", "hole"})
+           .choices(names_of<fem::BoundaryPart>())
            .meaning("the side, or the hole's boundary"),
        key("type", T::choice)
            .required()
-           .choices({"free", "fixed", "lysmer", "input", "roller", "free_field"})
+           .choices(names_of<fem::BoundaryKind>())
            .meaning("fixed: zero displacement; lysmer: dashpots t = -rho (a VP (v.n) n + b VS (v "
                     "- (v.n) n)) (Lysmer & Kuhlemeyer 1969); input: those dashpots plus the "
                     "traction rho c 2 v_in of the incident wave (Joyner & Chen 1975); roller: the "
@@ -186,7 +188,7 @@ Section far_field_hole_section()
       "`radius`.",
       {key("shape", T::choice)
            .required()
-           .choices({"rectangle", "polygon", "circle"})
+           .choices(names_of<fem::HoleShape>())
            .meaning("the hole's shape"),
        key("lower", T::vector2)
            .unit("m")
@@ -240,7 +242,7 @@ Section far_field_static_stage_section()
            .meaning("height where the in-situ stress is `stress`"),
        key("support", T::choice)
            .default_yaml("fixed")
-           .choices({"fixed", "roller"})
+           .choices(names_of<fem::StaticSupport>())
            .meaning("how `lysmer` and `input` parts are held in the static stage: fixed, or "
                     "roller (normal displacement only; the hole is held fixed)")}};
 }
@@ -302,7 +304,7 @@ Section far_field_incident_section()
   return {"far_field.incident",
           "A plane wave travelling up from the `input` side: particle velocity v_in(t), horizontal "
           "for SV, vertical for P.",
-          {key("type", T::choice).required().choices({"p", "sv"}).meaning("wave type"),
+          {key("type", T::choice).required().choices(names_of<WaveType>()).meaning("wave type"),
            key("velocity", T::time_function)
                .required()
                .meaning("v_in(t) [m/s] of the incident (upgoing) wave")}};

@@ -1,12 +1,26 @@
 // The scene schema: blocks, materials, joints, loads, boundaries, time, contacts, stages, solver,
 // output.
 #include "app/schema_sections.h"
+#include "common/wave_type.h"
+#include "dda/model_description.h"
+#include "fem/far_field_description.h"
 
 #include <utility>
 #include <vector>
 
 namespace ddafem::schema
 {
+namespace
+{
+/// stages[i].mode: the stage modes, and a dynamic stage that ends when the blocks settle.
+std::vector<std::string> stage_mode_names()
+{
+  std::vector<std::string> names = names_of<dda::StageMode>();
+  names.emplace_back(dda::settle_mode_name);
+  return names;
+}
+} // namespace
+
 /// `stress` of an in-situ stress sigma0(y) = stress + stress_gradient (y - reference_y)
 /// (`in_situ_stress`, `far_field.static_stage`).
 Key in_situ_stress_key()
@@ -168,12 +182,12 @@ Section analysis_section()
           "How the 2D model idealises the third dimension, and whether the step matrix follows the "
           "moving geometry.",
           {key("plane", T::choice)
-               .choices({"stress", "strain"})
+               .choices(names_of<PlaneMode>())
                .default_yaml("stress")
                .meaning("plane stress (thin slab, one-block-high bar) or plane strain (long "
                         "section)"),
            key("geometry", T::choice)
-               .choices({"updated", "small_displacement"})
+               .choices(names_of<dda::GeometryMode>())
                .default_yaml("updated")
                .meaning("updated: Shi's DDA, every step is linearised about the current block "
                         "geometry; small_displacement: linear analysis about the initial geometry "
@@ -375,13 +389,13 @@ Section boundaries_section()
       "take over.",
       {key("type", T::choice)
            .required()
-           .choices({"free", "vb1", "vb2", "dashpot"})
+           .choices(names_of<dda::BoundaryType>())
            .meaning("free: no boundary term (a traction-free edge; kept so that --set can "
                     "switch types); vb1: Bao, Hatzor & Huang (2012) eq. 39; vb2: Jiao et al. "
                     "(2007) eq. 40; dashpot: the consistent dashpot, the force -C v1 with the "
                     "integrator's end-of-step velocity v1"),
        key("impedance", T::choice)
-           .choices({"textbook", "effective"})
+           .choices(names_of<dda::ImpedanceKind>())
            .default_yaml("textbook")
            .meaning("textbook: VP = sqrt(E (1-nu) / (rho (1+nu) (1-2nu))), VS = sqrt(E / (2 rho "
                     "(1+nu))); effective: the model's actual wave speeds (block modulus in "
@@ -446,7 +460,7 @@ Section boundaries_input_section()
       "and (v_in, 0) for SV; on a horizontal base that is 2 cn v_in upward (P) or 2 ct v_in "
       "along x (SV). A uniform traction over a block edge equals its resultant at the midpoint "
       "for DDA's first-order blocks. Dynamic stages only.",
-      {key("type", T::choice).required().choices({"p", "sv"}).meaning("wave type"),
+      {key("type", T::choice).required().choices(names_of<WaveType>()).meaning("wave type"),
        key("velocity", T::time_function)
            .required()
            .meaning("v_in(t) [m/s] of the incident (upgoing) wave")}};
@@ -477,7 +491,7 @@ Section time_section()
            .greater_than(0)
            .meaning("simulated duration; must be >= dt"),
        key("integrator", T::choice)
-           .choices({"generalized_alpha", "bathe", "dda", "newmark_trapezoidal"})
+           .choices(names_of<dda::Integrator>())
            .default_yaml("bathe")
            .meaning("bathe (the default): Bathe's composite scheme, a generalized-alpha "
                     "(rho_inf 1/2) and a three-point backward Euler half step per dt, two solves "
@@ -497,7 +511,7 @@ Section time_section()
            .meaning("generalized_alpha: the spectral radius at infinite frequency rho_inf (1: "
                     "no algorithmic damping; 0: stiff modes annihilated in one step)"),
        key("control", T::choice)
-           .choices({"adaptive", "fixed"})
+           .choices(names_of<dda::TimeControl>())
            .default_yaml("adaptive")
            .meaning("adaptive: dt is the largest step, cut by cut_factor when a step fails "
                     "(open-close iteration not converged, a vertex moving more than "
@@ -593,7 +607,7 @@ std::vector<Key> stage_keys()
   using T = ValueType;
   return {key("name", T::string).required().meaning("shown in messages and summary.json"),
           key("mode", T::choice)
-              .choices({"static", "dynamic", "settle"})
+              .choices(stage_mode_names())
               .required()
               .meaning("static: seek equilibrium; dynamic: integrate the motion to end_time; "
                        "settle: integrate the motion from where the previous stage ended until "
@@ -658,7 +672,7 @@ std::vector<Key> settle_stage_keys()
                        "began, its vertices' interval no longer overlaps the one they covered "
                        "then): its tumble and impacts are not followed; needs fall_distance > 0"),
           key("release", T::choice)
-              .choices({"fall", "remove"})
+              .choices(names_of<dda::ReleaseAction>())
               .default_yaml("fall")
               .meaning("static stages: what becomes of a released block, one that cannot be in "
                        "equilibrium (its out-of-balance force stays >= 5% of its own load, does "
@@ -694,7 +708,7 @@ Section solver_section()
   return {"solver",
           "Sparse direct solver for each step's linear system.",
           {key("type", T::choice)
-               .choices({"block_ldlt", "eigen_ldlt", "amesos_klu"})
+               .choices(names_of<dda::SolverKind>())
                .default_yaml("block_ldlt")
                .meaning("block_ldlt: sparse Cholesky on the 6x6 blocks (fastest, "
                         "see docs/performance/dda_bench.md); eigen_ldlt: Eigen "
@@ -722,7 +736,7 @@ Section output_section()
                     "its pair of half steps)"),
        key("vtu_compression", T::choice)
            .default_yaml("best_speed")
-           .choices({"best_speed", "best_compression", "none"})
+           .choices(names_of<fem::VtuCompression>())
            .meaning("zlib level of the far field's VTU files (deal.II DataOut): best_compression "
                     "writes files a few percent smaller in about four times the time "
                     "(docs/performance.md, profile); the blocks' files are plain text")}};

@@ -1,5 +1,6 @@
 // The scene schema: the generated rock mass: region, joint sets, explicit joints, openings.
 #include "app/schema_sections.h"
+#include "dda/rock_mass.h"
 
 namespace ddafem::schema
 {
@@ -56,7 +57,7 @@ Section rock_mass_section()
            .meaning("blocks with a smaller 2 area / perimeter (the inscribed radius of a "
                     "triangle, half the width of a long strip) are slivers"),
        key("slivers", T::choice)
-           .choices({"merge", "report"})
+           .choices(names_of<dda::SliverAction>())
            .default_yaml("merge")
            .meaning("merge: join each sliver to the neighbouring block it shares the longest "
                     "boundary with; report: keep them, `check` lists them")}};
@@ -144,7 +145,7 @@ Section rock_mass_joint_sets_perturbation_section()
                .meaning("each line's traces shift along it by this xi times the period "
                         "trace_length + bridge (no effect on persistent sets)"),
            key("distribution", T::choice)
-               .choices({"uniform", "normal"})
+               .choices(names_of<dda::Distribution>())
                .default_yaml("uniform")
                .meaning("of xi: uniform in [-1, 1] or standard normal")}};
 }

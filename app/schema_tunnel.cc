@@ -1,5 +1,7 @@
 // The scene schema: the tunnel section and its stages, wave and near field.
 #include "app/schema_sections.h"
+#include "app/tunnel_scene.h"
+#include "common/wave_type.h"
 
 namespace ddafem::schema
 {
@@ -61,7 +63,7 @@ Section tunnel_section()
            .default_note("a square of 4 x the opening's size")
            .meaning("the region that is blocks"),
        key("truncation", T::choice)
-           .choices({"hybrid", "vb1", "dashpot", "reference", "blocks"})
+           .choices(names_of<TunnelTruncation>())
            .default_yaml("hybrid")
            .meaning("hybrid: blocks in a graded FE far field with Lysmer dashpots and "
                     "free-field sides; vb1 / dashpot: blocks only, VB I or the dashpot on the "
@@ -158,7 +160,7 @@ Section tunnel_wave_section()
       "A vertically incident plane wave: particle velocity v_in(t), horizontal for SV, "
       "vertical for P. It enters through the far field's base (hybrid, reference), the "
       "near field's base (vb1, dashpot) or the outer blocks' base (blocks).",
-      {key("type", T::choice).choices({"p", "sv"}).required().meaning("wave type"),
+      {key("type", T::choice).choices(names_of<WaveType>()).required().meaning("wave type"),
        key("velocity", T::time_function).required().meaning("v_in(t) [m/s] of the incident wave"),
        key("frequency", T::number)
            .unit("Hz")
@@ -214,7 +216,7 @@ Section tunnel_static_section()
                .at_least(1)
                .meaning("the run fails if equilibrium is not reached in this many steps"),
            key("release", T::choice)
-               .choices({"fall", "remove"})
+               .choices(names_of<dda::ReleaseAction>())
                .default_yaml("fall")
                .meaning("what becomes of blocks that cannot be in equilibrium (see `stages[i]`)")}};
 }

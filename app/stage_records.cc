@@ -49,23 +49,24 @@ nlohmann::json static_stage_record(const dda::Stage& stage, const dda::StaticSta
                         {"ratio", r.ratio},
                         {"opening", opening_of(keyblocks, r.block, r.centroid)}});
   return {{"name", stage.name},
-          {"mode", "static"},
+          {"mode", name_of(dda::StageMode::static_equilibrium)},
           {"steps", result.n_steps},
           {"converged", result.outcome == dda::StaticOutcome::equilibrium},
           {"unbalanced_force_ratio", result.ratio},
           {"tolerance", stage.tolerance},
-          {"release", stage.release == dda::ReleaseAction::remove ? "remove" : "fall"},
+          {"release", name_of(stage.release)},
           {"released", released}};
 }
 
 nlohmann::json dynamic_stage_record(const dda::Stage& stage, const dda::DynamicStageResult& result,
                                     const dda::System& system, const KeyblockRecorder& keyblocks)
 {
-  nlohmann::json record = {{"name", stage.name},
-                           {"mode", stage.settle ? "settle" : "dynamic"},
-                           {"steps", result.n_steps},
-                           {"end_time_s", result.end_time},
-                           {"time_reached_s", system.time()}};
+  nlohmann::json record = {
+      {"name", stage.name},
+      {"mode", stage.settle ? dda::settle_mode_name : name_of(dda::StageMode::dynamic)},
+      {"steps", result.n_steps},
+      {"end_time_s", result.end_time},
+      {"time_reached_s", system.time()}};
   if (!stage.settle)
     return record;
   const dda::SettleCriterion& c = *stage.settle;

@@ -6,6 +6,7 @@
 #include "common/elasticity.h"
 #include "common/input_error.h"
 #include "dda/geometry.h"
+#include "fem/far_field_description.h"
 
 #include <algorithm>
 #include <cmath>
@@ -59,11 +60,11 @@ double length_on_rectangle(const std::vector<Point>& vertices, const Point& lowe
 }
 
 /// An on_line block boundary along the segment from a to b.
-YAML::Node line_boundary(const std::string& type, const Point& a, const Point& b)
+YAML::Node line_boundary(const dda::BoundaryType type, const Point& a, const Point& b)
 {
   YAML::Node n;
-  n["type"] = type;
-  n["impedance"] = "effective";
+  n["type"] = name_of(type);
+  n["impedance"] = name_of(dda::ImpedanceKind::effective);
   n["on_line"]["point"] = pair(a.x(), a.y());
   n["on_line"]["direction"] = pair(b.x() - a.x(), b.y() - a.y());
   return n;
@@ -97,24 +98,6 @@ YAML::Node monitor(const std::string& name, double x, double y)
   return n;
 }
 } // namespace
-
-const char* name_of(TunnelTruncation truncation)
-{
-  switch (truncation)
-  {
-  case TunnelTruncation::hybrid:
-    return "hybrid";
-  case TunnelTruncation::vb1:
-    return "vb1";
-  case TunnelTruncation::dashpot:
-    return "dashpot";
-  case TunnelTruncation::reference:
-    return "reference";
-  case TunnelTruncation::blocks:
-    return "blocks";
-  }
-  return "hybrid";
-}
 
 double outer_block_modulus(double grid_modulus, double normal_stiffness)
 {
@@ -328,7 +311,7 @@ BlockMeasures plan_rock_mass(const TunnelDescription& t, TunnelPlan& plan)
   const double nu = t.poisson_ratio, rho = t.density, e = plan.rock_mass_modulus;
   plan.vp = p_wave_speed(e, nu, rho);
   plan.vs = s_wave_speed(e, nu, rho);
-  plan.wave_speed = t.wave_type == "p" ? plan.vp : plan.vs;
+  plan.wave_speed = t.wave_type == WaveType::p ? plan.vp : plan.vs;
   why.push_back("blocks: " + std::to_string(plan.n_blocks) + ", mean size " +
                 format(plan.mean_block_size) + " m, shortest edge " +
                 format(blocks.statistics.shortest_edge) + " m; rock mass E_eff " +
@@ -546,27 +529,30 @@ void write_far_field(const TunnelDescription& t, const TunnelPlan& plan, const Y
   f["max_frequency"] = t.max_frequency;
   f["points_per_wavelength"] = t.points_per_wavelength;
   f["degree"] = 2;
-  f["hole"]["shape"] = "rectangle";
+  f["hole"]["shape"] = name_of(fem::HoleShape::rectangle);
   f["hole"]["lower"] = pair(plan.near_lower.x(), plan.near_lower.y());
   f["hole"]["upper"] = pair(plan.near_upper.x(), plan.near_upper.y());
   f["hole"]["element_size"] = plan.near_element_size;
   f["hole"]["growth_ratio"] = t.growth_ratio;
-  const auto boundary = [](const char* part, const char* type)
+  const auto boundary = [](const fem::BoundaryPart part, const fem::BoundaryKind type)
   {
     YAML::Node b;
-    b["part"] = part;
-    b["type"] = type;
+    b["part"] = name_of(part);
+    b["type"] = name_of(type);
     b.SetStyle(YAML::EmitterStyle::Flow);
     return b;
   };
-  f["boundaries"].push_back(boundary("bottom", "input"));
-  f["boundaries"].push_back(boundary("left", "free_field"));
-  f["boundaries"].push_back(boundary("right", "free_field"));
-  f["boundaries"].push_back(boundary("top", plan.top_is_surface ? "free" : "lysmer"));
+  using fem::BoundaryKind;
+  using fem::BoundaryPart;
+  f["boundaries"].push_back(boundary(BoundaryPart::bottom, BoundaryKind::input));
+  f["boundaries"].push_back(boundary(BoundaryPart::left, BoundaryKind::free_field));
+  f["boundaries"].push_back(boundary(BoundaryPart::right, BoundaryKind::free_field));
+  f["boundaries"].push_back(
+      boundary(BoundaryPart::top, plan.top_is_surface ? BoundaryKind::free : BoundaryKind::lysmer));
   f["incident"] = input;
   root["far_field"] = f;
   YAML::Node interface;
-  interface["part"] = "hole";
+  interface["part"] = name_of(fem::BoundaryPart::hole);
   root["interface"] = interface;
 }
 
@@ -627,8 +613,8 @@ void write_outer_blocks(const TunnelPlan& plan, const YAML::Node& input, YAML::N
   const double a = std::sqrt(plan.rock_mass_modulus / plan.outer_youngs_modulus);
   const auto dashpot = [&](const Point& from, const Point& to)
   {
-    YAML::Node b = line_boundary("dashpot", from, to);
-    b["impedance"] = "textbook";
+    YAML::Node b = line_boundary(dda::BoundaryType::dashpot, from, to);
+    b["impedance"] = name_of(dda::ImpedanceKind::textbook);
     b["a_n"] = a;
     b["a_t"] = a;
     return b;
@@ -646,13 +632,15 @@ void write_outer_blocks(const TunnelPlan& plan, const YAML::Node& input, YAML::N
   root["boundaries"] = boundaries;
 }
 
-/// `boundaries` of the near field's blocks (the truncation's type, the wave at the base).
+/// `boundaries` of the near field's blocks (the truncation vb1 or dashpot is their type, the
+/// wave enters at the base).
 void write_near_boundaries(const TunnelDescription& t, const TunnelPlan& plan,
                            const YAML::Node& input, YAML::Node& root)
 {
   const Point& lo = plan.near_lower;
   const Point& hi = plan.near_upper;
-  const std::string type = name_of(t.truncation);
+  const dda::BoundaryType type =
+      t.truncation == TunnelTruncation::vb1 ? dda::BoundaryType::vb1 : dda::BoundaryType::dashpot;
   YAML::Node base = line_boundary(type, lo, Point(hi.x(), lo.y()));
   base["input"] = input;
   YAML::Node boundaries(YAML::NodeType::Sequence);
@@ -684,13 +672,13 @@ void write_stages(const TunnelDescription& t, const TunnelPlan& plan, YAML::Node
 {
   YAML::Node stage_static, stage_dynamic;
   stage_static["name"] = "excavate";
-  stage_static["mode"] = "static";
+  stage_static["mode"] = name_of(dda::StageMode::static_equilibrium);
   stage_static["dt"] = plan.static_dt;
   stage_static["tolerance"] = t.static_tolerance;
   stage_static["max_steps"] = t.static_max_steps;
-  stage_static["release"] = t.static_release;
+  stage_static["release"] = name_of(t.static_release);
   stage_dynamic["name"] = "shake";
-  stage_dynamic["mode"] = "dynamic";
+  stage_dynamic["mode"] = name_of(dda::StageMode::dynamic);
   YAML::Node stages(YAML::NodeType::Sequence);
   stages.push_back(stage_static);
   stages.push_back(stage_dynamic);
@@ -698,7 +686,7 @@ void write_stages(const TunnelDescription& t, const TunnelPlan& plan, YAML::Node
   {
     YAML::Node stage_settle;
     stage_settle["name"] = "settle";
-    stage_settle["mode"] = "settle";
+    stage_settle["mode"] = dda::settle_mode_name;
     stage_settle["rest_speed"] = plan.settle->rest_speed;
     stage_settle["rest_duration"] = plan.settle->rest_duration;
     stage_settle["fall_distance"] = plan.settle->fall_distance;
@@ -721,7 +709,7 @@ void write_time_and_output(const TunnelPlan& plan, YAML::Node& root)
   // Blocks step adaptively (cut on a failed step, grow back; tied to a far field, on the
   // levels dt / 2^k).
   if (!time["control"])
-    time["control"] = "adaptive";
+    time["control"] = name_of(dda::TimeControl::adaptive);
   root["time"] = time;
   YAML::Node output =
       given["output"] ? YAML::Clone(given["output"]) : YAML::Node(YAML::NodeType::Map);
@@ -744,7 +732,7 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
 
   YAML::Node analysis =
       given["analysis"] ? YAML::Clone(given["analysis"]) : YAML::Node(YAML::NodeType::Map);
-  analysis["plane"] = "strain";
+  analysis["plane"] = name_of(PlaneMode::strain);
   root["analysis"] = analysis;
   if (!given["gravity"])
     root["gravity"] = pair(0.0, -t.gravity);
@@ -753,7 +741,7 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
   const double center_y = write_in_situ_stress(t, plan, root);
 
   YAML::Node input;
-  input["type"] = t.wave_type;
+  input["type"] = name_of(t.wave_type);
   input["velocity"] = nodes.velocity;
   if (plan.far_field)
     write_far_field(t, plan, input, root);

@@ -4,6 +4,7 @@
 // in_situ_stress, stages, monitors, time) that the scene reader then reads like any others.
 #pragma once
 
+#include "common/wave_type.h"
 #include "dda/jointed_block_modulus.h"
 #include "dda/model_description.h"
 #include "dda/rock_mass.h"
@@ -41,8 +42,14 @@ enum class TunnelTruncation
   blocks
 };
 
-/// Scene name of a truncation: "hybrid", "vb1", "dashpot", "reference", "blocks".
-const char* name_of(TunnelTruncation truncation);
+constexpr std::array<EnumName<TunnelTruncation>, 5> enum_names(TunnelTruncation)
+{
+  return {{{TunnelTruncation::hybrid, "hybrid"},
+           {TunnelTruncation::vb1, "vb1"},
+           {TunnelTruncation::dashpot, "dashpot"},
+           {TunnelTruncation::reference, "reference"},
+           {TunnelTruncation::blocks, "blocks"}}};
+}
 
 /// The `tunnel` section as read and validated by the scene reader, with the numbers it needs
 /// from the rest of the scene.
@@ -58,10 +65,10 @@ struct TunnelDescription
   /// The joint sets, explicit joints, the opening (openings[0]), seed and chord tolerance; the
   /// region is the plan's near field.
   dda::RockMassDescription rock_mass;
-  double depth = 0.0;          ///< of the opening's centre below the ground surface [m]
-  double k0 = 0.5;             ///< horizontal over vertical in-situ stress [-]
-  double gravity = 9.81;       ///< [m/s^2], downwards (-y)
-  std::string wave_type;       ///< "p" or "sv"
+  double depth = 0.0;    ///< of the opening's centre below the ground surface [m]
+  double k0 = 0.5;       ///< horizontal over vertical in-situ stress [-]
+  double gravity = 9.81; ///< [m/s^2], downwards (-y)
+  WaveType wave_type = WaveType::sv;
   double wave_frequency = 0.0; ///< dominant frequency of the incident wave [Hz]
   double max_frequency = 0.0;  ///< highest frequency the model must carry [Hz]
   double wave_duration = 0.0;  ///< time from t = 0 to the end of the incident pulse [s]
@@ -78,7 +85,7 @@ struct TunnelDescription
   double static_dt = 0.0; ///< [s]; 0: chosen
   double static_tolerance = 1e-5;
   long long static_max_steps = 5000;
-  std::string static_release = "fall"; ///< stages[i].release of the static stage
+  dda::ReleaseAction static_release = dda::ReleaseAction::fall; ///< stages[i].release, static stage
   /// A settle stage after the wave (tunnel.settle.enabled); unset: for blocks-only truncations
   std::optional<bool> settle;
   double settle_rest_speed = 1e-3;   ///< [m/s]

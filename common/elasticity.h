@@ -4,6 +4,9 @@
 // operations its callers used, so that results are bitwise those of the former copies.
 #pragma once
 
+#include "common/enum_names.h"
+
+#include <array>
 #include <cmath>
 
 namespace ddafem
@@ -14,6 +17,11 @@ enum class PlaneMode
   stress, ///< plane stress (Shi's default; a thin slab or a one-block-high bar)
   strain  ///< plane strain (a section through a long tunnel)
 };
+
+constexpr std::array<EnumName<PlaneMode>, 2> enum_names(PlaneMode)
+{
+  return {{{PlaneMode::stress, "stress"}, {PlaneMode::strain, "strain"}}};
+}
 
 /// Lamé's first parameter lambda = E nu / ((1 + nu) (1 - 2 nu)) [Pa] (3D, so plane strain).
 inline double lame_lambda(double e, double nu)

@@ -1,5 +1,6 @@
 #include "coupling/far_field_ties.h"
 
+#include "common/format.h"
 #include "common/input_error.h"
 #include "common/stopwatch.h"
 
@@ -9,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace ddafem::coupling
 {
@@ -71,13 +71,6 @@ std::vector<double> breakpoints_along(const dda::Point& a, const dda::Point& b,
   return unique;
 }
 
-std::string str(double x)
-{
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
 /// out = D x with D block diagonal (2 x 2 per tie).
 Eigen::VectorXd block_diagonal_times(const std::vector<Eigen::Matrix2d>& d,
                                      const Eigen::VectorXd& x)
@@ -113,7 +106,7 @@ FarFieldTies::FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field
   for (const Segment& s : segments)
     length_of_part += std::hypot(s[2] - s[0], s[3] - s[1]);
   if (!(d.normal_stiffness > 0.0))
-    throw InputError("interface: normal_stiffness = " + str(d.normal_stiffness) +
+    throw InputError("interface: normal_stiffness = " + format_number(d.normal_stiffness) +
                      ", expected > 0 [N/m]");
 
   const std::vector<dda::Block>& blocks = system.get_blocks();
@@ -134,18 +127,20 @@ FarFieldTies::FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field
     }
   }
   if (std::abs(length_tied - length_of_part) > 1e-3 * length_of_part)
-    throw InputError("interface: the far field's part '" + part + "' is " + str(length_of_part) +
-                     " m long, but the block edges on it (within " + str(tol) + " m) measure " +
-                     str(length_tied) + " m: expected the blocks to fill the part exactly (" +
+    throw InputError("interface: the far field's part '" + part + "' is " +
+                     format_number(length_of_part) + " m long, but the block edges on it (within " +
+                     format_number(tol) + " m) measure " + format_number(length_tied) +
+                     " m: expected the blocks to fill the part exactly (" +
                      std::to_string(tied_edges) + " edges found)");
 
   const std::vector<double> distances = far_field.add_point_springs(d.part, springs);
   for (std::size_t k = 0; k < distances.size(); ++k)
     if (distances[k] > tol)
-      throw InputError("interface: tie point (" + str(ties[k].point.x()) + ", " +
-                       str(ties[k].point.y()) + ") of block " + std::to_string(ties[k].block) +
-                       " lies " + str(distances[k]) + " m from the far field's part '" + part +
-                       "', expected within " + str(tol) + " m");
+      throw InputError("interface: tie point (" + format_number(ties[k].point.x()) + ", " +
+                       format_number(ties[k].point.y()) + ") of block " +
+                       std::to_string(ties[k].block) + " lies " + format_number(distances[k]) +
+                       " m from the far field's part '" + part + "', expected within " +
+                       format_number(tol) + " m");
   set_bonded_state(system.get_model(), springs);
   system.tie(*this, points);
 }

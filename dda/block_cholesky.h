@@ -50,7 +50,7 @@ public:
   /// analyzed (a comparison of the coupling lists; no allocation when they agree).
   bool factorize(const BlockSparseMatrix& a) override;
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
-  std::string name() const override { return solver_name(SolverKind::block_ldlt); }
+  std::string name() const override { return name_of(SolverKind::block_ldlt); }
 
   /// Number of blocks (block rows) of the analyzed matrix.
   std::size_t n_blocks() const { return old_of_new.size(); }

@@ -5,22 +5,6 @@
 
 namespace ddafem::dda
 {
-const char* integrator_name(Integrator integrator)
-{
-  switch (integrator)
-  {
-  case Integrator::generalized_alpha:
-    return "generalized_alpha";
-  case Integrator::bathe:
-    return "bathe";
-  case Integrator::dda:
-    return "dda";
-  case Integrator::newmark_trapezoidal:
-    return "newmark_trapezoidal";
-  }
-  return "";
-}
-
 IntegratorCoefficients integrator_coefficients(Integrator integrator, double spectral_radius)
 {
   IntegratorCoefficients c;

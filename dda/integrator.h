@@ -2,9 +2,11 @@
 // 1993) in one form. Pure functions of one block's 6 unknowns, no geometry.
 #pragma once
 
+#include "common/enum_names.h"
 #include "dda/types.h"
 
 #include <algorithm>
+#include <array>
 #include <utility>
 
 namespace ddafem::dda
@@ -30,13 +32,24 @@ enum class Integrator
   newmark_trapezoidal ///< beta = 1/4, gamma = 1/2: second order, conserves energy
 };
 
+constexpr std::array<EnumName<Integrator>, 4> enum_names(Integrator)
+{
+  return {{{Integrator::generalized_alpha, "generalized_alpha"},
+           {Integrator::bathe, "bathe"},
+           {Integrator::dda, "dda"},
+           {Integrator::newmark_trapezoidal, "newmark_trapezoidal"}}};
+}
+
 /// rho_inf of Integrator::bathe's first half [-]: generalized-alpha with alpha_m = 0,
 /// alpha_f = 1/3 (docs/design.md, Integrators).
 constexpr double bathe_first_half_spectral_radius = 0.5;
 
 /// The integrator's name in scene files and outputs ("generalized_alpha", "dda",
 /// "newmark_trapezoidal").
-const char* integrator_name(Integrator integrator);
+inline const char* integrator_name(const Integrator integrator)
+{
+  return name_of(integrator);
+}
 
 /// The scheme's parameters. The step's equation of motion is the generalized-alpha one,
 ///   M a_{n+1-alpha_m} = (1 - alpha_f) r_{n+1} + alpha_f r_n,

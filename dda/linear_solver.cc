@@ -12,20 +12,6 @@
 
 namespace ddafem::dda
 {
-const char* solver_name(SolverKind kind)
-{
-  switch (kind)
-  {
-  case SolverKind::eigen_ldlt:
-    return "eigen_ldlt";
-  case SolverKind::amesos_klu:
-    return "amesos_klu";
-  case SolverKind::block_ldlt:
-    return "block_ldlt";
-  }
-  return "unknown";
-}
-
 // ---- BlockSparseMatrix ----------------------------------------------------------------------
 
 BlockSparseMatrix::BlockSparseMatrix(std::size_t n_blocks,
@@ -139,7 +125,7 @@ public:
 
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override { x = ldlt.solve(b); }
 
-  std::string name() const override { return solver_name(SolverKind::eigen_ldlt); }
+  std::string name() const override { return name_of(SolverKind::eigen_ldlt); }
 
 private:
   std::ptrdiff_t slot(std::size_t row, std::size_t col) const
@@ -205,7 +191,7 @@ public:
       x.setConstant(std::numeric_limits<double>::quiet_NaN());
   }
 
-  std::string name() const override { return solver_name(SolverKind::amesos_klu); }
+  std::string name() const override { return name_of(SolverKind::amesos_klu); }
 
 private:
   /// Writes the values of a into the matrix (its pattern on the first call).
@@ -274,7 +260,7 @@ FactorizationReusingSolver::FactorizationReusingSolver(SolverKind kind_, double 
 
 std::string FactorizationReusingSolver::name() const
 {
-  return solver_name(kind);
+  return name_of(kind);
 }
 
 SolveStatus FactorizationReusingSolver::factorize_and_solve(Factored& f, const BlockSparseMatrix& a,

@@ -16,9 +16,6 @@
 
 namespace ddafem::dda
 {
-/// The kind's name as scenes and summaries spell it ("block_ldlt", ...).
-const char* solver_name(SolverKind kind);
-
 /// Symmetric matrix of n_blocks x n_blocks blocks of 6x6: the diagonal blocks and, for each
 /// coupling (i, j) with i < j, the upper block (i, j); the lower block is its transpose.
 class BlockSparseMatrix

@@ -3,9 +3,11 @@
 
 #include "common/elasticity.h"
 #include "common/time_function.h"
+#include "common/wave_type.h"
 #include "dda/integrator.h"
 #include "dda/types.h"
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -29,6 +31,12 @@ enum class GeometryMode
   /// against the block size (waves); cheaper by the assembly and refinement costs.
   small_displacement
 };
+
+constexpr std::array<EnumName<GeometryMode>, 2> enum_names(GeometryMode)
+{
+  return {{{GeometryMode::updated, "updated"},
+           {GeometryMode::small_displacement, "small_displacement"}}};
+}
 
 /// Linear elastic, isotropic block material.
 struct Material
@@ -113,6 +121,14 @@ enum class BoundaryType
   dashpot ///< the consistent dashpot: the force -C v1 with the integrator's end-of-step velocity
 };
 
+constexpr std::array<EnumName<BoundaryType>, 4> enum_names(BoundaryType)
+{
+  return {{{BoundaryType::free, "free"},
+           {BoundaryType::vb1, "vb1"},
+           {BoundaryType::vb2, "vb2"},
+           {BoundaryType::dashpot, "dashpot"}}};
+}
+
 /// Which wave speeds set the dashpot coefficients cn = a_n rho l0 VP, ct = a_t rho l0 VS.
 enum class ImpedanceKind
 {
@@ -125,17 +141,18 @@ enum class ImpedanceKind
   effective
 };
 
+constexpr std::array<EnumName<ImpedanceKind>, 2> enum_names(ImpedanceKind)
+{
+  return {{{ImpedanceKind::textbook, "textbook"}, {ImpedanceKind::effective, "effective"}}};
+}
+
 /// An incident plane wave entering through a viscous boundary (Joyner & Chen 1975): the wave
 /// travels up (+y) with particle velocity v_in(t) times (0, 1) for P and (1, 0) for SV, and
 /// the boundary's edges receive the input force 2 C v_in, C = cn n n^T + ct t t^T their own
 /// dashpots (on a horizontal base: 2 cn v_in up for P, 2 ct v_in along x for SV).
 struct BoundaryInput
 {
-  enum class Type
-  {
-    p, ///< vertical particle motion
-    sv ///< horizontal particle motion
-  };
+  using Type = WaveType; ///< p: vertical particle motion, sv: horizontal
   Type type = Type::sv;
   TimeFunction velocity = TimeFunction::constant(0.0); ///< v_in(t) [m/s]
 };
@@ -189,6 +206,13 @@ enum class SolverKind
   block_ldlt
 };
 
+constexpr std::array<EnumName<SolverKind>, 3> enum_names(SolverKind)
+{
+  return {{{SolverKind::block_ldlt, "block_ldlt"},
+           {SolverKind::eigen_ldlt, "eigen_ldlt"},
+           {SolverKind::amesos_klu, "amesos_klu"}}};
+}
+
 /// How the time step is chosen.
 enum class TimeControl
 {
@@ -199,6 +223,11 @@ enum class TimeControl
   /// every step has dt; a step that would need a cut stops the run (wave problems)
   fixed
 };
+
+constexpr std::array<EnumName<TimeControl>, 2> enum_names(TimeControl)
+{
+  return {{{TimeControl::adaptive, "adaptive"}, {TimeControl::fixed, "fixed"}}};
+}
 
 struct TimeSettings
 {
@@ -254,6 +283,14 @@ enum class StageMode
   dynamic ///< the motion in time
 };
 
+constexpr std::array<EnumName<StageMode>, 2> enum_names(StageMode)
+{
+  return {{{StageMode::static_equilibrium, "static"}, {StageMode::dynamic, "dynamic"}}};
+}
+
+/// stages[i].mode of a dynamic stage that ends when every block is at rest (Stage::settle).
+constexpr const char* settle_mode_name = "settle";
+
 /// What a static stage does with a block it releases (one that cannot be in equilibrium, see
 /// ReleaseCriterion in dda/static_stage.h).
 enum class ReleaseAction
@@ -264,6 +301,11 @@ enum class ReleaseAction
   /// Inert for the rest of the run (System::remove_block): held, no joints, no contacts.
   remove
 };
+
+constexpr std::array<EnumName<ReleaseAction>, 2> enum_names(ReleaseAction)
+{
+  return {{{ReleaseAction::fall, "fall"}, {ReleaseAction::remove, "remove"}}};
+}
 
 /// When a settle stage (a dynamic stage without a fixed end, Stage::settle) ends: every block
 /// is at rest or has fallen (dda/settle_stage.h).

@@ -62,7 +62,8 @@ void check_description(const RockMassDescription& d)
   }
   for (std::size_t j = 0; j < d.joints.size(); ++j)
     expect(d.joints[j].from != d.joints[j].to,
-           "joint " + std::to_string(j) + " starts and ends at " + format_point(d.joints[j].from) +
+           "joint " + std::to_string(j) + " starts and ends at " +
+               format_point(d.joints[j].from.x(), d.joints[j].from.y()) +
                ": expected two different points");
   if (d.min_edge_length)
     expect(*d.min_edge_length >= 0.0 && std::isfinite(*d.min_edge_length),

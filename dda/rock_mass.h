@@ -21,8 +21,10 @@
 // straight_angle.
 #pragma once
 
+#include "common/enum_names.h"
 #include "dda/types.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -37,6 +39,11 @@ enum class Distribution
   uniform, ///< xi uniform in [-1, 1]
   normal   ///< xi standard normal (mean 0, standard deviation 1)
 };
+
+constexpr std::array<EnumName<Distribution>, 2> enum_names(Distribution)
+{
+  return {{{Distribution::uniform, "uniform"}, {Distribution::normal, "normal"}}};
+}
 
 /// Random perturbation of a joint set by independent draws xi, one for each gap between
 /// neighbouring lines and one for each line's traces.
@@ -104,6 +111,11 @@ enum class SliverAction
   merge,
   report ///< kept and listed in RockMassResult::slivers
 };
+
+constexpr std::array<EnumName<SliverAction>, 2> enum_names(SliverAction)
+{
+  return {{{SliverAction::merge, "merge"}, {SliverAction::report, "report"}}};
+}
 
 /// When a block is a sliver: area below min_area, or 2 A / perimeter (the radius of the
 /// inscribed circle of a triangle or a regular polygon, half the width of a long strip) below

@@ -3,22 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace ddafem::dda::rock_mass_internal
 {
-std::string format_number(double v)
-{
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-std::string format_point(const Point& p)
-{
-  return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ")";
-}
-
 ExactPoint exact_point(const Point& p)
 {
   return ExactPoint(p.x(), p.y());

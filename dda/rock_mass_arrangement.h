@@ -10,6 +10,7 @@
 // - dda/rock_mass_blocks.cc: make_block (a block face as a RockMassBlock).
 #pragma once
 
+#include "common/format.h"
 #include "dda/rock_mass.h"
 
 #include <CGAL/Arr_consolidated_curve_data_traits_2.h>
@@ -67,11 +68,6 @@ using Halfedge = Arrangement::Halfedge_handle;
 using Ccb = Arrangement::Ccb_halfedge_circulator;
 
 // ---- Points, numbers and edges (dda/rock_mass_arrangement.cc) ----------------------------------
-
-/// The number as std::ostream writes it (6 significant digits), for messages.
-std::string format_number(double v);
-/// "(x, y)" with format_number, for messages.
-std::string format_point(const Point& p);
 
 ExactPoint exact_point(const Point& p);
 /// The point in double (within an ulp); blocks that share a vertex get the same one.

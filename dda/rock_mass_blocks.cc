@@ -110,11 +110,13 @@ RockMassBlock make_block(Face f, double straight_tolerance)
 {
   const std::vector<std::vector<Halfedge>> loops = boundary_loops(f);
   if (loops.size() != 1)
-    throw InputError("a block near " +
-                     format_point(rounded(loops.front().front()->source()->point())) +
+  {
+    const Point near = rounded(loops.front().front()->source()->point());
+    throw InputError("a block near " + format_point(near.x(), near.y()) +
                      " m is not a simple polygon: it touches itself or an island at vertices "
                      "that no vertical cut can separate; expected openings and joints that meet "
                      "the rest of the boundary along edges or not at all");
+  }
   const std::vector<Halfedge>& boundary = loops.front();
   std::vector<ExactPoint> points;
   for (const Halfedge h : boundary)

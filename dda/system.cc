@@ -22,30 +22,6 @@ bool can_retry_with_smaller_step(StepOutcome outcome)
          outcome == StepOutcome::penetration_too_large;
 }
 
-const char* outcome_name(StepOutcome outcome)
-{
-  switch (outcome)
-  {
-  case StepOutcome::success:
-    return "success";
-  case StepOutcome::solver_failure:
-    return "solver_failure";
-  case StepOutcome::not_converged:
-    return "not_converged";
-  case StepOutcome::displacement_too_large:
-    return "displacement_too_large";
-  case StepOutcome::penetration_too_large:
-    return "penetration_too_large";
-  case StepOutcome::joint_broken:
-    return "joint_broken";
-  case StepOutcome::energy_growth:
-    return "energy_growth";
-  case StepOutcome::slip_reversal:
-    return "slip_reversal";
-  }
-  return "unknown";
-}
-
 Point System::AttachedFixedPoint::target(double t) const
 {
   return point.initial + Vector2(displacement_x.value(t), displacement_y.value(t));

@@ -73,11 +73,26 @@ enum class StepOutcome
   slip_reversal
 };
 
+constexpr std::array<EnumName<StepOutcome>, 8> enum_names(StepOutcome)
+{
+  return {{{StepOutcome::success, "success"},
+           {StepOutcome::solver_failure, "solver_failure"},
+           {StepOutcome::not_converged, "not_converged"},
+           {StepOutcome::displacement_too_large, "displacement_too_large"},
+           {StepOutcome::penetration_too_large, "penetration_too_large"},
+           {StepOutcome::joint_broken, "joint_broken"},
+           {StepOutcome::energy_growth, "energy_growth"},
+           {StepOutcome::slip_reversal, "slip_reversal"}}};
+}
+
 /// Whether a smaller dt can cure the outcome.
 bool can_retry_with_smaller_step(StepOutcome outcome);
 
 /// The outcome's name as summaries spell it ("not_converged", ...).
-const char* outcome_name(StepOutcome outcome);
+inline const char* outcome_name(const StepOutcome outcome)
+{
+  return name_of(outcome);
+}
 
 struct StepStatus
 {

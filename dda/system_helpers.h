@@ -1,6 +1,7 @@
 // Small helpers of the System implementation files (private: only dda/system*.cc include it).
 #pragma once
 
+#include "common/format.h"
 #include "dda/block.h"
 #include "dda/linear_solver.h"
 
@@ -8,7 +9,6 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -28,15 +28,6 @@ inline double model_size(const std::vector<Block>& blocks)
       y_max = std::max(y_max, v.y());
     }
   return std::max(x_max - x_min, y_max - y_min);
-}
-
-/// A time t [s] for messages: six significant digits and the unit ("0.0125 s").
-inline std::string format_time(double t)
-{
-  std::ostringstream s;
-  s.precision(6);
-  s << t << " s";
-  return s.str();
 }
 
 /// Adds a spring K2 [N/m] between point i (T_i) and point j (T_j) of two different blocks, with

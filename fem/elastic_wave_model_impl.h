@@ -6,6 +6,7 @@
 // (far_field_output.cc); elastic_wave_model.cc builds the model and forwards the public calls.
 #pragma once
 
+#include "common/format.h"
 #include "common/input_error.h"
 #include "common/recent_cache.h"
 #include "common/stopwatch.h"
@@ -29,7 +30,6 @@
 #include <array>
 #include <cmath>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,13 +45,6 @@ inline void require(const bool condition, const std::string& message)
 {
   if (!condition)
     throw InputError("far field: " + message);
-}
-
-inline std::string str(const double x)
-{
-  std::ostringstream s;
-  s << x;
-  return s.str();
 }
 
 /// x^T A x with the same bits whatever the threads do: SparseMatrix::matrix_norm_square sums

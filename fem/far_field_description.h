@@ -2,7 +2,9 @@
 #pragma once
 
 #include "common/elasticity.h"
+#include "common/enum_names.h"
 #include "common/time_function.h"
+#include "common/wave_type.h"
 
 #include <array>
 #include <map>
@@ -21,6 +23,11 @@ enum class Integrator
   newmark_trapezoidal, ///< beta = 1/4, gamma = 1/2: second order, no algorithmic damping
   dda                  ///< beta = 1/2, gamma = 1: DDA's scheme, for like-for-like comparisons
 };
+
+constexpr std::array<EnumName<Integrator>, 2> enum_names(Integrator)
+{
+  return {{{Integrator::dda, "dda"}, {Integrator::newmark_trapezoidal, "newmark_trapezoidal"}}};
+}
 
 /// What one named boundary part does.
 enum class BoundaryKind
@@ -45,6 +52,16 @@ enum class BoundaryKind
   free_field
 };
 
+constexpr std::array<EnumName<BoundaryKind>, 6> enum_names(BoundaryKind)
+{
+  return {{{BoundaryKind::free, "free"},
+           {BoundaryKind::fixed, "fixed"},
+           {BoundaryKind::lysmer, "lysmer"},
+           {BoundaryKind::input, "input"},
+           {BoundaryKind::roller, "roller"},
+           {BoundaryKind::free_field, "free_field"}}};
+}
+
 /// Boundary parts of the far field, named as in scenes: the sides of the rectangle and the
 /// boundary of the hole (a generated hole, or the part a Gmsh file tags as `hole`).
 enum class BoundaryPart
@@ -56,10 +73,17 @@ enum class BoundaryPart
   hole
 };
 
-/// Scene name of a part: "bottom", ..., "hole".
-const char* name_of(BoundaryPart part);
-/// Scene name of a kind: "free", "fixed", "lysmer", "input", "roller", "free_field".
-const char* name_of(BoundaryKind kind);
+constexpr std::array<EnumName<BoundaryPart>, 5> enum_names(BoundaryPart)
+{
+  return {{{BoundaryPart::bottom, "bottom"},
+           {BoundaryPart::right, "right"},
+           {BoundaryPart::top, "top"},
+           {BoundaryPart::left, "left"},
+           {BoundaryPart::hole, "hole"}}};
+}
+
+/// fem::name_of(part) as callers spell it: the common name_of of the tables above.
+using ddafem::name_of;
 
 /// Springs beside the dashpots of a lysmer part: the viscous-spring artificial boundary of Deeks
 /// & Randolph (1994) and Liu et al. (2006), K = G / R (alpha_n n n^T + alpha_t (I - n n^T)) per
@@ -87,11 +111,7 @@ struct BoundaryCondition
 /// v_in(t) [m/s] of the upgoing wave, horizontal for SV and vertical for P.
 struct IncidentWave
 {
-  enum class Type
-  {
-    p,
-    sv
-  };
+  using Type = WaveType;
   Type type = Type::sv;
   TimeFunction velocity = TimeFunction::constant(0.0);
 };
@@ -110,6 +130,13 @@ enum class HoleShape
   polygon,   ///< vertices, star-shaped about their area centroid
   circle     ///< center, radius (the boundary follows the circle under refinement)
 };
+
+constexpr std::array<EnumName<HoleShape>, 3> enum_names(HoleShape)
+{
+  return {{{HoleShape::rectangle, "rectangle"},
+           {HoleShape::polygon, "polygon"},
+           {HoleShape::circle, "circle"}}};
+}
 
 /// A hole in the rectangle. The mesh is an O-grid of quadrilaterals between the hole and a box
 /// about twice its size, a Cartesian grid outside the box, and local refinement (hanging nodes)
@@ -142,6 +169,11 @@ enum class LinearSolver
   cg      ///< conjugate gradients with a Jacobi preconditioner, warm-started from the predictor
 };
 
+constexpr std::array<EnumName<LinearSolver>, 2> enum_names(LinearSolver)
+{
+  return {{{LinearSolver::direct, "direct"}, {LinearSolver::cg, "cg"}}};
+}
+
 /// Implementation of LinearSolver::direct (not a scene key: KLU was faster everywhere measured,
 /// bench/fem_bench.py compares them).
 enum class DirectSolver
@@ -157,6 +189,11 @@ enum class StaticSupport
   fixed, ///< both displacement components zero
   roller ///< the normal component zero (x on left/right, y on bottom/top; the hole: both)
 };
+
+constexpr std::array<EnumName<StaticSupport>, 2> enum_names(StaticSupport)
+{
+  return {{{StaticSupport::fixed, "fixed"}, {StaticSupport::roller, "roller"}}};
+}
 
 /// A static stage ahead of the dynamic one: gravity and an in-situ stress
 /// sigma0(y) = stress + stress_gradient (y - reference_y) solved as K u_s = f_gravity -
@@ -220,5 +257,12 @@ enum class VtuCompression
   best_speed,
   best_compression
 };
+
+constexpr std::array<EnumName<VtuCompression>, 3> enum_names(VtuCompression)
+{
+  return {{{VtuCompression::best_speed, "best_speed"},
+           {VtuCompression::best_compression, "best_compression"},
+           {VtuCompression::none, "none"}}};
+}
 
 } // namespace ddafem::fem

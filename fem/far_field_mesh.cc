@@ -1,6 +1,7 @@
 // Far-field meshes (issue 5): the rectangle, the rectangle with a graded hole, Gmsh files.
 #include "fem/far_field_mesh.h"
 
+#include "common/format.h"
 #include "common/input_error.h"
 
 #include <deal.II/grid/grid_generator.h>
@@ -15,7 +16,6 @@
 #include <limits>
 #include <map>
 #include <set>
-#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -26,13 +26,6 @@ using namespace dealii;
 namespace
 {
 using Vertex = std::array<double, 2>;
-
-std::string str(const double x)
-{
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
 
 void require(const bool condition, const std::string& message)
 {
@@ -159,13 +152,13 @@ void check_hole(const FarFieldDescription& d)
 {
   const HoleDescription& hole = d.hole;
   require(hole.element_size >= 0.0,
-          "hole.element_size = " + str(hole.element_size) + ", expected >= 0");
+          "hole.element_size = " + format_number(hole.element_size) + ", expected >= 0");
   require(hole.growth_ratio > 1.0,
-          "hole.growth_ratio = " + str(hole.growth_ratio) + ", expected > 1");
+          "hole.growth_ratio = " + format_number(hole.growth_ratio) + ", expected > 1");
   double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
   if (hole.shape == HoleShape::circle)
   {
-    require(hole.radius > 0.0, "hole.radius = " + str(hole.radius) + ", expected > 0");
+    require(hole.radius > 0.0, "hole.radius = " + format_number(hole.radius) + ", expected > 0");
     x0 = hole.center[0] - hole.radius;
     x1 = hole.center[0] + hole.radius;
     y0 = hole.center[1] - hole.radius;
@@ -175,9 +168,9 @@ void check_hole(const FarFieldDescription& d)
   {
     if (hole.shape == HoleShape::rectangle)
       require(hole.upper[0] > hole.lower[0] && hole.upper[1] > hole.lower[1],
-              "hole.upper = (" + str(hole.upper[0]) + ", " + str(hole.upper[1]) +
-                  "), expected above and right of hole.lower (" + str(hole.lower[0]) + ", " +
-                  str(hole.lower[1]) + ")");
+              "hole.upper = (" + format_number(hole.upper[0]) + ", " +
+                  format_number(hole.upper[1]) + "), expected above and right of hole.lower (" +
+                  format_number(hole.lower[0]) + ", " + format_number(hole.lower[1]) + ")");
     else
       require(hole.vertices.size() >= 3, "hole.vertices has " +
                                              std::to_string(hole.vertices.size()) +
@@ -190,8 +183,8 @@ void check_hole(const FarFieldDescription& d)
     const Vertex c = centroid(polygon);
     for (std::size_t i = 0; i < polygon.size(); ++i)
       require(cross(minus(polygon[i], c), minus(polygon[(i + 1) % polygon.size()], c)) > 0.0,
-              "hole.vertices: the polygon is not star-shaped about its centroid (" + str(c[0]) +
-                  ", " + str(c[1]) +
+              "hole.vertices: the polygon is not star-shaped about its centroid (" +
+                  format_number(c[0]) + ", " + format_number(c[1]) +
                   "), expected a polygon every vertex of which is seen from "
                   "the centroid (e.g. a convex one)");
     x0 = x1 = polygon[0][0];
@@ -205,9 +198,11 @@ void check_hole(const FarFieldDescription& d)
     }
   }
   require(x0 > d.lower[0] && x1 < d.upper[0] && y0 > d.lower[1] && y1 < d.upper[1],
-          "the hole spans [" + str(x0) + ", " + str(x1) + "] x [" + str(y0) + ", " + str(y1) +
-              "], expected it strictly inside the far field [" + str(d.lower[0]) + ", " +
-              str(d.upper[0]) + "] x [" + str(d.lower[1]) + ", " + str(d.upper[1]) + "]");
+          "the hole spans [" + format_number(x0) + ", " + format_number(x1) + "] x [" +
+              format_number(y0) + ", " + format_number(y1) +
+              "], expected it strictly inside the far field [" + format_number(d.lower[0]) + ", " +
+              format_number(d.upper[0]) + "] x [" + format_number(d.lower[1]) + ", " +
+              format_number(d.upper[1]) + "]");
 }
 
 /// Boundary ids of a generated mesh from face positions: the rectangle's sides, else the hole.
@@ -566,44 +561,6 @@ types::boundary_id boundary_id_of(const BoundaryPart part)
     return 4;
   }
   return untagged_boundary_id;
-}
-
-const char* name_of(const BoundaryPart part)
-{
-  switch (part)
-  {
-  case BoundaryPart::left:
-    return "left";
-  case BoundaryPart::right:
-    return "right";
-  case BoundaryPart::bottom:
-    return "bottom";
-  case BoundaryPart::top:
-    return "top";
-  case BoundaryPart::hole:
-    return "hole";
-  }
-  return "?";
-}
-
-const char* name_of(const BoundaryKind kind)
-{
-  switch (kind)
-  {
-  case BoundaryKind::free:
-    return "free";
-  case BoundaryKind::fixed:
-    return "fixed";
-  case BoundaryKind::lysmer:
-    return "lysmer";
-  case BoundaryKind::input:
-    return "input";
-  case BoundaryKind::roller:
-    return "roller";
-  case BoundaryKind::free_field:
-    return "free_field";
-  }
-  return "?";
 }
 
 double distance_from_hole(const HoleDescription& hole, const double x, const double y)

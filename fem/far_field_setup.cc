@@ -22,23 +22,25 @@ void ElasticWaveModel::Impl::validate() const
 {
   const auto& d = description;
   require(d.upper[0] > d.lower[0] && d.upper[1] > d.lower[1],
-          "upper corner (" + str(d.upper[0]) + ", " + str(d.upper[1]) +
-              ") must lie above and right of lower corner (" + str(d.lower[0]) + ", " +
-              str(d.lower[1]) + ")");
+          "upper corner (" + format_number(d.upper[0]) + ", " + format_number(d.upper[1]) +
+              ") must lie above and right of lower corner (" + format_number(d.lower[0]) + ", " +
+              format_number(d.lower[1]) + ")");
   require(d.degree == 1 || d.degree == 2,
           "degree = " + std::to_string(d.degree) + ", expected 1 or 2");
-  require(d.density > 0.0, "density = " + str(d.density) + ", expected > 0");
-  require(d.youngs_modulus > 0.0, "youngs_modulus = " + str(d.youngs_modulus) + ", expected > 0");
+  require(d.density > 0.0, "density = " + format_number(d.density) + ", expected > 0");
+  require(d.youngs_modulus > 0.0,
+          "youngs_modulus = " + format_number(d.youngs_modulus) + ", expected > 0");
   require(d.poisson_ratio >= 0.0 && d.poisson_ratio < 0.5,
-          "poisson_ratio = " + str(d.poisson_ratio) + ", expected in [0, 0.5)");
-  require(d.element_size >= 0.0, "element_size = " + str(d.element_size) + ", expected >= 0");
-  require(d.dt >= 0.0, "dt = " + str(d.dt) + ", expected >= 0 (0: given to advance())");
+          "poisson_ratio = " + format_number(d.poisson_ratio) + ", expected in [0, 0.5)");
+  require(d.element_size >= 0.0,
+          "element_size = " + format_number(d.element_size) + ", expected >= 0");
+  require(d.dt >= 0.0, "dt = " + format_number(d.dt) + ", expected >= 0 (0: given to advance())");
   require(d.solver_tolerance > 0.0 && d.solver_tolerance < 1.0,
-          "solver_tolerance = " + str(d.solver_tolerance) + ", expected in (0, 1)");
+          "solver_tolerance = " + format_number(d.solver_tolerance) + ", expected in (0, 1)");
   const bool from_file = !d.mesh_file.file.empty();
   require(d.rayleigh.alpha >= 0.0 && d.rayleigh.beta >= 0.0,
-          "rayleigh: alpha = " + str(d.rayleigh.alpha) + ", beta = " + str(d.rayleigh.beta) +
-              ", expected both >= 0");
+          "rayleigh: alpha = " + format_number(d.rayleigh.alpha) +
+              ", beta = " + format_number(d.rayleigh.beta) + ", expected both >= 0");
   if (d.element_size == 0.0 && !from_file)
   {
     const double f =
@@ -46,7 +48,7 @@ void ElasticWaveModel::Impl::validate() const
     require(f > 0.0, "element_size = 0 needs max_frequency > 0 (or an incident wave with a "
                      "frequency) to choose the element size");
     require(d.points_per_wavelength > 0.0,
-            "points_per_wavelength = " + str(d.points_per_wavelength) + ", expected > 0");
+            "points_per_wavelength = " + format_number(d.points_per_wavelength) + ", expected > 0");
   }
   std::set<BoundaryPart> seen;
   for (const auto& bc : d.boundaries)
@@ -85,9 +87,10 @@ void ElasticWaveModel::Impl::validate() const
     const double tol = 1e-9 * std::max(d.upper[0] - d.lower[0], d.upper[1] - d.lower[1]);
     require(m.point[0] >= d.lower[0] - tol && m.point[0] <= d.upper[0] + tol &&
                 m.point[1] >= d.lower[1] - tol && m.point[1] <= d.upper[1] + tol,
-            "monitor '" + m.name + "' at (" + str(m.point[0]) + ", " + str(m.point[1]) +
-                ") lies outside the far field [" + str(d.lower[0]) + ", " + str(d.upper[0]) +
-                "] x [" + str(d.lower[1]) + ", " + str(d.upper[1]) + "]");
+            "monitor '" + m.name + "' at (" + format_number(m.point[0]) + ", " +
+                format_number(m.point[1]) + ") lies outside the far field [" +
+                format_number(d.lower[0]) + ", " + format_number(d.upper[0]) + "] x [" +
+                format_number(d.lower[1]) + ", " + format_number(d.upper[1]) + "]");
   }
 }
 
@@ -153,7 +156,7 @@ void ElasticWaveModel::Impl::locate_monitors()
       found.first = dof_handler.end();
     }
     require(found.first.state() == IteratorState::valid,
-            "monitor '" + m.name + "' at (" + str(p[0]) + ", " + str(p[1]) +
+            "monitor '" + m.name + "' at (" + format_number(p[0]) + ", " + format_number(p[1]) +
                 ") lies in no element, expected a point of the meshed far field (not in a hole)");
     const Point<2> reference = GeometryInfo<2>::project_to_unit_cell(found.second);
     MonitorPoint monitor;

@@ -128,7 +128,7 @@ void ElasticWaveModel::Impl::ensure_factorized(const double dt)
 
 StepStatus ElasticWaveModel::Impl::prepare_step(const double dt)
 {
-  require(dt > 0.0 && std::isfinite(dt), "advance: dt = " + str(dt) + ", expected > 0");
+  require(dt > 0.0 && std::isfinite(dt), "advance: dt = " + format_number(dt) + ", expected > 0");
   StepStatus status;
   rewind_column();
   pending.active = false;
@@ -240,7 +240,7 @@ StepStatus ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_
     if (!std::all_of(u_new.begin(), u_new.end(), [](double x) { return std::isfinite(x); }))
     {
       status.outcome = StepOutcome::solver_failure;
-      status.message = "far field: non-finite displacement at t = " + str(t1);
+      status.message = "far field: non-finite displacement at t = " + format_number(t1);
       timings.update += seconds_since(start);
       return status;
     }

@@ -43,7 +43,7 @@ TunnelDescription grid_tunnel()
   t.rock_mass.openings = {circle};
   t.rock_mass.chord_tolerance = 0.02;
   t.depth = 50.0;
-  t.wave_type = "sv";
+  t.wave_type = WaveType::sv;
   t.wave_frequency = 25.0;
   t.max_frequency = 50.0;
   t.wave_duration = 0.04;
