@@ -9,6 +9,7 @@
 #include "app/simulation.h"
 #include "app/stage_records.h"
 
+#include "common/format.h"
 #include "common/input_error.h"
 #include "coupling/far_field_ties.h"
 #include "coupling/interface_impedance.h"
@@ -25,7 +26,6 @@ namespace ddafem
 {
 namespace
 {
-using run_support::format;
 
 /// The scene's stages, or one dynamic stage to the end time if it has none.
 std::vector<dda::Stage> stage_plan(const dda::ModelDescription& model)
@@ -114,8 +114,8 @@ std::vector<std::string> BlocksSimulation::collect_warnings(bool allow_unstable)
       found.push_back(impedance_warning(*z));
   const dda::TimeStepAdvice advice = dda::suggest_time_step(scene.model);
   if (time.dt > advice.dt_max)
-    found.push_back("dt = " + format(time.dt) + " s exceeds the suggested " +
-                    format(advice.dt_max, 3) + " s (" + time_step_reason(advice) + ")");
+    found.push_back("dt = " + format_significant(time.dt) + " s exceeds the suggested " +
+                    format_significant(advice.dt_max, 3) + " s (" + time_step_reason(advice) + ")");
   if (scene.rock_mass && !scene.rock_mass->slivers.empty())
     found.push_back("rock_mass: " + std::to_string(scene.rock_mass->slivers.size()) +
                     " blocks below the sliver threshold kept (`check` lists them)");

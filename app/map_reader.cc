@@ -6,6 +6,8 @@
 
 namespace ddafem::scene_reading
 {
+using schema::TimeFunctionType;
+
 namespace
 {
 std::string unit_suffix(const Key& key)
@@ -67,7 +69,7 @@ std::string expected_text(const Key& key, const SceneSchema& schema)
   case ValueType::section_list:
     return "a list of maps with keys " + quoted_list(schema.section(key.section).key_names());
   case ValueType::time_function:
-    return "a time function: a map with 'type' one of " + quoted_list(schema.time_function_types());
+    return "a time function: a map with 'type' one of " + quoted_list(names_of<TimeFunctionType>());
   }
   return "";
 }
@@ -330,18 +332,20 @@ std::vector<MapReader> MapReader::section_list(const std::string& name) const
 MapReader MapReader::time_function_reader(const std::string& name) const
 {
   const Value v = value(name, ValueType::time_function);
-  const std::vector<std::string>& types = context->schema.time_function_types();
+  const std::vector<std::string> types = names_of<TimeFunctionType>();
   if (!v.node.IsMap())
     throw mismatch(v);
   const YAML::Node type_node = child(v.node, "type");
   if (!type_node.IsDefined())
     throw context->locator.error(v.node, v.path + ".type", "",
                                  "missing required key: expected one of " + quoted_list(types));
-  const std::string type = type_node.IsScalar() ? type_node.Scalar() : "";
-  if (std::find(types.begin(), types.end(), type) == types.end())
+  const std::string type_name = type_node.IsScalar() ? type_node.Scalar() : "";
+  const std::optional<TimeFunctionType> type = value_of<TimeFunctionType>(type_name);
+  if (!type)
     throw context->locator.error(type_node, v.path + ".type", yaml_text(type_node),
-                                 "expected one of " + quoted_list(types) + suggestion(type, types));
-  return MapReader(v.node, context->schema.section(SceneSchema::time_function_section(type)),
+                                 "expected one of " + quoted_list(types) +
+                                     suggestion(type_name, types));
+  return MapReader(v.node, context->schema.section(SceneSchema::time_function_section(*type)),
                    v.path, *context);
 }
 

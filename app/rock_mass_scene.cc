@@ -1,6 +1,6 @@
 #include "app/rock_mass_scene.h"
 
-#include "app/run_support.h"
+#include "common/format.h"
 
 #include <algorithm>
 
@@ -8,7 +8,6 @@ namespace ddafem
 {
 namespace
 {
-using run_support::format;
 
 /// The name of a `joint_material` as read (an index into the model's), or what applies instead.
 std::string joint_material_name(const dda::ModelDescription& model,
@@ -49,30 +48,32 @@ void describe_rock_mass(const Scene& scene, std::ostream& out)
   const RockMassReport& r = *scene.rock_mass;
   const dda::RockMassStatistics& s = r.statistics;
   out << "  rock mass: " << s.n_blocks << " blocks from block " << r.first_block << ", smallest "
-      << format(s.smallest_area) << " m^2, mean " << format(s.mean_area) << " m^2; total "
-      << format(s.total_area, 6) << " m^2 = region " << format(s.region_area, 6) << " - excavated "
-      << format(s.excavated_area, 6) << " m^2\n";
-  out << "  rock mass: " << s.n_traces << " joint traces, sliver threshold " << format(s.min_area)
-      << " m^2, " << s.n_merged << " slivers merged, " << s.n_reported << " kept, "
-      << s.n_island_cuts << " vertical cuts around enclosed islands\n";
-  out << "  rock mass: shortest edge " << format(s.shortest_edge) << " m (edges below "
-      << format(s.min_edge_length) << " m collapsed: " << s.n_collapsed_edges
+      << format_significant(s.smallest_area) << " m^2, mean " << format_significant(s.mean_area)
+      << " m^2; total " << format_significant(s.total_area, 6) << " m^2 = region "
+      << format_significant(s.region_area, 6) << " - excavated "
+      << format_significant(s.excavated_area, 6) << " m^2\n";
+  out << "  rock mass: " << s.n_traces << " joint traces, sliver threshold "
+      << format_significant(s.min_area) << " m^2, " << s.n_merged << " slivers merged, "
+      << s.n_reported << " kept, " << s.n_island_cuts << " vertical cuts around enclosed islands\n";
+  out << "  rock mass: shortest edge " << format_significant(s.shortest_edge) << " m (edges below "
+      << format_significant(s.min_edge_length) << " m collapsed: " << s.n_collapsed_edges
       << ", left: " << s.n_short_edges << "), " << s.n_straight_vertices
       << " straight vertices removed\n";
   for (std::size_t i = 0; i < r.joint_sets.size(); ++i)
-    out << "  rock mass: joint set " << i << " (dip " << format(r.joint_sets[i].dip)
-        << " deg, spacing " << format(r.joint_sets[i].spacing) << " m): joint material "
+    out << "  rock mass: joint set " << i << " (dip " << format_significant(r.joint_sets[i].dip)
+        << " deg, spacing " << format_significant(r.joint_sets[i].spacing) << " m): joint material "
         << joint_material_name(scene.model, r.joint_set_materials[i]) << "\n";
   for (std::size_t j = 0; j < r.joints.size(); ++j)
-    out << "  rock mass: joint " << j << " from (" << format(r.joints[j].from.x()) << ", "
-        << format(r.joints[j].from.y()) << ") to (" << format(r.joints[j].to.x()) << ", "
-        << format(r.joints[j].to.y()) << ") m: joint material "
-        << joint_material_name(scene.model, r.joint_materials[j]) << "\n";
+    out << "  rock mass: joint " << j << " from (" << format_significant(r.joints[j].from.x())
+        << ", " << format_significant(r.joints[j].from.y()) << ") to ("
+        << format_significant(r.joints[j].to.x()) << ", " << format_significant(r.joints[j].to.y())
+        << ") m: joint material " << joint_material_name(scene.model, r.joint_materials[j]) << "\n";
   for (const dda::Sliver& sliver : r.slivers)
     out << "  sliver kept: " << scene.model.blocks[sliver.block].origin << " at ("
-        << format(sliver.centroid.x()) << ", " << format(sliver.centroid.y()) << ") m, area "
-        << format(sliver.area) << " m^2, 2 area / perimeter " << format(sliver.inscribed_radius)
-        << " m\n";
+        << format_significant(sliver.centroid.x()) << ", "
+        << format_significant(sliver.centroid.y()) << ") m, area "
+        << format_significant(sliver.area) << " m^2, 2 area / perimeter "
+        << format_significant(sliver.inscribed_radius) << " m\n";
 }
 
 } // namespace ddafem

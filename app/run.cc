@@ -5,6 +5,8 @@
 #include "app/run_support.h"
 #include "app/simulation.h"
 
+#include "common/stopwatch.h"
+
 #include <unistd.h>
 
 #include <cstdio>
@@ -15,9 +17,6 @@ namespace ddafem
 {
 namespace
 {
-using run_support::Clock;
-using run_support::elapsed;
-
 /// A run: set up, its stages in turn, the summary.
 class SceneRun
 {
@@ -42,7 +41,7 @@ private:
   int write_summary();
   void report_progress(bool force = false)
   {
-    progress->update(simulation->n_steps(), simulation->time(), elapsed(wall_start), force);
+    progress->update(simulation->n_steps(), simulation->time(), seconds_since(wall_start), force);
   }
 
   const Scene& scene;
@@ -83,7 +82,7 @@ int SceneRun::write_summary()
   report_progress(true);
   progress->finish();
   simulation->close_outputs();
-  const double wall = elapsed(wall_start);
+  const double wall = seconds_since(wall_start);
   const RunEnd end = simulation->end();
   return run_support::finish_run(dir, simulation->summary(warnings, wall), end.failure, end.steps,
                                  end.time, wall, end.view_file, log);

@@ -2,14 +2,13 @@
 
 #include "app/run_support.h"
 
+#include "common/stopwatch.h"
 #include "common/vtk_collection.h"
 
 namespace ddafem
 {
 namespace
 {
-using run_support::Clock;
-using run_support::elapsed;
 
 /// The blocks' values of a history row, in the order of history_channels.
 std::vector<double> history_row(const dda::System& system, const LastStep& last)
@@ -205,7 +204,7 @@ void RunOutputs::write_state(bool snapshot, const LastStep& last)
   history.append(system.time(), row);
   if (snapshot)
     write_snapshot();
-  time_output += elapsed(start);
+  time_output += seconds_since(start);
 }
 
 void RunOutputs::write_snapshot()
@@ -219,7 +218,7 @@ void RunOutputs::write_snapshot()
   {
     const auto far_field_start = Clock::now();
     files.push_back(coupled.far_field->write_snapshot(dir.string(), "far_field", vtu_compression));
-    time_far_field += elapsed(far_field_start);
+    time_far_field += seconds_since(far_field_start);
     files.push_back(name(ties_vtu.write(system.time(), tie_snapshot(*coupled.ties, system))));
   }
   for (std::size_t part = 0; part < files.size(); ++part)
@@ -255,7 +254,7 @@ void FarFieldOutputs::write_state(bool snapshot)
     model.write_snapshot(dir.string(), "far_field", vtu_compression);
     ++n_written;
   }
-  time_output += elapsed(start);
+  time_output += seconds_since(start);
 }
 
 } // namespace ddafem

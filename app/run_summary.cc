@@ -44,9 +44,9 @@ nlohmann::json time_step_summary(const dda::TimeSettings& time, const StageTotal
   for (const auto& [outcome, n] : stages.cuts_by_cause)
   {
     n_cuts += n;
-    by_cause[dda::outcome_name(outcome)] = n;
+    by_cause[name_of(outcome)] = n;
   }
-  return {{"control", time.control == dda::TimeControl::fixed ? "fixed" : "adaptive"},
+  return {{"control", name_of(time.control)},
           {"dt_max_s", time.dt},
           {"smallest_dt_s", stages.smallest_dt},
           {"attempts", n_attempts},
@@ -177,7 +177,7 @@ nlohmann::json run_summary(const RunRecord& run)
   summary["stages"] = run.stages.records;
   if (run.scene.tunnel)
     summary["tunnel"] = tunnel_summary(*run.scene.tunnel);
-  summary["integrator"] = dda::integrator_name(time.integrator);
+  summary["integrator"] = name_of(time.integrator);
   if (time.integrator == dda::Integrator::generalized_alpha)
     summary["spectral_radius"] = time.spectral_radius;
   add_blocks_summary(summary, system, run.outputs);
@@ -208,7 +208,7 @@ nlohmann::json far_field_run_summary(const FarFieldRunRecord& run)
   const fem::EnergyBalance e = model.energy();
   nlohmann::json summary = summary_head(run.scene, failed, run.failure.message, model.time(),
                                         d.end_time, t.n_steps, d.dt);
-  summary["integrator"] = d.integrator == fem::Integrator::dda ? "dda" : "newmark_trapezoidal";
+  summary["integrator"] = fem::name_of(d.integrator);
   summary["solver"] = {{"name", model.solver_name()},
                        {"factorizations", 1},
                        {"linear_iterations", t.linear_iterations}};

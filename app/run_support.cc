@@ -1,5 +1,6 @@
 #include "app/run_support.h"
 
+#include "common/format.h"
 #include "common/input_error.h"
 
 #include <cstdio>
@@ -10,18 +11,6 @@
 
 namespace ddafem::run_support
 {
-double elapsed(Clock::time_point start)
-{
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string format(double value, int precision)
-{
-  std::ostringstream s;
-  s << std::setprecision(precision) << value;
-  return s.str();
-}
-
 double peak_memory_mb()
 {
   std::ifstream status("/proc/self/status");
@@ -84,7 +73,7 @@ int finish_run(const std::filesystem::path& dir, const nlohmann::json& summary,
         << "results up to t = " << time << " s are in " << dir.string() << "\n";
     return 1;
   }
-  log << "completed " << steps << " to t = " << time << " s in " << format(wall, 3)
+  log << "completed " << steps << " to t = " << time << " s in " << format_significant(wall, 3)
       << " s wall time\n"
       << "results: " << (dir / view_file).string() << " (ParaView), "
       << (dir / "histories.h5").string() << ", " << (dir / "summary.json").string() << "\n";

@@ -5,7 +5,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <cstddef>
 #include <filesystem>
 #include <ostream>
@@ -14,14 +13,6 @@
 
 namespace ddafem::run_support
 {
-using Clock = std::chrono::steady_clock;
-
-/// Seconds since `start`.
-double elapsed(Clock::time_point start);
-
-/// `value` with `precision` significant digits.
-std::string format(double value, int precision = 4);
-
 /// Peak resident memory of this process [MB]: VmHWM from /proc/self/status (getrusage's
 /// ru_maxrss would include the image of a parent that forked us, e.g. a Python driver); 0 where
 /// /proc is not available.

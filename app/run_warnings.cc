@@ -1,11 +1,11 @@
 #include "app/run_warnings.h"
 
-#include "app/run_support.h"
+#include "common/format.h"
+
 #include "dda/unstable_boundaries.h"
 
 namespace ddafem
 {
-using run_support::format;
 
 namespace
 {
@@ -37,19 +37,22 @@ std::vector<std::string> unstable_boundary_messages(const dda::System& system, d
 {
   std::vector<std::string> messages;
   for (const dda::UnstableBoundary& u : dda::unstable_boundaries(system, dt))
-    messages.push_back("dt = " + format(dt) + " s makes " +
+    messages.push_back("dt = " + format_significant(dt) + " s makes " +
                        boundary_name(system.get_model(), u.boundary) + " an energy source on " +
                        std::to_string(u.n_sources) + " edge(s): x = c dt / m reaches " +
-                       format(u.x_max, 4) + " > " + format(dda::vb1_source_threshold(), 5) +
-                       "; it absorbs only for dt < " + format(u.dt_limit, 4) + " s");
+                       format_significant(u.x_max, 4) + " > " +
+                       format_significant(dda::vb1_source_threshold(), 5) +
+                       "; it absorbs only for dt < " + format_significant(u.dt_limit, 4) + " s");
   return messages;
 }
 
 std::string impedance_warning(const coupling::InterfaceImpedance& z)
 {
-  return "the far field (E = " + format(z.far_field_modulus) +
-         " Pa) and the tied blocks with their joints (E_eff = " + format(z.blocks_modulus) +
-         " Pa) differ in impedance: the interface reflects about " + format(100 * z.reflection, 2) +
+  return "the far field (E = " + format_significant(z.far_field_modulus) +
+         " Pa) and the tied blocks with their joints (E_eff = " +
+         format_significant(z.blocks_modulus) +
+         " Pa) differ in impedance: the interface reflects about " +
+         format_significant(100 * z.reflection, 2) +
          "% of a normally incident wave; a far-field material of the rock mass (E_eff) avoids it";
 }
 
@@ -58,13 +61,13 @@ std::string time_step_reason(const dda::TimeStepAdvice& advice)
   switch (advice.limit)
   {
   case dda::TimeStepLimit::block_transit:
-    return "a P wave crosses the smallest block in " + format(advice.transit, 3) + " s";
+    return "a P wave crosses the smallest block in " + format_significant(advice.transit, 3) + " s";
   case dda::TimeStepLimit::load_period:
-    return "20 steps per period of the highest load frequency (" + format(advice.max_frequency, 4) +
-           " Hz)";
+    return "20 steps per period of the highest load frequency (" +
+           format_significant(advice.max_frequency, 4) + " Hz)";
   case dda::TimeStepLimit::dda_damping:
-    return "DDA's algorithmic damping costs < 5% amplitude at " + format(advice.max_frequency, 4) +
-           " Hz over a model crossing";
+    return "DDA's algorithmic damping costs < 5% amplitude at " +
+           format_significant(advice.max_frequency, 4) + " Hz over a model crossing";
   }
   return "";
 }

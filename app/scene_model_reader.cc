@@ -186,13 +186,14 @@ dda::Stage read_stage(const MapReader& r, const dda::ModelDescription& model)
 TimeFunction read_time_function(const MapReader& parent, const std::string& name)
 {
   const MapReader r = parent.time_function_reader(name);
-  const std::string type = r.choice("type");
-  if (type == "constant")
+  switch (r.choice_of<schema::TimeFunctionType>("type"))
+  {
+  case schema::TimeFunctionType::constant:
     return TimeFunction::constant(r.number("value"));
-  if (type == "sine_pulse")
+  case schema::TimeFunctionType::sine_pulse:
     return TimeFunction::sine_pulse(r.number("amplitude"), r.number("frequency"),
                                     r.number("cycles"), r.number("start"));
-  if (type == "table")
+  case schema::TimeFunctionType::table:
   {
     std::vector<double> times, values;
     for (const auto& [t, v] : r.pair_list("points"))
@@ -205,7 +206,9 @@ TimeFunction read_time_function(const MapReader& parent, const std::string& name
     }
     return TimeFunction::table(std::move(times), std::move(values));
   }
-  assert(type == "csv");
+  case schema::TimeFunctionType::csv:
+    break;
+  }
   return read_csv_table(r);
 }
 

@@ -53,9 +53,9 @@ std::vector<std::string> Section::key_names() const
   return names;
 }
 
-std::string SceneSchema::time_function_section(const std::string& type_name)
+std::string SceneSchema::time_function_section(const TimeFunctionType type)
 {
-  return "time function: " + type_name;
+  return std::string("time function: ") + name_of(type);
 }
 
 const Section& SceneSchema::section(const std::string& id) const
@@ -69,7 +69,6 @@ const Section& SceneSchema::section(const std::string& id) const
 
 SceneSchema::SceneSchema()
 {
-  tf_types = {"constant", "sine_pulse", "table", "csv"};
   all_sections = {top_level_section(),
                   analysis_section(),
                   materials_section(),

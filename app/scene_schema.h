@@ -54,6 +54,24 @@ constexpr std::array<EnumName<ValueType>, 16> enum_names(ValueType)
            {ValueType::time_function, "time function"}}};
 }
 
+/// The kinds of time function a scene can give (`type` of a time function's map); csv is a
+/// table read from a file.
+enum class TimeFunctionType
+{
+  constant,
+  sine_pulse,
+  table,
+  csv
+};
+
+constexpr std::array<EnumName<TimeFunctionType>, 4> enum_names(TimeFunctionType)
+{
+  return {{{TimeFunctionType::constant, "constant"},
+           {TimeFunctionType::sine_pulse, "sine_pulse"},
+           {TimeFunctionType::table, "table"},
+           {TimeFunctionType::csv, "csv"}}};
+}
+
 /// Allowed interval of a number (or of each component of a vector of numbers).
 struct Range
 {
@@ -107,9 +125,7 @@ public:
   /// Id of the top-level section.
   static constexpr const char* top_level = "(top level)";
   /// Id of the time-function section whose `type` is `type_name`: "time function: <type>".
-  static std::string time_function_section(const std::string& type_name);
-  /// The time-function types, in schema order.
-  const std::vector<std::string>& time_function_types() const { return tf_types; }
+  static std::string time_function_section(TimeFunctionType type);
 
   const std::vector<Section>& sections() const { return all_sections; }
   /// The section with id `id`; the caller knows it exists (asserted).
@@ -117,7 +133,6 @@ public:
 
 private:
   std::vector<Section> all_sections;
-  std::vector<std::string> tf_types;
 };
 
 } // namespace ddafem::schema

@@ -72,7 +72,8 @@ void read_tunnel_wave(const MapReader& r, const YAML::Node& tunnel_node, TunnelD
   const MapReader wave = r.section_reader("wave");
   t.wave_type = wave.choice_of<WaveType>("type");
   const TimeFunction velocity = read_time_function(wave, "velocity");
-  const bool pulse = nested(tunnel_node, {"wave", "velocity", "type"}).Scalar() == "sine_pulse";
+  const bool pulse = nested(tunnel_node, {"wave", "velocity", "type"}).Scalar() ==
+                     name_of(schema::TimeFunctionType::sine_pulse);
   if (wave.has("frequency"))
     t.wave_frequency = wave.number("frequency");
   else if (pulse)

@@ -54,11 +54,11 @@ Key joint_material_key(const std::string& along)
 }
 
 /// The `type` key of one time-function variant.
-Key time_function_type(const std::string& type_name)
+Key time_function_type(const TimeFunctionType type)
 {
   return key("type", ValueType::choice)
       .required()
-      .choices({type_name})
+      .choices({name_of(type)})
       .meaning("selects this kind of time function");
 }
 

@@ -16,7 +16,7 @@ Key in_situ_gradient_key();
 /// `joint_material` of a joint set or an explicit joint of `rock_mass` (`along`: what it cuts).
 Key joint_material_key(const std::string& along);
 /// The `type` key of one time-function variant.
-Key time_function_type(const std::string& type_name);
+Key time_function_type(TimeFunctionType type);
 
 // blocks, materials, joints, loads, boundaries, time, contacts, stages, solver, output
 // (app/schema_model.cc)

@@ -6,9 +6,9 @@ namespace ddafem::schema
 Section constant_time_function_section()
 {
   using T = ValueType;
-  return {SceneSchema::time_function_section("constant"),
+  return {SceneSchema::time_function_section(TimeFunctionType::constant),
           "f(t) = value.",
-          {time_function_type("constant"),
+          {time_function_type(TimeFunctionType::constant),
            key("value", T::number)
                .required()
                .meaning("the constant (in the unit of the quantity it gives)")}};
@@ -17,10 +17,10 @@ Section constant_time_function_section()
 Section sine_pulse_time_function_section()
 {
   using T = ValueType;
-  return {SceneSchema::time_function_section("sine_pulse"),
+  return {SceneSchema::time_function_section(TimeFunctionType::sine_pulse),
           "f(t) = amplitude sin(2 pi frequency (t - start)) for start <= t <= start + "
           "cycles / frequency, 0 elsewhere.",
-          {time_function_type("sine_pulse"),
+          {time_function_type(TimeFunctionType::sine_pulse),
            key("frequency", T::number).unit("Hz").required().greater_than(0).meaning("frequency"),
            key("cycles", T::number).default_yaml("1").greater_than(0).meaning("number of cycles"),
            key("amplitude", T::number).default_yaml("1").meaning("peak value"),
@@ -30,10 +30,10 @@ Section sine_pulse_time_function_section()
 Section table_time_function_section()
 {
   using T = ValueType;
-  return {SceneSchema::time_function_section("table"),
+  return {SceneSchema::time_function_section(TimeFunctionType::table),
           "Piecewise-linear interpolation of (time, value) points; the first value holds before "
           "the first time and the last value after the last time.",
-          {time_function_type("table"),
+          {time_function_type(TimeFunctionType::table),
            key("points", T::table)
                .unit("s, -")
                .required()
@@ -44,9 +44,9 @@ Section csv_time_function_section()
 {
   using T = ValueType;
   return {
-      SceneSchema::time_function_section("csv"),
+      SceneSchema::time_function_section(TimeFunctionType::csv),
       "A table read from a CSV file (comma-separated numbers; blank lines are ignored).",
-      {time_function_type("csv"),
+      {time_function_type(TimeFunctionType::csv),
        key("file", T::string)
            .required()
            .meaning("path of the CSV file, relative to the scene file's directory"),

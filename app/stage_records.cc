@@ -1,6 +1,6 @@
 #include "app/stage_records.h"
 
-#include "app/run_support.h"
+#include "common/format.h"
 
 #include <string>
 
@@ -20,20 +20,19 @@ nlohmann::json opening_of(const KeyblockRecorder& keyblocks, std::size_t block,
 
 std::string describe_stage(const dda::Stage& st)
 {
-  using run_support::format;
   if (st.mode == dda::StageMode::static_equilibrium)
-    return "static, dt " + format(st.dt) + " s, up to " + std::to_string(st.max_steps) +
-           " steps, equilibrium at an out-of-balance force ratio <= " + format(st.tolerance) +
-           " of each block's own load, released blocks " +
+    return "static, dt " + format_significant(st.dt) + " s, up to " + std::to_string(st.max_steps) +
+           " steps, equilibrium at an out-of-balance force ratio <= " +
+           format_significant(st.tolerance) + " of each block's own load, released blocks " +
            (st.release == dda::ReleaseAction::remove ? "removed" : "fall");
   if (!st.settle)
-    return "dynamic to t = " + format(st.end_time) + " s";
+    return "dynamic to t = " + format_significant(st.end_time) + " s";
   const dda::SettleCriterion& c = *st.settle;
-  return "settle until every block moves slower than " + format(c.rest_speed) + " m/s for " +
-         format(c.rest_duration) + " s" +
-         (c.fall_distance > 0.0 ? " or has fallen " + format(c.fall_distance) + " m"
+  return "settle until every block moves slower than " + format_significant(c.rest_speed) +
+         " m/s for " + format_significant(c.rest_duration) + " s" +
+         (c.fall_distance > 0.0 ? " or has fallen " + format_significant(c.fall_distance) + " m"
                                 : std::string()) +
-         ", at most " + format(c.max_duration) + " s";
+         ", at most " + format_significant(c.max_duration) + " s";
 }
 
 nlohmann::json static_stage_record(const dda::Stage& stage, const dda::StaticStageResult& result,
@@ -96,7 +95,6 @@ nlohmann::json dynamic_stage_record(const dda::Stage& stage, const dda::DynamicS
 dda::StepStatus static_stage_failure(const dda::Stage& stage, const dda::StaticStageResult& result,
                                      const dda::System& system)
 {
-  using run_support::format;
   if (result.outcome == dda::StaticOutcome::step_failed)
     return result.failure;
   dda::StepStatus failure;
@@ -109,9 +107,10 @@ dda::StepStatus static_stage_failure(const dda::Stage& stage, const dda::StaticS
       std::to_string(stage.max_steps) + " steps (" + std::to_string(result.released.size()) +
       " blocks released): the largest out-of-balance force ratio (against the block's own "
       "load) is " +
-      format(result.ratio) + ", above the tolerance " + format(stage.tolerance) + ", on " +
+      format_significant(result.ratio) + ", above the tolerance " +
+      format_significant(stage.tolerance) + ", on " +
       system.get_model().blocks[result.block].origin + ", which moved " +
-      format(b.displacement().norm()) +
+      format_significant(b.displacement().norm()) +
       " m since t = 0 and converges too slowly to be released (expected a larger `max_steps` "
       "or `tolerance`, or a larger pseudo time step `dt`)";
   return failure;

@@ -3,6 +3,7 @@
 // scientific notation ("0.0125", "1e-05", "2").
 #pragma once
 
+#include <iomanip>
 #include <sstream>
 #include <string>
 
@@ -12,6 +13,15 @@ inline std::string format_number(const double v)
 {
   std::ostringstream s;
   s << v;
+  return s.str();
+}
+
+/// `v` with `digits` significant digits, shorter than format_number for the derived numbers of
+/// `check`, warnings and run logs ("2.5e+10", "0.333"): 4 unless told.
+inline std::string format_significant(const double v, const int digits = 4)
+{
+  std::ostringstream s;
+  s << std::setprecision(digits) << v;
   return s.str();
 }
 

@@ -44,13 +44,6 @@ constexpr std::array<EnumName<Integrator>, 4> enum_names(Integrator)
 /// alpha_f = 1/3 (docs/design.md, Integrators).
 constexpr double bathe_first_half_spectral_radius = 0.5;
 
-/// The integrator's name in scene files and outputs ("generalized_alpha", "dda",
-/// "newmark_trapezoidal").
-inline const char* integrator_name(const Integrator integrator)
-{
-  return name_of(integrator);
-}
-
 /// The scheme's parameters. The step's equation of motion is the generalized-alpha one,
 ///   M a_{n+1-alpha_m} = (1 - alpha_f) r_{n+1} + alpha_f r_n,
 /// with a_{n+1-alpha_m} = (1 - alpha_m) a_{n+1} + alpha_m a_n and r the generalised force on the

@@ -88,12 +88,6 @@ constexpr std::array<EnumName<StepOutcome>, 8> enum_names(StepOutcome)
 /// Whether a smaller dt can cure the outcome.
 bool can_retry_with_smaller_step(StepOutcome outcome);
 
-/// The outcome's name as summaries spell it ("not_converged", ...).
-inline const char* outcome_name(const StepOutcome outcome)
-{
-  return name_of(outcome);
-}
-
 struct StepStatus
 {
   StepOutcome outcome = StepOutcome::success;

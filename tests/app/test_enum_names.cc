@@ -48,6 +48,7 @@ TEST(EnumNames, AppTablesRoundTrip)
 {
   expect_round_trip<TunnelTruncation>();
   expect_round_trip<schema::ValueType>();
+  expect_round_trip<schema::TimeFunctionType>();
 }
 
 TEST(EnumNames, SpellingsOfScenesAndSummaries)
@@ -59,6 +60,8 @@ TEST(EnumNames, SpellingsOfScenesAndSummaries)
   EXPECT_STREQ(name_of(dda::SolverKind::block_ldlt), "block_ldlt");
   EXPECT_STREQ(name_of(fem::BoundaryKind::free_field), "free_field");
   EXPECT_STREQ(name_of(schema::ValueType::vector2), "[x, y]");
+  EXPECT_EQ(names_of<schema::TimeFunctionType>(),
+            (std::vector<std::string>{"constant", "sine_pulse", "table", "csv"}));
   // A hole shape of none is no scene's choice.
   EXPECT_STREQ(name_of(fem::HoleShape::none), "");
 }

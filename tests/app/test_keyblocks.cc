@@ -1,5 +1,6 @@
-// Keyblocks (app/keyblocks.h): which blocks surround an opening, and what summary.json reports
+// Keyblocks (app/keyblocks.h): the keyblocks of a rock-mass tunnel, and what summary.json reports
 // for them after a run (the keyblock example with frictionless, sliding and holding joints).
+// Their geometry alone is tested in tests/dda/test_keyblocks.cc.
 #include "app/keyblocks.h"
 
 #include "app/run.h"
@@ -11,7 +12,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 using namespace ddafem;
@@ -20,34 +20,6 @@ using dda::Point;
 namespace
 {
 const std::string source_dir = DDAFEM_SOURCE_DIR;
-
-/// Unit squares of an n x n grid from (0, 0), row by row, leaving out the cells in `holes`
-/// (cell index iy n + ix); every other square is given clockwise (either orientation is valid).
-std::vector<std::vector<Point>> grid(int n, const std::set<int>& holes)
-{
-  std::vector<std::vector<Point>> blocks;
-  for (int iy = 0; iy < n; ++iy)
-    for (int ix = 0; ix < n; ++ix)
-      if (holes.count(iy * n + ix) == 0)
-      {
-        std::vector<Point> square = {{ix, iy}, {ix + 1, iy}, {ix + 1, iy + 1}, {ix, iy + 1}};
-        if (blocks.size() % 2 == 1)
-          std::reverse(square.begin(), square.end());
-        blocks.push_back(square);
-      }
-  return blocks;
-}
-
-/// The keyblock example's blocks: base, left abutment, key, right abutment around a 1 m x
-/// 0.5 m void (examples/keyblock/keyblock.yaml). The base's top edge is shared with both
-/// abutments only in part: the void's floor is the middle of that edge.
-std::vector<std::vector<Point>> keyblock_example()
-{
-  return {{{-3, -1}, {3, -1}, {3, 0}, {-3, 0}},
-          {{-1.5, 0}, {-0.5, 0}, {-0.5, 1}, {-1.5, 1}},
-          {{-0.5, 0.5}, {0.5, 0.5}, {0.5, 1.5}, {-0.5, 1.5}},
-          {{0.5, 0}, {1.5, 0}, {1.5, 1}, {0.5, 1}}};
-}
 
 /// Runs examples/keyblock/keyblock.yaml with the key's friction angle `phi` [deg] and returns
 /// summary.json's `keyblocks` section.
@@ -78,51 +50,6 @@ const nlohmann::json& block(const nlohmann::json& keyblocks, std::size_t id)
 constexpr double g = 9.81;
 constexpr double t_end = 0.3; // s, the example's end_time
 } // namespace
-
-TEST(Keyblocks, AreTheEightBlocksAroundTheHoleOfAGrid)
-{
-  // 5 x 5 squares without the middle one (cell 12): its four edge neighbours (7, 11, 13, 17)
-  // and four corner neighbours (6, 8, 16, 18) touch it; block indices skip the hole.
-  const KeyblockGeometry k = find_keyblocks(grid(5, {12}), 1e-9);
-  ASSERT_EQ(k.openings.size(), 1u);
-  EXPECT_NEAR(k.openings[0].area, 1.0, 1e-12);
-  EXPECT_NEAR(k.openings[0].size(), 1.0, 1e-12);
-  EXPECT_EQ(k.openings[0].lower, Point(2, 2));
-  EXPECT_EQ(k.openings[0].upper, Point(3, 3));
-  EXPECT_EQ(k.blocks, (std::vector<std::size_t>{6, 7, 8, 11, 12, 15, 16, 17}));
-  EXPECT_EQ(k.opening_of, std::vector<std::size_t>(8, 0));
-}
-
-TEST(Keyblocks, NoneWithoutAHole)
-{
-  // A full grid and a notch open to the outside have only an outer boundary.
-  EXPECT_TRUE(find_keyblocks(grid(3, {}), 1e-9).blocks.empty());
-  const KeyblockGeometry notch = find_keyblocks(grid(3, {4, 7}), 1e-9);
-  EXPECT_TRUE(notch.openings.empty());
-  EXPECT_TRUE(notch.blocks.empty());
-}
-
-TEST(Keyblocks, TwoHolesAreTwoOpenings)
-{
-  // 5 x 5 squares without cells 6 and 18: bottom-left opening first.
-  const KeyblockGeometry k = find_keyblocks(grid(5, {18, 6}), 1e-9);
-  ASSERT_EQ(k.openings.size(), 2u);
-  EXPECT_EQ(k.openings[0].lower, Point(1, 1));
-  EXPECT_EQ(k.openings[1].lower, Point(3, 3));
-  // 8 around each; block 11 (cell 12) touches both (first: the lower one).
-  EXPECT_EQ(k.blocks.size(), 15u);
-  const auto at = std::find(k.blocks.begin(), k.blocks.end(), 11u) - k.blocks.begin();
-  EXPECT_EQ(k.opening_of[static_cast<std::size_t>(at)], 0u);
-}
-
-TEST(Keyblocks, AnEdgeSharedInPartBoundsTheVoidWithItsMiddle)
-{
-  const KeyblockGeometry k = find_keyblocks(keyblock_example(), 1e-9);
-  ASSERT_EQ(k.openings.size(), 1u);
-  EXPECT_NEAR(k.openings[0].area, 0.5, 1e-12);
-  EXPECT_NEAR(k.openings[0].size(), 1.0, 1e-12);
-  EXPECT_EQ(k.blocks, (std::vector<std::size_t>{0, 1, 2, 3}));
-}
 
 TEST(Keyblocks, RockMassTunnelKeyblocksAreTheBlocksOnTheOpening)
 {

@@ -20,6 +20,16 @@ TEST(Format, NumbersWithSixSignificantDigits)
   EXPECT_EQ(format_number(1.0 / 3.0), "0.333333");
 }
 
+TEST(Format, NumbersWithGivenSignificantDigits)
+{
+  EXPECT_EQ(format_significant(2.5e10), "2.5e+10");
+  EXPECT_EQ(format_significant(1.0 / 3.0), "0.3333");
+  EXPECT_EQ(format_significant(1.0 / 3.0, 2), "0.33");
+  EXPECT_EQ(format_significant(123456.0), "1.235e+05");
+  EXPECT_EQ(format_significant(12.0, 3), "12");
+  EXPECT_EQ(format_significant(1.0 / 3.0, 6), format_number(1.0 / 3.0));
+}
+
 TEST(Format, TimesAndPoints)
 {
   EXPECT_EQ(format_time(0.0125), "0.0125 s");

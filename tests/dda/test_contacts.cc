@@ -204,8 +204,8 @@ void expect_pushed_block_slides(Integrator integrator)
   const double expected =
       (force - PushedBlock::weight() * std::tan(PushedBlock::phi * M_PI / 180.0)) / mass;
   const double measured = (v2 - v1) / 0.3;
-  std::cout << integrator_name(integrator) << ", 1.02 F_c: acceleration " << measured
-            << " m/s^2, expected " << expected << "\n";
+  std::cout << name_of(integrator) << ", 1.02 F_c: acceleration " << measured << " m/s^2, expected "
+            << expected << "\n";
   EXPECT_NEAR(measured, expected, 0.02 * expected);
   EXPECT_EQ(s.contact_counts().slide, 2u);
   for (const Contact& c : s.get_contacts())

@@ -79,7 +79,7 @@ TEST(Integrator, SecondOrderExceptShisScheme)
   {
     const IntegratorCoefficients c = integrator_coefficients(integrator, rho);
     EXPECT_NEAR(std::log2(period_error(c, 40) / period_error(c, 80)), order, 0.1)
-        << integrator_name(integrator) << " rho " << rho;
+        << name_of(integrator) << " rho " << rho;
   }
 }
 
@@ -126,7 +126,7 @@ TEST(Integrator, ConstantForceIsExact)
       const Vector6 d = rhs / (2.0 * c.mass_factor(dt));
       state = advance_state(c, mass, state, d, dt);
       u += d[0];
-      EXPECT_NEAR(u, 0.5 * g * (n * dt) * (n * dt), 1e-12) << integrator_name(integrator);
+      EXPECT_NEAR(u, 0.5 * g * (n * dt) * (n * dt), 1e-12) << name_of(integrator);
     }
     EXPECT_NEAR(state.force[0], 2.0 * g, 1e-9);
   }

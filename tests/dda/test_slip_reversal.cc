@@ -37,7 +37,7 @@ TEST(SlipReversal, EndVelocityIsExactForAUniformAccelerationWithEveryIntegrator)
   {
     // v(t) = 0.3 - 4 t: at dt = 0.1 s, v1 = -0.1 m/s.
     const IntegratorCoefficients c = integrator_coefficients(i, 0.2);
-    EXPECT_NEAR(end_velocity(c, 0.1, uniform(0.3, -4.0, 0.1)), -0.1, tol) << integrator_name(i);
+    EXPECT_NEAR(end_velocity(c, 0.1, uniform(0.3, -4.0, 0.1)), -0.1, tol) << ddafem::name_of(i);
   }
 }
 
