@@ -4,6 +4,7 @@
 #include "common/format.h"
 #include "common/input_error.h"
 #include "dda/geometry.h"
+#include "dda/jointed_block_modulus.h"
 #include "dda/keyblocks.h"
 
 #include <algorithm>

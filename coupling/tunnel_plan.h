@@ -6,7 +6,6 @@
 #pragma once
 
 #include "common/wave_type.h"
-#include "dda/jointed_block_modulus.h"
 #include "dda/model_description.h"
 #include "dda/rock_mass.h"
 

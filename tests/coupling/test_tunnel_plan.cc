@@ -3,6 +3,7 @@
 #include "coupling/tunnel_plan.h"
 
 #include "common/input_error.h"
+#include "dda/jointed_block_modulus.h"
 
 #include <gtest/gtest.h>
 
