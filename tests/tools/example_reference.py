@@ -2,7 +2,8 @@
 """Stored reference numbers of the examples, and the comparison a test makes with them.
 
     example_reference.py write BINARY [CASE ...]       # run and store tests/reference/examples/
-    example_reference.py check BINARY CASE [--run-dir DIR] [--set KEY=VALUE ...] [--expect-differ]
+    example_reference.py check BINARY CASE [--run-dir DIR | --out DIR] [--set KEY=VALUE ...]
+                               [--expect-differ]
 
 A CASE is an example's path under examples/ without `.yaml` (`bao2012/p_wave_bar`); `write`
 without cases stores every case of CASES. What is stored (tests/reference/examples/CASE.json, the
@@ -14,7 +15,8 @@ slash a dot) is a numdiff-like fingerprint of one run:
 - a determinism hash (sha256 of those numbers' shortest round-trip text and of every history's
   bytes) with the platform it was taken on (the CPU's fma/avx2/avx512f flags and the core count).
 
-`check` runs the example (or reads the run in --run-dir) and compares. A real number x passes
+`check` runs the example (into --out DIR, kept there, or a temporary directory; or reads the run
+in --run-dir) and compares. A real number x passes
 against its reference r when its deviation |x - r| / (|r| + s) is at most TOL, s the largest
 magnitude of its kind: of the whole history for a history's rows (a row after the wave has passed
 is compared against the wave, not against its own small value), of its summary object's members
@@ -231,12 +233,12 @@ def write(binary, cases):
             print(f"wrote {os.path.relpath(reference_path(case), TOP)}")
 
 
-def check(binary, case, run_dir, settings, expect_differ):
+def check(binary, case, run_dir, out, settings, expect_differ):
     with open(reference_path(case)) as f:
         ref = json.load(f)
     with tempfile.TemporaryDirectory(prefix="example_check_") as root:
         if run_dir is None:
-            run_dir = os.path.join(root, "run")
+            run_dir = out or os.path.join(root, "run")
             run_case(binary, case, run_dir, settings)
         problems, same_platform, worst = compare(fingerprint(run_dir), ref)
     for p in problems[:20]:
@@ -262,7 +264,9 @@ def main():
     c = sub.add_parser("check")
     c.add_argument("binary")
     c.add_argument("case")
-    c.add_argument("--run-dir", help="compare this finished run instead of running the case")
+    source = c.add_mutually_exclusive_group()
+    source.add_argument("--run-dir", help="compare this finished run instead of running the case")
+    source.add_argument("--out", help="run the case into this directory and keep it there")
     c.add_argument("--set", action="append", default=[], help="a scene setting for the run")
     c.add_argument("--expect-differ", action="store_true",
                    help="succeed only if the run differs from the reference")
@@ -270,7 +274,7 @@ def main():
     if args.command == "write":
         write(os.path.abspath(args.binary), args.cases or CASES)
         return 0
-    return check(os.path.abspath(args.binary), args.case, args.run_dir, args.set,
+    return check(os.path.abspath(args.binary), args.case, args.run_dir, args.out, args.set,
                  args.expect_differ)
 
 
