@@ -110,11 +110,17 @@ void add_coupled_summary(nlohmann::json& summary, const CoupledParts& coupled)
 void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
                         const RunOutputs& outputs)
 {
-  const dda::FactorizationReusingSolver& solver = system.get_solver();
+  const dda::StepSolver& solver = system.get_solver();
   summary["solver"] = {{"name", solver.name()},
                        {"factorizations", solver.n_factorizations()},
                        {"solves", solver.n_solves()},
                        {"refinement_iterations", solver.n_refinements()}};
+  if (solver.n_pcg_solves() > 0)
+  {
+    summary["solver"]["pcg_solves"] = solver.n_pcg_solves();
+    summary["solver"]["pcg_iterations"] = solver.n_pcg_iterations();
+    summary["solver"]["pcg_fallbacks"] = solver.n_fallbacks();
+  }
   summary["model"] = {{"blocks", system.get_blocks().size()},
                       {"bonded_joints", system.get_joints().size()},
                       {"dofs", system.n_dofs()}};

@@ -353,9 +353,15 @@ void read_stages(const MapReader& top, dda::ModelDescription& model)
     model.stages.push_back(read_stage(r, model));
 }
 
-dda::SolverKind read_solver(const MapReader& top)
+dda::SolverSettings read_solver(const MapReader& top)
 {
-  return top.section_reader("solver").choice_of<dda::SolverKind>("type");
+  const MapReader r = top.section_reader("solver");
+  dda::SolverSettings s;
+  s.method = r.choice_of<dda::SolverMethod>("method");
+  s.direct = r.choice_of<dda::SolverKind>("type");
+  s.tolerance = r.number("tolerance");
+  s.max_iterations = static_cast<unsigned>(r.integer("max_iterations"));
+  return s;
 }
 
 OutputSettings read_output(const MapReader& top)

@@ -81,7 +81,7 @@ dda::BoundaryDescription read_boundary(const MapReader& r, const dda::ModelDescr
 void read_time(const MapReader& top, dda::TimeSettings& time);
 void read_contacts(const MapReader& top, dda::ContactSettings& contacts);
 void read_stages(const MapReader& top, dda::ModelDescription& model);
-dda::SolverKind read_solver(const MapReader& top);
+dda::SolverSettings read_solver(const MapReader& top);
 OutputSettings read_output(const MapReader& top);
 
 // ---- Blocks (app/scene_block_reader.cc) -----------------------------------------------------

@@ -706,13 +706,32 @@ Section solver_section()
 {
   using T = ValueType;
   return {"solver",
-          "Sparse direct solver for each step's linear system.",
-          {key("type", T::choice)
+          "Linear solver for each step's system.",
+          {key("method", T::choice)
+               .choices(names_of<dda::SolverMethod>())
+               .default_yaml("direct")
+               .meaning("direct: the sparse direct solver of `type`, its factors reused as a "
+                        "preconditioner while they serve; block_pcg: conjugate gradients "
+                        "preconditioned by the blocks' 6x6 diagonal, warm-started, no "
+                        "factorization (for many contacts changing state; the direct solver when "
+                        "it does not converge, see docs/performance/contact_bench.md)"),
+           key("type", T::choice)
                .choices(names_of<dda::SolverKind>())
                .default_yaml("block_ldlt")
-               .meaning("block_ldlt: sparse Cholesky on the 6x6 blocks (fastest, "
-                        "see docs/performance/dda_bench.md); eigen_ldlt: Eigen "
-                        "SimplicialLDLT; amesos_klu: Trilinos Amesos KLU")}};
+               .meaning("the sparse direct solver (block_pcg's fallback): block_ldlt: sparse "
+                        "Cholesky on the 6x6 blocks (fastest, see docs/performance/dda_bench.md); "
+                        "eigen_ldlt: Eigen SimplicialLDLT; amesos_klu: Trilinos Amesos KLU"),
+           key("tolerance", T::number)
+               .default_yaml("1e-10")
+               .greater_than(0)
+               .less_than(1e-3)
+               .meaning("block_pcg: relative residual, in the norm of the diagonal blocks' "
+                        "inverses, at which it stops"),
+           key("max_iterations", T::integer)
+               .default_yaml("200")
+               .at_least(1)
+               .meaning("block_pcg: iterations before the direct solver takes over (for this dt "
+                        "for the next 100 solves)")}};
 }
 
 Section output_section()

@@ -37,7 +37,14 @@ void BlockSparseMatrix::set_zero()
 
 Eigen::VectorXd BlockSparseMatrix::multiply(const Eigen::VectorXd& x) const
 {
-  Eigen::VectorXd y(x.size());
+  Eigen::VectorXd y;
+  multiply(x, y);
+  return y;
+}
+
+void BlockSparseMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const
+{
+  y.resize(x.size());
   for (std::size_t i = 0; i < diagonal_blocks.size(); ++i)
     y.segment<6>(6 * i) = diagonal_blocks[i] * x.segment<6>(6 * i);
   for (std::size_t k = 0; k < coupling_pairs.size(); ++k)
@@ -46,7 +53,6 @@ Eigen::VectorXd BlockSparseMatrix::multiply(const Eigen::VectorXd& x) const
     y.segment<6>(6 * i) += upper_blocks[k] * x.segment<6>(6 * j);
     y.segment<6>(6 * j) += upper_blocks[k].transpose() * x.segment<6>(6 * i);
   }
-  return y;
 }
 
 bool BlockSparseMatrix::same_structure(const BlockSparseMatrix& other) const

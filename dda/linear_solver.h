@@ -41,6 +41,8 @@ public:
 
   /// y = A x.
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
+  /// y = A x into y (resized), without allocating when y has the size already.
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
   /// Whether both have the same blocks and couplings, in the same order.
   bool same_structure(const BlockSparseMatrix& other) const;

@@ -213,6 +213,33 @@ constexpr std::array<EnumName<SolverKind>, 3> enum_names(SolverKind)
            {SolverKind::amesos_klu, "amesos_klu"}}};
 }
 
+/// How each step's system is solved.
+enum class SolverMethod
+{
+  /// The sparse direct solver, its factors reused as a CG preconditioner while they serve
+  /// (FactorizationReusingSolver)
+  direct,
+  /// Conjugate gradients preconditioned by the 6x6 diagonal blocks, warm-started from the
+  /// last solution, no factorization; the direct solver when it does not converge
+  block_pcg
+};
+
+constexpr std::array<EnumName<SolverMethod>, 2> enum_names(SolverMethod)
+{
+  return {{{SolverMethod::direct, "direct"}, {SolverMethod::block_pcg, "block_pcg"}}};
+}
+
+/// The step's linear solver.
+struct SolverSettings
+{
+  SolverKind direct = SolverKind::block_ldlt; ///< also block_pcg's fallback
+  SolverMethod method = SolverMethod::direct;
+  /// block_pcg: relative residual in the block-diagonal norm at which it stops
+  double tolerance = 1e-10;
+  /// block_pcg: iterations before it falls back to the direct solver
+  unsigned max_iterations = 200;
+};
+
 /// How the time step is chosen.
 enum class TimeControl
 {
@@ -369,7 +396,7 @@ struct ModelDescription
   ContactSettings contacts;
   /// The stages in order; empty: one dynamic stage up to time.end_time.
   std::vector<Stage> stages;
-  SolverKind solver = SolverKind::block_ldlt;
+  SolverSettings solver;
 };
 
 } // namespace ddafem::dda

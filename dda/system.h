@@ -10,6 +10,7 @@
 #include "dda/linear_solver.h"
 #include "dda/model_description.h"
 #include "dda/snapshot.h"
+#include "dda/step_solver.h"
 #include "dda/tied_body.h"
 #include "dda/viscous_boundary.h"
 
@@ -242,7 +243,7 @@ public:
   double max_penetration() const { return penetration_limit; }             ///< [m]
   const ModelDescription& get_model() const { return model; }
   const PhaseTimings& get_timings() const { return timings; }
-  const FactorizationReusingSolver& get_solver() const { return solver; }
+  const StepSolver& get_solver() const { return solver; }
   const std::vector<BoundaryEdge>& get_boundary_edges() const { return boundary_edges; }
   /// Stability of boundary edge k at time step dt.
   BoundaryStability stability_of(std::size_t k, double dt) const;
@@ -589,7 +590,7 @@ private:
   double matrix_mass_factor = 0.0; ///< and its factor of M [1/s^2]
   Eigen::VectorXd rhs;
   Eigen::VectorXd solution;
-  FactorizationReusingSolver solver;
+  StepSolver solver;
 
   double current_time = 0.0;
   double work_of_loads = 0.0;

@@ -366,7 +366,7 @@ TEST_F(SceneTest, DefaultsAreApplied)
   EXPECT_EQ(m.gravity, dda::Vector2::Zero());
   EXPECT_EQ(m.time.integrator, dda::Integrator::bathe);
   EXPECT_EQ(m.time.spectral_radius, 0.2);
-  EXPECT_EQ(m.solver, dda::SolverKind::block_ldlt);
+  EXPECT_EQ(m.solver.direct, dda::SolverKind::block_ldlt);
   EXPECT_EQ(m.blocks[0].initial_velocity, dda::Vector2::Zero());
   EXPECT_EQ(m.blocks[0].initial_stress, dda::Voigt::Zero());
   EXPECT_EQ(m.blocks[0].origin, "blocks[0]");
@@ -439,7 +439,7 @@ output: {directory: out, interval: 0.5, history_every: 10}
   EXPECT_EQ(m.fixed_points[0].origin, "fixed_points[0]");
   EXPECT_EQ(m.gravity, dda::Vector2(0, -9.81));
   EXPECT_EQ(m.time.integrator, dda::Integrator::newmark_trapezoidal);
-  EXPECT_EQ(m.solver, dda::SolverKind::amesos_klu);
+  EXPECT_EQ(m.solver.direct, dda::SolverKind::amesos_klu);
   EXPECT_EQ(scene.output.directory, "out");
   EXPECT_EQ(scene.output.interval, 0.5);
   EXPECT_EQ(scene.output.history_every, 10u);
@@ -1142,7 +1142,7 @@ TEST_F(SceneTest, OverridesChangeTheSceneBeforeValidation)
   EXPECT_EQ(m.materials[1].density, 2700.0);
   EXPECT_NEAR(dda::signed_area(m.blocks[0].vertices), 1.5, 1e-12);
   EXPECT_EQ(m.joint_materials[0].friction_angle, 30.0);
-  EXPECT_EQ(m.solver, dda::SolverKind::amesos_klu);
+  EXPECT_EQ(m.solver.direct, dda::SolverKind::amesos_klu);
   EXPECT_EQ(s.output.interval, 1e-3);
 }
 

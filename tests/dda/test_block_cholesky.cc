@@ -2,6 +2,7 @@
 // positive definite block-sparse matrices: a chain, a 2D grid with fill-in, a random graph.
 #include "dda/block_cholesky.h"
 #include "dda/linear_solver.h"
+#include "tests/dda/block_matrices.h"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Dense>
@@ -18,29 +19,15 @@ namespace ddafem::dda
 {
 namespace
 {
-using Couplings = std::vector<std::pair<std::size_t, std::size_t>>;
+using test_matrices::Couplings;
+using test_matrices::grid_couplings;
+using test_matrices::to_dense;
 
 Couplings chain_couplings(std::size_t n_blocks)
 {
   Couplings couplings;
   for (std::size_t i = 0; i + 1 < n_blocks; ++i)
     couplings.emplace_back(i, i + 1);
-  return couplings;
-}
-
-/// Blocks of an n_x x n_y grid, each coupled to its right and upper neighbours.
-Couplings grid_couplings(std::size_t n_x, std::size_t n_y)
-{
-  Couplings couplings;
-  for (std::size_t y = 0; y < n_y; ++y)
-    for (std::size_t x = 0; x < n_x; ++x)
-    {
-      const std::size_t b = y * n_x + x;
-      if (x + 1 < n_x)
-        couplings.emplace_back(b, b + 1);
-      if (y + 1 < n_y)
-        couplings.emplace_back(b, b + n_x);
-    }
   return couplings;
 }
 
@@ -82,23 +69,6 @@ void fill_random(BlockSparseMatrix& a, std::mt19937& rng, bool positive_definite
   }
   if (!positive_definite)
     a.diagonal(a.n_blocks() / 2)(3, 3) = -100.0 * (row_sum[a.n_blocks() / 2] + 10.0);
-}
-
-Eigen::MatrixXd to_dense(const BlockSparseMatrix& a)
-{
-  const auto n = static_cast<Eigen::Index>(a.n_rows());
-  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
-  for (std::size_t i = 0; i < a.n_blocks(); ++i)
-    dense.block<6, 6>(6 * static_cast<Eigen::Index>(i), 6 * static_cast<Eigen::Index>(i)) =
-        a.diagonal(i);
-  for (std::size_t k = 0; k < a.n_couplings(); ++k)
-  {
-    const auto i = 6 * static_cast<Eigen::Index>(a.coupling(k).first);
-    const auto j = 6 * static_cast<Eigen::Index>(a.coupling(k).second);
-    dense.block<6, 6>(i, j) += a.upper(k);
-    dense.block<6, 6>(j, i) += a.upper(k).transpose();
-  }
-  return dense;
 }
 
 /// Relative error of the block Cholesky solution against the dense LLT solution.
