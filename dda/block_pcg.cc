@@ -16,7 +16,25 @@ bool BlockJacobiPcg::set_preconditioner(const BlockSparseMatrix& a)
       return false;
     inverses[i] = llt.solve(Matrix6::Identity());
   }
+  nonzero_couplings.clear();
+  for (std::size_t k = 0; k < a.n_couplings(); ++k)
+    if (!a.upper(k).isZero(0.0))
+      nonzero_couplings.push_back(k);
   return true;
+}
+
+void BlockJacobiPcg::multiply(const BlockSparseMatrix& a, const Eigen::VectorXd& x,
+                              Eigen::VectorXd& y) const
+{
+  y.resize(x.size());
+  for (std::size_t i = 0; i < a.n_blocks(); ++i)
+    y.segment<6>(6 * i).noalias() = a.diagonal(i) * x.segment<6>(6 * i);
+  for (const std::size_t k : nonzero_couplings)
+  {
+    const auto [i, j] = a.coupling(k);
+    y.segment<6>(6 * i).noalias() += a.upper(k) * x.segment<6>(6 * j);
+    y.segment<6>(6 * j).noalias() += a.upper(k).transpose() * x.segment<6>(6 * i);
+  }
 }
 
 double BlockJacobiPcg::precondition(const Eigen::VectorXd& r_, Eigen::VectorXd& z_) const
@@ -55,7 +73,7 @@ PcgStatus BlockJacobiPcg::solve(const BlockSparseMatrix& a, const Eigen::VectorX
   // from b - A x by rounding, and the answer must satisfy the true one.
   for (int pass = 0;; ++pass)
   {
-    a.multiply(x, q);
+    multiply(a, x, q);
     r = b - q;
     double rz = precondition(r, z);
     status.relative_residual = std::sqrt(std::max(rz, 0.0) / b_norm2);
@@ -72,7 +90,7 @@ PcgStatus BlockJacobiPcg::solve(const BlockSparseMatrix& a, const Eigen::VectorX
       if (status.n_iterations == settings.max_iterations)
         return status;
       ++status.n_iterations;
-      a.multiply(p, q);
+      multiply(a, p, q);
       const double pq = p.dot(q);
       if (!(pq > 0.0))
         return status; // A is not positive definite along p, or NaN

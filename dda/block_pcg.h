@@ -43,15 +43,20 @@ public:
   bool set_preconditioner(const BlockSparseMatrix& a);
 
   /// Solves a x = b from the first guess x (a zero vector of b's size if x's size differs),
-  /// with the preconditioner of the last set_preconditioner (for a's diagonal).
+  /// with the preconditioner of the last set_preconditioner, which must have been given a
+  /// (its diagonal and its zero couplings).
   PcgStatus solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                   const PcgSettings& settings);
 
 private:
   /// z = D^-1 r; returns r^T z.
   double precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+  /// y = A x over the couplings whose block is not zero (those of contacts that are all open
+  /// add nothing; skipping them is exact).
+  void multiply(const BlockSparseMatrix& a, const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
 
-  std::vector<Matrix6> inverses; ///< of the diagonal blocks
+  std::vector<Matrix6> inverses;              ///< of the diagonal blocks
+  std::vector<std::size_t> nonzero_couplings; ///< of the matrix of set_preconditioner
   Eigen::VectorXd r, z, p, q;
 };
 

@@ -71,40 +71,46 @@ VertexShape vertex_shape(const std::vector<Point>& polygon, std::size_t k, doubl
   return VertexShape::straight;
 }
 
-/// The two polygons with the shape of every vertex, and the tolerances of one search.
+/// The two polygons, the shapes of their vertices (computed when first needed) and the
+/// tolerances of one search.
 class PairSearch
 {
 public:
   PairSearch(const std::vector<Point>& a, const std::vector<Point>& b, double search_distance,
              double angle_tolerance)
-      : polygons{&a, &b}, d0(search_distance), sin_tolerance(std::sin(angle_tolerance))
+      : polygons{&a, &b}, d0(search_distance), angle_tolerance(angle_tolerance),
+        sin_tolerance(std::sin(angle_tolerance))
   {
     for (std::size_t s = 0; s < 2; ++s)
-      for (std::size_t k = 0; k < polygons[s]->size(); ++k)
-        shapes[s].push_back(vertex_shape(*polygons[s], k, angle_tolerance));
+    {
+      shapes[s].assign(polygons[s]->size(), unknown_shape);
+      near[s] = near_vertices(*polygons[s], *polygons[1 - s]);
+    }
   }
 
-  /// Rules 3 and 4, in any order (the caller sorts).
+  /// Rules 3 and 4, in any order (the caller sorts). Only vertices near the other polygon's
+  /// bounding box are visited: a vertex farther than d0 from it is farther than d0 from every
+  /// edge and vertex of the other polygon and pairs with none.
   std::vector<VertexEdgePair> find() const
   {
     std::vector<VertexEdgePair> pairs;
     for (std::size_t s = 0; s < 2; ++s)
-      for (std::size_t v = 0; v < polygons[s]->size(); ++v)
-        if (shapes[s][v] == VertexShape::convex)
+      for (const std::size_t v : near[s])
+        if (shape(s, v) == VertexShape::convex)
           add_vertex_edge_pairs(s, v, pairs);
 
     const std::vector<Point>& a = *polygons[0];
     const std::vector<Point>& b = *polygons[1];
-    for (std::size_t i = 0; i < a.size(); ++i)
-      for (std::size_t j = 0; j < b.size(); ++j)
+    for (const std::size_t i : near[0])
+      for (const std::size_t j : near[1])
       {
         if ((a[i] - b[j]).norm() > d0)
           continue;
-        if (shapes[0][i] == VertexShape::convex && shapes[1][j] == VertexShape::convex)
+        if (shape(0, i) == VertexShape::convex && shape(1, j) == VertexShape::convex)
           pairs.push_back(entrance_pair(i, j));
-        else if (shapes[0][i] == VertexShape::convex)
+        else if (shape(0, i) == VertexShape::convex)
           add_corner_pairs(0, i, j, pairs);
-        else if (shapes[1][j] == VertexShape::convex)
+        else if (shape(1, j) == VertexShape::convex)
           add_corner_pairs(1, j, i, pairs);
       }
     return pairs;
@@ -148,7 +154,7 @@ private:
     const std::size_t n = other.size();
     for (const auto& [adjacent, shared] : {std::pair{previous(e, n), e}, {next(e, n), next(e, n)}})
     {
-      if (shapes[1 - s][shared] != VertexShape::convex)
+      if (shape(1 - s, shared) != VertexShape::convex)
         continue;
       const Edge side = edge_of(other, adjacent);
       if ((p - side.start).dot(side.normal) > 0.0)
@@ -191,7 +197,7 @@ private:
       if (enters(s, v, e))
         entered.push_back(pair_of(s, v, e, ContactKind::vertex_vertex));
 
-    if (shapes[1 - s][w] == VertexShape::concave || entered.size() < 2)
+    if (shape(1 - s, w) == VertexShape::concave || entered.size() < 2)
     {
       pairs.insert(pairs.end(), entered.begin(), entered.end());
       return;
@@ -235,10 +241,41 @@ private:
     return candidates[c];
   }
 
+  /// The shape of vertex k of polygon s.
+  VertexShape shape(std::size_t s, std::size_t k) const
+  {
+    if (shapes[s][k] == unknown_shape)
+      shapes[s][k] = static_cast<signed char>(vertex_shape(*polygons[s], k, angle_tolerance));
+    return static_cast<VertexShape>(shapes[s][k]);
+  }
+
+  /// The vertices of p within d0 of q's bounding box (a conservative margin of 1e-9 d0 covers
+  /// rounding), in ascending order.
+  std::vector<std::size_t> near_vertices(const std::vector<Point>& p,
+                                         const std::vector<Point>& q) const
+  {
+    Point lower = q.front(), upper = q.front();
+    for (const Point& x : q)
+    {
+      lower = lower.cwiseMin(x);
+      upper = upper.cwiseMax(x);
+    }
+    const double reach = d0 * (1.0 + 1e-9);
+    std::vector<std::size_t> vertices;
+    for (std::size_t k = 0; k < p.size(); ++k)
+      if (p[k].x() >= lower.x() - reach && p[k].x() <= upper.x() + reach &&
+          p[k].y() >= lower.y() - reach && p[k].y() <= upper.y() + reach)
+        vertices.push_back(k);
+    return vertices;
+  }
+
+  static constexpr signed char unknown_shape = -1;
   std::array<const std::vector<Point>*, 2> polygons;
-  std::array<std::vector<VertexShape>, 2> shapes;
-  double d0;            ///< search distance [m]
-  double sin_tolerance; ///< sine of the angle tolerance [-]
+  mutable std::array<std::vector<signed char>, 2> shapes; ///< VertexShape, or unknown_shape
+  std::array<std::vector<std::size_t>, 2> near;           ///< vertices near the other's box
+  double d0;                                              ///< search distance [m]
+  double angle_tolerance;                                 ///< [rad]
+  double sin_tolerance;                                   ///< sine of the angle tolerance [-]
 };
 
 void check_polygon(const std::vector<Point>& polygon, const std::string& name)
