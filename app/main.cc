@@ -43,7 +43,8 @@ int check_or_run(const CommandLine& cl, bool run)
   std::vector<ddafem::Override> overrides;
   for (const std::string& s : cl.settings)
     overrides.push_back(ddafem::parse_override(s));
-  const ddafem::Scene scene = ddafem::read_scene(cl.scene, overrides);
+  ddafem::Scene scene = ddafem::read_scene(cl.scene, overrides);
+  scene.model.solver.threads = cl.options.threads;
   try
   {
     if (!run)
@@ -77,6 +78,11 @@ int main(int argc, char** argv)
                   "output directory (default: the scene's output.directory)")
       ->type_name("DIR");
   run->add_flag("-q,--quiet", cl.options.quiet, "no progress line");
+  run->add_option("--threads", cl.options.threads,
+                  "threads of the blocks' iterative solver (solver.method block_pcg; default "
+                  "0: all cores); results do not depend on it")
+      ->check(CLI::Range(0u, 1024u))
+      ->type_name("N");
   run->add_flag("--allow-unstable", cl.options.allow_unstable,
                 "run although a boundary feeds energy in at this dt (it will fail)");
   CLI::App* reference =

@@ -18,6 +18,9 @@ struct RunOptions
   bool quiet = false;           ///< no progress line
   /// Run even if a boundary is an energy source at the scene's dt (to show the failure).
   bool allow_unstable = false;
+  /// Threads of the blocks' iterative solver (solver.method block_pcg); 0: all cores. The
+  /// results do not depend on it.
+  unsigned threads = 0;
 };
 
 /// Runs a scene (blocks alone, tied to a far field, or a far field alone) and writes

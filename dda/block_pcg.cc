@@ -2,51 +2,112 @@
 
 #include <Eigen/Cholesky>
 
+#include <atomic>
 #include <cmath>
 
 namespace ddafem::dda
 {
+namespace
+{
+Eigen::Index at(std::size_t block)
+{
+  return static_cast<Eigen::Index>(6 * block);
+}
+} // namespace
+
+BlockJacobiPcg::BlockJacobiPcg(const unsigned n_threads) : parallel(n_threads) {}
+
 bool BlockJacobiPcg::set_preconditioner(const BlockSparseMatrix& a)
 {
-  inverses.resize(a.n_blocks());
-  for (std::size_t i = 0; i < a.n_blocks(); ++i)
-  {
-    const Eigen::LLT<Matrix6> llt(a.diagonal(i));
-    if (llt.info() != Eigen::Success)
-      return false;
-    inverses[i] = llt.solve(Matrix6::Identity());
-  }
-  nonzero_couplings.clear();
+  const std::size_t n = a.n_blocks();
+  inverses.resize(n);
+  std::atomic<bool> positive{true};
+  parallel.for_chunks(n, grain,
+                      [&](std::size_t begin, std::size_t end)
+                      {
+                        for (std::size_t i = begin; i < end; ++i)
+                        {
+                          const Eigen::LLT<Matrix6> llt(a.diagonal(i));
+                          if (llt.info() != Eigen::Success)
+                            positive.store(false, std::memory_order_relaxed);
+                          else
+                            inverses[i] = llt.solve(Matrix6::Identity());
+                        }
+                      });
+  if (!positive)
+    return false;
+  // Row index of the non-zero couplings: count, prefix sum, fill in coupling order.
+  row_start.assign(n + 1, 0);
+  std::vector<char> nonzero(a.n_couplings());
   for (std::size_t k = 0; k < a.n_couplings(); ++k)
-    if (!a.upper(k).isZero(0.0))
-      nonzero_couplings.push_back(k);
+  {
+    nonzero[k] = !a.upper(k).isZero(0.0);
+    if (nonzero[k])
+    {
+      ++row_start[a.coupling(k).first + 1];
+      ++row_start[a.coupling(k).second + 1];
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    row_start[i + 1] += row_start[i];
+  row_entries.resize(row_start[n]);
+  std::vector<std::size_t> fill(row_start.begin(), row_start.end() - 1);
+  for (std::size_t k = 0; k < a.n_couplings(); ++k)
+    if (nonzero[k])
+    {
+      const auto [i, j] = a.coupling(k);
+      row_entries[fill[i]++] = {k, j, false};
+      row_entries[fill[j]++] = {k, i, true};
+    }
   return true;
 }
 
-void BlockJacobiPcg::multiply(const BlockSparseMatrix& a, const Eigen::VectorXd& x,
-                              Eigen::VectorXd& y) const
+void BlockJacobiPcg::multiply_rows(const BlockSparseMatrix& a, const Eigen::VectorXd& x,
+                                   Eigen::VectorXd& y, std::size_t begin, std::size_t end) const
+{
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    Vector6 yi = a.diagonal(i) * x.segment<6>(at(i));
+    for (std::size_t e = row_start[i]; e < row_start[i + 1]; ++e)
+    {
+      const RowEntry& entry = row_entries[e];
+      const Matrix6& u = a.upper(entry.coupling);
+      if (entry.transposed)
+        yi.noalias() += u.transpose() * x.segment<6>(at(entry.column));
+      else
+        yi.noalias() += u * x.segment<6>(at(entry.column));
+    }
+    y.segment<6>(at(i)) = yi;
+  }
+}
+
+double BlockJacobiPcg::multiply(const BlockSparseMatrix& a, const Eigen::VectorXd& x,
+                                Eigen::VectorXd& y) const
 {
   y.resize(x.size());
-  for (std::size_t i = 0; i < a.n_blocks(); ++i)
-    y.segment<6>(6 * i).noalias() = a.diagonal(i) * x.segment<6>(6 * i);
-  for (const std::size_t k : nonzero_couplings)
-  {
-    const auto [i, j] = a.coupling(k);
-    y.segment<6>(6 * i).noalias() += a.upper(k) * x.segment<6>(6 * j);
-    y.segment<6>(6 * j).noalias() += a.upper(k).transpose() * x.segment<6>(6 * i);
-  }
+  return parallel.sum_chunks(a.n_blocks(), grain,
+                             [&](std::size_t begin, std::size_t end)
+                             {
+                               multiply_rows(a, x, y, begin, end);
+                               return x.segment(at(begin), at(end) - at(begin))
+                                   .dot(y.segment(at(begin), at(end) - at(begin)));
+                             });
 }
 
 double BlockJacobiPcg::precondition(const Eigen::VectorXd& r_, Eigen::VectorXd& z_) const
 {
-  double rz = 0.0;
-  for (std::size_t i = 0; i < inverses.size(); ++i)
-  {
-    const auto at = static_cast<Eigen::Index>(6 * i);
-    z_.segment<6>(at).noalias() = inverses[i] * r_.segment<6>(at);
-    rz += r_.segment<6>(at).dot(z_.segment<6>(at));
-  }
-  return rz;
+  return parallel.sum_chunks(inverses.size(), grain,
+                             [&](std::size_t begin, std::size_t end)
+                             {
+                               double rz = 0.0;
+                               for (std::size_t i = begin; i < end; ++i)
+                               {
+                                 z_.segment<6>(at(i)).noalias() =
+                                     inverses[i] * r_.segment<6>(at(i));
+                                 rz += r_.segment<6>(at(i)).dot(z_.segment<6>(at(i)));
+                               }
+                               return rz;
+                             });
 }
 
 PcgStatus BlockJacobiPcg::solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
@@ -54,11 +115,12 @@ PcgStatus BlockJacobiPcg::solve(const BlockSparseMatrix& a, const Eigen::VectorX
 {
   PcgStatus status;
   const Eigen::Index n = b.size();
+  const std::size_t n_blocks = a.n_blocks();
   if (x.size() != n || !x.allFinite())
     x.setZero(n);
   r.resize(n);
   z.resize(n);
-  q.resize(n);
+  p.resize(n);
   // The D^-1 norm of b: every block's equations weigh by their own stiffness, so a held block
   // (its diagonal scaled by 1e8) or a fixed point does not dominate the stopping test.
   const double b_norm2 = precondition(b, z);
@@ -90,15 +152,33 @@ PcgStatus BlockJacobiPcg::solve(const BlockSparseMatrix& a, const Eigen::VectorX
       if (status.n_iterations == settings.max_iterations)
         return status;
       ++status.n_iterations;
-      multiply(a, p, q);
-      const double pq = p.dot(q);
+      const double pq = multiply(a, p, q);
       if (!(pq > 0.0))
         return status; // A is not positive definite along p, or NaN
       const double alpha = rz / pq;
-      x.noalias() += alpha * p;
-      r.noalias() -= alpha * q;
-      const double rz_new = precondition(r, z);
-      p = z + (rz_new / rz) * p;
+      const double rz_new =
+          parallel.sum_chunks(n_blocks, grain,
+                              [&](std::size_t begin, std::size_t end)
+                              {
+                                const Eigen::Index first = at(begin), size = at(end) - at(begin);
+                                x.segment(first, size).noalias() += alpha * p.segment(first, size);
+                                r.segment(first, size).noalias() -= alpha * q.segment(first, size);
+                                double rz_chunk = 0.0;
+                                for (std::size_t i = begin; i < end; ++i)
+                                {
+                                  z.segment<6>(at(i)).noalias() = inverses[i] * r.segment<6>(at(i));
+                                  rz_chunk += r.segment<6>(at(i)).dot(z.segment<6>(at(i)));
+                                }
+                                return rz_chunk;
+                              });
+      const double beta = rz_new / rz;
+      parallel.for_chunks(n_blocks, grain,
+                          [&](std::size_t begin, std::size_t end)
+                          {
+                            const Eigen::Index first = at(begin), size = at(end) - at(begin);
+                            p.segment(first, size) =
+                                z.segment(first, size) + beta * p.segment(first, size);
+                          });
       rz = rz_new;
       status.relative_residual = std::sqrt(std::max(rz, 0.0) / b_norm2);
     }

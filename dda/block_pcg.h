@@ -6,8 +6,13 @@
 // mu ~ c m / (c m + sum of the block's contact stiffnesses) and the iteration count grows
 // with dt (kappa ~ dt^2). Large dt, static stages and dense tie terms are the hard cases: the
 // caller (StepSolver) falls back to a direct solve when the iteration does not converge.
+//
+// Every kernel runs over fixed chunks of block rows (common/parallel.h): the product row by
+// row, the sums one partial per chunk added in order, so the iterates are the same bits on any
+// number of threads.
 #pragma once
 
+#include "common/parallel.h"
 #include "dda/linear_solver.h"
 #include "dda/types.h"
 
@@ -38,25 +43,45 @@ struct PcgStatus
 class BlockJacobiPcg
 {
 public:
-  /// Inverts the diagonal blocks of a; false if one is not positive definite (then the
-  /// matrix is not either, and a direct solver reports it).
+  /// n_threads: see Parallel (results do not depend on it).
+  explicit BlockJacobiPcg(unsigned n_threads = 1);
+
+  /// Inverts the diagonal blocks of a and indexes its non-zero couplings by block row; false
+  /// if a diagonal block is not positive definite (then the matrix is not either, and a
+  /// direct solver reports it).
   bool set_preconditioner(const BlockSparseMatrix& a);
 
   /// Solves a x = b from the first guess x (a zero vector of b's size if x's size differs),
-  /// with the preconditioner of the last set_preconditioner, which must have been given a
-  /// (its diagonal and its zero couplings).
+  /// with the preconditioner of the last set_preconditioner, which must have been given a.
   PcgStatus solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                   const PcgSettings& settings);
 
+  unsigned n_threads() const { return parallel.n_threads(); }
+
+  /// Block rows per chunk of every kernel.
+  static constexpr std::size_t grain = 64;
+
 private:
+  /// A coupling in a block row: its upper block, transposed for the row of its second block.
+  struct RowEntry
+  {
+    std::size_t coupling;
+    std::size_t column; ///< the other block
+    bool transposed;
+  };
   /// z = D^-1 r; returns r^T z.
   double precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
-  /// y = A x over the couplings whose block is not zero (those of contacts that are all open
-  /// add nothing; skipping them is exact).
-  void multiply(const BlockSparseMatrix& a, const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// y = A x over the non-zero couplings (those of contacts that are all open add nothing);
+  /// returns x^T y.
+  double multiply(const BlockSparseMatrix& a, const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// Block rows [begin, end) of y = A x.
+  void multiply_rows(const BlockSparseMatrix& a, const Eigen::VectorXd& x, Eigen::VectorXd& y,
+                     std::size_t begin, std::size_t end) const;
 
-  std::vector<Matrix6> inverses;              ///< of the diagonal blocks
-  std::vector<std::size_t> nonzero_couplings; ///< of the matrix of set_preconditioner
+  Parallel parallel;
+  std::vector<Matrix6> inverses;      ///< of the diagonal blocks
+  std::vector<std::size_t> row_start; ///< per block row into row_entries, and the end
+  std::vector<RowEntry> row_entries;  ///< by row, in ascending coupling order
   Eigen::VectorXd r, z, p, q;
 };
 

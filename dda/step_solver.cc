@@ -3,7 +3,7 @@
 namespace ddafem::dda
 {
 StepSolver::StepSolver(const SolverSettings& settings_)
-    : settings(settings_), direct(settings_.direct)
+    : settings(settings_), direct(settings_.direct), pcg(settings_.threads)
 {
 }
 

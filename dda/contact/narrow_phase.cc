@@ -77,9 +77,9 @@ class PairSearch
 {
 public:
   PairSearch(const std::vector<Point>& a, const std::vector<Point>& b, double search_distance,
-             double angle_tolerance)
-      : polygons{&a, &b}, d0(search_distance), angle_tolerance(angle_tolerance),
-        sin_tolerance(std::sin(angle_tolerance))
+             double angle_tolerance_)
+      : polygons{&a, &b}, d0(search_distance), angle_tolerance(angle_tolerance_),
+        sin_tolerance(std::sin(angle_tolerance_))
   {
     for (std::size_t s = 0; s < 2; ++s)
     {

@@ -117,6 +117,26 @@ TEST(BlockJacobiPcg, AgreesWithDenseCholeskyWithinKappaTimesTolerance)
   }
 }
 
+TEST(BlockJacobiPcg, SameBitsOnAnyThreadCount)
+{
+  const BlockSparseMatrix a = dda_like(30, 20, 1.0, 30.0, 13); // 600 blocks: 10 chunks
+  const Eigen::VectorXd b = right_hand_side(a);
+  Eigen::VectorXd one;
+  BlockJacobiPcg serial(1);
+  ASSERT_TRUE(serial.set_preconditioner(a));
+  const PcgStatus status = serial.solve(a, b, one, {});
+  ASSERT_TRUE(status.converged);
+  for (const unsigned threads : {2u, 3u})
+  {
+    BlockJacobiPcg pcg(threads);
+    ASSERT_TRUE(pcg.set_preconditioner(a));
+    Eigen::VectorXd x;
+    const PcgStatus s = pcg.solve(a, b, x, {});
+    EXPECT_EQ(s.n_iterations, status.n_iterations);
+    EXPECT_TRUE(x == one) << threads << " threads";
+  }
+}
+
 TEST(BlockJacobiPcg, ExactFirstGuessTakesNoIteration)
 {
   const BlockSparseMatrix a = dda_like(6, 6, 1.0, 10.0, 3);

@@ -546,12 +546,14 @@ struct History
 };
 
 History run_wall(std::size_t n_steps, SolverMethod method = SolverMethod::direct,
-                 SolverKind direct = SolverKind::block_ldlt, double tolerance = 1e-10)
+                 SolverKind direct = SolverKind::block_ldlt, double tolerance = 1e-10,
+                 unsigned threads = 1)
 {
   ModelDescription m = overhanging_wall();
   m.solver.method = method;
   m.solver.direct = direct;
   m.solver.tolerance = tolerance;
+  m.solver.threads = threads;
   System s(m);
   TimeStepper stepper(s, m.time);
   History h;
@@ -644,6 +646,9 @@ TEST(Contacts, BlockPcgFollowsTheDirectSolver)
             << " m; against block_pcg at 1e-13: " << against_tight << " m\n";
   EXPECT_LT(against_direct, 5e-8);
   EXPECT_LT(against_tight, 5e-8);
+  // On two threads: the same bits.
+  const History two = run_wall(100, SolverMethod::block_pcg, SolverKind::block_ldlt, 1e-10, 2);
+  EXPECT_TRUE(two.values == pcg.values);
 }
 
 TEST(Contacts, LooseWallStandsAtTheFullStep)
