@@ -22,9 +22,20 @@ SolveStatus StepSolver::solve(const BlockSparseMatrix& a, const Eigen::VectorXd&
   if (direct_solves_left > 0 && key == direct_key)
   {
     --direct_solves_left;
-    return direct.solve(a, b, x, change, key);
+    return solve_directly(a, b, x, change, key);
   }
   return solve_by_pcg(a, b, x, change, key);
+}
+
+SolveStatus StepSolver::solve_directly(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
+                                       Eigen::VectorXd& x, MatrixChange change, const double key)
+{
+  // `unchanged` vouches for the matrix of this solver's previous call; the direct solver may
+  // not have seen that one (CG solved it), so it must compare.
+  const SolveStatus status =
+      direct.solve(a, b, x, previous_call_direct ? change : MatrixChange::unknown, key);
+  previous_call_direct = true;
+  return status;
 }
 
 SolveStatus StepSolver::solve_by_pcg(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
@@ -32,6 +43,7 @@ SolveStatus StepSolver::solve_by_pcg(const BlockSparseMatrix& a, const Eigen::Ve
 {
   SolveStatus status;
   ++pcg_solve_count;
+  previous_call_direct = false;
   if (pcg.set_preconditioner(a))
   {
     const PcgStatus pcg_status = pcg.solve(a, b, x, {settings.tolerance, settings.max_iterations});
@@ -45,7 +57,7 @@ SolveStatus StepSolver::solve_by_pcg(const BlockSparseMatrix& a, const Eigen::Ve
   ++fallback_count;
   direct_key = key;
   direct_solves_left = direct_run;
-  return direct.solve(a, b, x, change, key);
+  return solve_directly(a, b, x, change, key);
 }
 
 } // namespace ddafem::dda

@@ -46,12 +46,15 @@ public:
 private:
   SolveStatus solve_by_pcg(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                            MatrixChange change, double key);
+  SolveStatus solve_directly(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
+                             Eigen::VectorXd& x, MatrixChange change, double key);
 
   SolverSettings settings;
   FactorizationReusingSolver direct;
   BlockJacobiPcg pcg;
   double direct_key = 0.0;            ///< the key last given to the direct solver
   std::size_t direct_solves_left = 0; ///< of that key
+  bool previous_call_direct = false;  ///< this solver's previous call went to `direct`
   std::size_t pcg_solve_count = 0;
   std::size_t pcg_iteration_count = 0;
   std::size_t fallback_count = 0;

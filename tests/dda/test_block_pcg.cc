@@ -202,6 +202,32 @@ TEST(StepSolver, BlockPcgFallsBackToTheDirectSolverAndRetriesLater)
   EXPECT_EQ(solver.name(), "block_pcg+block_ldlt");
 }
 
+// `unchanged` vouches for the matrix of the step solver's previous call. When CG solved that
+// one and falls back on the next, the direct solver's own previous matrix (an older one of the
+// same key) must not be trusted.
+TEST(StepSolver, FallbackAfterCgDoesNotTrustTheDirectSolversOlderMatrix)
+{
+  SolverSettings settings;
+  settings.method = SolverMethod::block_pcg;
+  settings.max_iterations = 20;
+  StepSolver solver(settings);
+  const BlockSparseMatrix older = dda_like(10, 8, 1.0, 1e4, 9);
+  const BlockSparseMatrix current = dda_like(10, 8, 1.0, 1e4, 10); // same structure
+  const Eigen::VectorXd b = right_hand_side(older);
+  Eigen::VectorXd x;
+  for (std::size_t k = 0; k <= StepSolver::direct_run; ++k) // fallback, then direct_run solves
+    ASSERT_TRUE(solver.solve(older, b, x, MatrixChange::unknown, 1.0).success);
+  EXPECT_EQ(solver.n_pcg_solves(), 1u);
+  x = to_dense(current).llt().solve(b); // CG from the exact answer: no iteration, no fallback
+  ASSERT_TRUE(solver.solve(current, b, x, MatrixChange::unknown, 1.0).success);
+  EXPECT_EQ(solver.n_fallbacks(), 1u);
+  const Eigen::VectorXd b2 = Eigen::VectorXd::Ones(b.size());
+  x.setZero(); // CG from zero does not converge in 20 iterations: the direct solver takes over
+  ASSERT_TRUE(solver.solve(current, b2, x, MatrixChange::unchanged, 1.0).success);
+  EXPECT_EQ(solver.n_fallbacks(), 2u);
+  EXPECT_LT((current.multiply(x) - b2).norm(), 1e-9 * b2.norm());
+}
+
 TEST(StepSolver, DirectMethodIsTheFactorizationReusingSolver)
 {
   StepSolver solver(SolverSettings{});
