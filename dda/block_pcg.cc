@@ -94,20 +94,23 @@ double BlockJacobiPcg::multiply(const BlockSparseMatrix& a, const Eigen::VectorX
                              });
 }
 
+double BlockJacobiPcg::precondition_rows(const Eigen::VectorXd& r_, Eigen::VectorXd& z_,
+                                         std::size_t begin, std::size_t end) const
+{
+  double rz = 0.0;
+  for (std::size_t i = begin; i < end; ++i)
+  {
+    z_.segment<6>(at(i)).noalias() = inverses[i] * r_.segment<6>(at(i));
+    rz += r_.segment<6>(at(i)).dot(z_.segment<6>(at(i)));
+  }
+  return rz;
+}
+
 double BlockJacobiPcg::precondition(const Eigen::VectorXd& r_, Eigen::VectorXd& z_) const
 {
   return parallel.sum_chunks(inverses.size(), grain,
                              [&](std::size_t begin, std::size_t end)
-                             {
-                               double rz = 0.0;
-                               for (std::size_t i = begin; i < end; ++i)
-                               {
-                                 z_.segment<6>(at(i)).noalias() =
-                                     inverses[i] * r_.segment<6>(at(i));
-                                 rz += r_.segment<6>(at(i)).dot(z_.segment<6>(at(i)));
-                               }
-                               return rz;
-                             });
+                             { return precondition_rows(r_, z_, begin, end); });
 }
 
 PcgStatus BlockJacobiPcg::solve(const BlockSparseMatrix& a, const Eigen::VectorXd& b,
@@ -163,13 +166,7 @@ PcgStatus BlockJacobiPcg::solve(const BlockSparseMatrix& a, const Eigen::VectorX
                                 const Eigen::Index first = at(begin), size = at(end) - at(begin);
                                 x.segment(first, size).noalias() += alpha * p.segment(first, size);
                                 r.segment(first, size).noalias() -= alpha * q.segment(first, size);
-                                double rz_chunk = 0.0;
-                                for (std::size_t i = begin; i < end; ++i)
-                                {
-                                  z.segment<6>(at(i)).noalias() = inverses[i] * r.segment<6>(at(i));
-                                  rz_chunk += r.segment<6>(at(i)).dot(z.segment<6>(at(i)));
-                                }
-                                return rz_chunk;
+                                return precondition_rows(r, z, begin, end);
                               });
       const double beta = rz_new / rz;
       parallel.for_chunks(n_blocks, grain,

@@ -71,6 +71,9 @@ private:
   };
   /// z = D^-1 r; returns r^T z.
   double precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
+  /// Block rows [begin, end) of z = D^-1 r; returns their part of r^T z.
+  double precondition_rows(const Eigen::VectorXd& r, Eigen::VectorXd& z, std::size_t begin,
+                           std::size_t end) const;
   /// y = A x over the non-zero couplings (those of contacts that are all open add nothing);
   /// returns x^T y.
   double multiply(const BlockSparseMatrix& a, const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
