@@ -2,16 +2,6 @@
 
 namespace ddafem::dda
 {
-Matrix26 displacement_matrix(const Point& centroid, const Point& x)
-{
-  const double dx = x.x() - centroid.x();
-  const double dy = x.y() - centroid.y();
-  Matrix26 t;
-  t << 1.0, 0.0, -dy, dx, 0.0, 0.5 * dy, //
-      0.0, 1.0, dx, 0.0, dy, 0.5 * dx;
-  return t;
-}
-
 Matrix6 mass_matrix(const PolygonMoments& moments, double density)
 {
   // rho * integral of T^T T dA with T's rows r1 = (1, 0, -dy, dx, 0, dy/2) and

@@ -10,8 +10,17 @@
 namespace ddafem::dda
 {
 /// Shi's displacement matrix at (x, y) for a block with centroid c:
-/// T = [1 0 -(y-y0) (x-x0) 0 (y-y0)/2; 0 1 (x-x0) 0 (y-y0) (x-x0)/2].
-Matrix26 displacement_matrix(const Point& centroid, const Point& x);
+/// T = [1 0 -(y-y0) (x-x0) 0 (y-y0)/2; 0 1 (x-x0) 0 (y-y0) (x-x0)/2]. Inline: it sits in the
+/// loops over every vertex and joint point of every step.
+inline Matrix26 displacement_matrix(const Point& centroid, const Point& x)
+{
+  const double dx = x.x() - centroid.x();
+  const double dy = x.y() - centroid.y();
+  Matrix26 t;
+  t << 1.0, 0.0, -dy, dx, 0.0, 0.5 * dy, //
+      0.0, 1.0, dx, 0.0, dy, 0.5 * dx;
+  return t;
+}
 
 /// Consistent mass matrix rho * integral of T^T T dA [kg, kg m, kg m^2], exact from the polygon's
 /// area and central second moments (first moments vanish about the centroid).

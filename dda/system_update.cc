@@ -6,6 +6,7 @@
 #include "dda/system_helpers.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace ddafem::dda
 {
@@ -151,6 +152,7 @@ std::string System::break_joints()
 
 double System::largest_vertex_displacement(const Eigen::VectorXd& d) const
 {
+  // The largest squared length, one square root at the end (sqrt is monotonic: the same value).
   double largest = 0.0;
   for (std::size_t i = 0; i < blocks.size(); ++i)
   {
@@ -159,9 +161,9 @@ double System::largest_vertex_displacement(const Eigen::VectorXd& d) const
     const std::vector<Point>& v = small_displacement() ? b.initial_vertices : b.vertices;
     const Point& c = small_displacement() ? b.initial_centroid : b.moments.centroid;
     for (const Point& x : v)
-      largest = std::max(largest, (displacement_matrix(c, x) * di).norm());
+      largest = std::max(largest, (displacement_matrix(c, x) * di).squaredNorm());
   }
-  return largest;
+  return std::sqrt(largest);
 }
 
 } // namespace ddafem::dda
