@@ -1,6 +1,7 @@
 // A run of blocks, alone or tied to a far field, behind the driver's Simulation interface: the
 // scene's stages (or one dynamic stage to the end time), each static or dynamic, with the
 // keyblocks followed and the outputs written as the steps go.
+#include "app/far_field_module.h"
 #include "app/keyblocks.h"
 #include "app/run_outputs.h"
 #include "app/run_summary.h"
@@ -11,14 +12,11 @@
 
 #include "common/format.h"
 #include "common/input_error.h"
-#include "coupling/far_field_ties.h"
-#include "coupling/interface_impedance.h"
 #include "dda/dynamic_stage.h"
 #include "dda/static_stage.h"
 #include "dda/system.h"
 #include "dda/time_step_advice.h"
 #include "dda/time_stepper.h"
-#include "fem/elastic_wave_model.h"
 
 #include <optional>
 
@@ -49,8 +47,7 @@ public:
   std::vector<std::string> collect_warnings(bool allow_unstable) const override;
   void open_outputs(const std::filesystem::path& dir) override
   {
-    outputs.emplace(dir, scene.file, system, coupled_parts(), keyblocks,
-                    scene.output.vtu_compression);
+    outputs.emplace(dir, scene.file, system, tied.get(), keyblocks, scene.output.vtu_compression);
   }
   std::size_t n_stages() const override { return plan.size(); }
   bool run_stage(std::size_t k, const std::function<void()>& report) override;
@@ -61,23 +58,18 @@ public:
   nlohmann::json summary(const std::vector<std::string>& warnings, double wall_time) const override
   {
     return run_summary(
-        {scene, system, coupled_parts(), stages, *outputs, keyblocks, warnings, wall_time});
+        {scene, system, tied.get(), stages, *outputs, keyblocks, warnings, wall_time});
   }
   RunEnd end() const override;
 
 private:
   void run_static_stage(const dda::Stage& stage, const std::function<void()>& report);
   void run_dynamic_stage(const dda::Stage& stage, const std::function<void()>& report);
-  CoupledParts coupled_parts() const
-  {
-    return {far_field.get(), ties.get(), scene.far_field ? &*scene.far_field : nullptr};
-  }
 
   const Scene& scene;
   const std::vector<dda::Stage> plan;
   dda::System system;
-  std::unique_ptr<fem::ElasticWaveModel> far_field;
-  std::unique_ptr<coupling::FarFieldTies> ties;
+  std::unique_ptr<TiedFarField> tied; ///< the far field tied to the blocks, if any
   KeyblockRecorder keyblocks;
   std::optional<RunOutputs> outputs;
   StageTotals stages;
@@ -90,10 +82,7 @@ BlocksSimulation::BlocksSimulation(const Scene& scene_)
     : scene(scene_), plan(stage_plan(scene.model)), system(scene.model), keyblocks(scene.model)
 {
   if (scene.coupled())
-  {
-    far_field = std::make_unique<fem::ElasticWaveModel>(*scene.far_field);
-    ties = std::make_unique<coupling::FarFieldTies>(system, *far_field, *scene.interface);
-  }
+    tied = far_field_module().tie(scene, system);
   stages.smallest_dt = scene.model.time.dt;
 }
 
@@ -107,11 +96,9 @@ std::vector<std::string> BlocksSimulation::collect_warnings(bool allow_unstable)
       throw InputError(w + ": expected a smaller time.dt, or --allow-unstable to watch it fail");
     found.push_back(w + " (run with --allow-unstable)");
   }
-  if (ties)
-    if (const auto z = coupling::interface_impedance(scene.model, system, *ties,
-                                                     scene.far_field->youngs_modulus);
-        z && z->reflection > 0.01)
-      found.push_back(impedance_warning(*z));
+  if (tied)
+    if (std::string w = tied->impedance_warning(); !w.empty())
+      found.push_back(std::move(w));
   const dda::TimeStepAdvice advice = dda::suggest_time_step(scene.model);
   if (time.dt > advice.dt_max)
     found.push_back("dt = " + format_significant(time.dt) + " s exceeds the suggested " +

@@ -1,11 +1,7 @@
-// A run of a far field alone (deal.II continuum, issue 5) behind the driver's Simulation
-// interface: one stage of the scene's steps of dt to its end time.
-#include "app/run_outputs.h"
-#include "app/run_summary.h"
+// A run of a far field alone (deal.II continuum, issue 5; module side) behind the driver's
+// Simulation interface: one stage of the scene's steps of dt to its end time.
+#include "app/far_field_parts.h"
 #include "app/run_support.h"
-#include "app/simulation.h"
-
-#include "fem/elastic_wave_model.h"
 
 #include <cmath>
 #include <optional>

@@ -2,6 +2,7 @@
 // field, a far field alone), each a Simulation (app/simulation.h).
 #include "app/run.h"
 
+#include "app/far_field_module.h"
 #include "app/run_support.h"
 #include "app/simulation.h"
 
@@ -59,7 +60,7 @@ private:
 /// opens the outputs.
 void SceneRun::setup()
 {
-  simulation = scene.far_field && !scene.coupled() ? make_far_field_simulation(scene)
+  simulation = scene.far_field && !scene.coupled() ? far_field_module().far_field_simulation(scene)
                                                    : make_blocks_simulation(scene);
   dir = options.output_directory.empty() ? scene.output.directory : options.output_directory;
   run_support::create_output_directory(dir);

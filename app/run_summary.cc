@@ -8,34 +8,6 @@ namespace ddafem
 {
 namespace
 {
-/// The fields every summary.json opens with: the scene, the program's version, the status (and
-/// the failure), the time reached and the end time [s], the steps and dt [s].
-nlohmann::json summary_head(const Scene& scene, bool failed, const std::string& failure,
-                            double time_reached, double end_time, std::size_t n_steps, double dt)
-{
-  nlohmann::json summary;
-  summary["scene"] = scene.file;
-  summary["name"] = scene.name;
-  summary["version"] = DDAFEM_VERSION;
-  summary["status"] = failed ? "numerical_failure" : "completed";
-  if (failed)
-    summary["failure"] = failure;
-  summary["time_reached_s"] = time_reached;
-  summary["end_time_s"] = end_time;
-  summary["steps"] = n_steps;
-  summary["dt_s"] = dt;
-  return summary;
-}
-
-/// The wall time [s], the peak memory and the warnings of a run.
-void add_run_facts(nlohmann::json& summary, double wall_time,
-                   const std::vector<std::string>& warnings)
-{
-  summary["wall_time_s"] = wall_time;
-  summary["peak_memory_mb"] = run_support::peak_memory_mb();
-  summary["warnings"] = warnings;
-}
-
 nlohmann::json time_step_summary(const dda::TimeSettings& time, const StageTotals& stages,
                                  std::size_t n_attempts)
 {
@@ -71,39 +43,6 @@ nlohmann::json tunnel_summary(const TunnelPlan& plan)
           {"rock_mass_modulus_pa", plan.rock_mass_modulus},
           {"arrival_time_s", plan.arrival_time},
           {"end_time_s", plan.end_time}};
-}
-
-/// The far field's solver, timings and energies, the interface's ties and work, and the model's
-/// far-field sizes.
-void add_coupled_summary(nlohmann::json& summary, const CoupledParts& coupled)
-{
-  const fem::ElasticWaveModel& far_field = *coupled.far_field;
-  const coupling::FarFieldTies& ties = *coupled.ties;
-  const fem::Timings& ft = far_field.timings();
-  const fem::EnergyBalance fe = far_field.energy();
-  summary["model"]["far_field_cells"] = far_field.n_cells();
-  summary["model"]["far_field_dofs"] = far_field.n_dofs();
-  summary["model"]["element_size_m"] = far_field.element_size();
-  summary["model"]["ties"] = ties.n_ties();
-  summary["model"]["tied_edges"] = ties.n_tied_edges();
-  summary["model"]["tied_blocks"] = ties.n_tied_blocks();
-  summary["far_field"] = {{"solver", far_field.solver_name()},
-                          {"timings_s", far_field_timings(ft)},
-                          {"energy_J",
-                           {{"kinetic", fe.kinetic},
-                            {"strain", fe.strain},
-                            {"work_of_input", fe.work_of_input},
-                            {"work_of_dashpots", fe.work_of_dashpots},
-                            {"work_of_rayleigh", fe.work_of_rayleigh},
-                            {"work_of_ties", fe.work_of_springs},
-                            {"dissipated", fe.dissipated}}}};
-  const coupling::TieCounts n = ties.counts();
-  summary["interface"] = {
-      {"ties", {{"intact", n.intact}, {"lock", n.lock}, {"slide", n.slide}, {"open", n.open}}},
-      {"work_into_blocks_J", ties.work_on_blocks()},
-      {"work_into_far_field_J", fe.work_of_springs},
-      {"tie_energy_J", ties.tie_energy()},
-      {"timings_s", {{"condensation", ties.condensation_seconds()}, {"ties", ties.tie_seconds()}}}};
 }
 
 /// The blocks' model, solver, contacts, energies and timings.
@@ -153,6 +92,31 @@ void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
 }
 } // namespace
 
+nlohmann::json summary_head(const Scene& scene, bool failed, const std::string& failure,
+                            double time_reached, double end_time, std::size_t n_steps, double dt)
+{
+  nlohmann::json summary;
+  summary["scene"] = scene.file;
+  summary["name"] = scene.name;
+  summary["version"] = DDAFEM_VERSION;
+  summary["status"] = failed ? "numerical_failure" : "completed";
+  if (failed)
+    summary["failure"] = failure;
+  summary["time_reached_s"] = time_reached;
+  summary["end_time_s"] = end_time;
+  summary["steps"] = n_steps;
+  summary["dt_s"] = dt;
+  return summary;
+}
+
+void add_run_facts(nlohmann::json& summary, double wall_time,
+                   const std::vector<std::string>& warnings)
+{
+  summary["wall_time_s"] = wall_time;
+  summary["peak_memory_mb"] = run_support::peak_memory_mb();
+  summary["warnings"] = warnings;
+}
+
 void StageTotals::add(const dda::StaticStageResult& result)
 {
   n_cut_steps += result.n_cut_steps;
@@ -187,8 +151,8 @@ nlohmann::json run_summary(const RunRecord& run)
   if (time.integrator == dda::Integrator::generalized_alpha)
     summary["spectral_radius"] = time.spectral_radius;
   add_blocks_summary(summary, system, run.outputs);
-  if (run.coupled.ties)
-    add_coupled_summary(summary, run.coupled);
+  if (run.tied)
+    run.tied->add_to_summary(summary);
   add_run_facts(summary, run.wall_time, run.warnings);
   if (!run.keyblocks.empty())
     summary["keyblocks"] = run.keyblocks.summary(system);
@@ -197,46 +161,11 @@ nlohmann::json run_summary(const RunRecord& run)
                         {"blocks", "blocks.pvd"},
                         {"contacts", "contacts.pvd"},
                         {"snapshots", run.outputs.n_snapshots()}};
-  if (run.coupled.ties)
+  if (run.tied)
   {
     summary["outputs"]["far_field"] = "far_field.pvd";
     summary["outputs"]["ties"] = "ties.pvd";
   }
-  return summary;
-}
-
-nlohmann::json far_field_run_summary(const FarFieldRunRecord& run)
-{
-  const fem::FarFieldDescription& d = *run.scene.far_field;
-  const fem::ElasticWaveModel& model = run.model;
-  const bool failed = run.failure.outcome != fem::StepOutcome::success;
-  const fem::Timings& t = model.timings();
-  const fem::EnergyBalance e = model.energy();
-  nlohmann::json summary = summary_head(run.scene, failed, run.failure.message, model.time(),
-                                        d.end_time, t.n_steps, d.dt);
-  summary["integrator"] = fem::name_of(d.integrator);
-  summary["solver"] = {{"name", model.solver_name()},
-                       {"factorizations", 1},
-                       {"linear_iterations", t.linear_iterations}};
-  summary["model"] = {{"far_field_cells", model.n_cells()},
-                      {"far_field_dofs", model.n_dofs()},
-                      {"element_size_m", model.element_size()},
-                      {"smallest_element_size_m", model.smallest_element_size()},
-                      {"degree", d.degree},
-                      {"blocks", 0}};
-  add_run_facts(summary, run.wall_time, run.warnings);
-  summary["timings_s"] = far_field_timings(t);
-  summary["timings_s"]["output"] = run.outputs.seconds();
-  summary["energy_J"] = {{"kinetic", e.kinetic},
-                         {"strain", e.strain},
-                         {"work_of_input", e.work_of_input},
-                         {"work_of_dashpots", e.work_of_dashpots},
-                         {"work_of_rayleigh", e.work_of_rayleigh},
-                         {"initial", e.initial},
-                         {"dissipated", e.dissipated}};
-  summary["outputs"] = {{"histories", "histories.h5"},
-                        {"far_field", "far_field.pvd"},
-                        {"snapshots", run.outputs.n_snapshots()}};
   return summary;
 }
 

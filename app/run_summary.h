@@ -1,7 +1,7 @@
 // summary.json of a run (docs/outputs.md). Blocks (alone or tied to a far field): status, time
 // steps and their cuts, stages, the model, the far field and the interface, contacts, timings,
 // energies, keyblocks and outputs. A far field alone: status, steps, solver, model, timings,
-// energies and outputs.
+// energies and outputs (app/far_field_outputs.cc).
 #pragma once
 
 #include "app/keyblocks.h"
@@ -39,7 +39,7 @@ struct RunRecord
 {
   const Scene& scene;
   const dda::System& system;
-  CoupledParts coupled;
+  const TiedFarField* tied; ///< null for blocks alone
   const StageTotals& stages;
   const RunOutputs& outputs;
   const KeyblockRecorder& keyblocks;
@@ -49,17 +49,12 @@ struct RunRecord
 
 nlohmann::json run_summary(const RunRecord& run);
 
-/// Everything summary.json says about a run of a far field alone that has ended.
-struct FarFieldRunRecord
-{
-  const Scene& scene;
-  const fem::ElasticWaveModel& model;
-  const fem::StepStatus& failure; ///< outcome success if the run completed
-  const FarFieldOutputs& outputs;
-  const std::vector<std::string>& warnings;
-  double wall_time = 0.0; ///< [s]
-};
-
-nlohmann::json far_field_run_summary(const FarFieldRunRecord& run);
+/// The fields every summary.json opens with: the scene, the program's version, the status (and
+/// the failure), the time reached and the end time [s], the steps and dt [s].
+nlohmann::json summary_head(const Scene& scene, bool failed, const std::string& failure,
+                            double time_reached, double end_time, std::size_t n_steps, double dt);
+/// The wall time [s], the peak memory and the warnings of a run.
+void add_run_facts(nlohmann::json& summary, double wall_time,
+                   const std::vector<std::string>& warnings);
 
 } // namespace ddafem

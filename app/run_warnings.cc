@@ -46,16 +46,6 @@ std::vector<std::string> unstable_boundary_messages(const dda::System& system, d
   return messages;
 }
 
-std::string impedance_warning(const coupling::InterfaceImpedance& z)
-{
-  return "the far field (E = " + format_significant(z.far_field_modulus) +
-         " Pa) and the tied blocks with their joints (E_eff = " +
-         format_significant(z.blocks_modulus) +
-         " Pa) differ in impedance: the interface reflects about " +
-         format_significant(100 * z.reflection, 2) +
-         "% of a normally incident wave; a far-field material of the rock mass (E_eff) avoids it";
-}
-
 std::string time_step_reason(const dda::TimeStepAdvice& advice)
 {
   switch (advice.limit)

@@ -1,9 +1,9 @@
 // The words `check` and `run` use for what the libraries' engineering rules find: unstable
-// viscous boundaries (dda/unstable_boundaries.h), the interface's impedance contrast
-// (coupling/interface_impedance.h) and the suggested time step (dda/time_step_advice.h).
+// viscous boundaries (dda/unstable_boundaries.h) and the suggested time step
+// (dda/time_step_advice.h); the interface's impedance contrast is the module's
+// (TiedFarField::impedance_warning).
 #pragma once
 
-#include "coupling/interface_impedance.h"
 #include "dda/system.h"
 #include "dda/time_step_advice.h"
 
@@ -19,9 +19,6 @@ std::string boundary_name(const dda::ModelDescription& model, std::size_t k);
 /// One message per boundary whose edges are energy sources at dt [s]: how many, x and the dt
 /// below which it absorbs.
 std::vector<std::string> unstable_boundary_messages(const dda::System& system, double dt);
-
-/// Why the interface reflects and how to avoid it.
-std::string impedance_warning(const coupling::InterfaceImpedance& z);
 
 /// The rule behind dt_max in words, e.g. "a P wave crosses the smallest block in 1e-05 s".
 std::string time_step_reason(const dda::TimeStepAdvice& advice);

@@ -720,7 +720,7 @@ Section solver_section()
                .default_yaml("block_ldlt")
                .meaning("the sparse direct solver (block_pcg's fallback): block_ldlt: sparse "
                         "Cholesky on the 6x6 blocks (fastest, see docs/performance/dda_bench.md); "
-                        "eigen_ldlt: Eigen SimplicialLDLT; amesos_klu: Trilinos Amesos KLU"),
+                        "eigen_ldlt: Eigen SimplicialLDLT; klu: SuiteSparse KLU"),
            key("tolerance", T::number)
                .default_yaml("1e-10")
                .greater_than(0)

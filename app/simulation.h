@@ -56,7 +56,5 @@ public:
 
 /// Blocks alone or tied to a far field (app/blocks_simulation.cc).
 std::unique_ptr<Simulation> make_blocks_simulation(const Scene& scene);
-/// A far field alone (app/far_field_simulation.cc).
-std::unique_ptr<Simulation> make_far_field_simulation(const Scene& scene);
 
 } // namespace ddafem

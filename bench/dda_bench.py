@@ -32,7 +32,7 @@ CASES = [
     ("wall_2000", "bench/scenes/wall_50x40.yaml", []),
     ("wall_2000_small_disp", "bench/scenes/wall_50x40.yaml", SMALL),
 ]
-SOLVERS = ["eigen_ldlt", "amesos_klu", "block_ldlt"]
+SOLVERS = ["eigen_ldlt", "klu", "block_ldlt"]
 
 
 def solver_available(ddafem, solver):

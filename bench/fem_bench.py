@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Times the deal.II far field (bench/fem_bench.cc) at about 10k, 100k and 500k DOFs with each
-linear solver (Amesos KLU and UMFPACK direct, Jacobi-preconditioned CG) and compares with an
+linear solver (KLU and UMFPACK direct, Jacobi-preconditioned CG) and compares with an
 explicit central-difference scheme whose step is bounded by the CFL limit
 dt_explicit = (h / p) / (VP sqrt 2). Writes docs/performance/fem_bench.{json,md,png}.
 

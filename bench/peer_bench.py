@@ -11,8 +11,9 @@ DIR is the git directory of a clone of github.com/doolin/ntdda (`fetch github:do
 gives one under /work/.mirror); ntdda is built from it by bench/peers/ntdda/build.sh into a
 temporary directory. Per step: ntdda's `ddanalysis` wall time (its driver prints it) over its
 steps; ddafem's phase timings (contact detection, assembly, solve, update, output) over its
-steps. Whole process: elapsed time and peak resident memory of the child (os.wait4). Not a test:
-timings depend on the machine and its load.
+steps. Whole process: elapsed time and peak resident memory of the child (os.wait4). Start-up:
+`ddafem --version` and `ddafem check` of the block stack (a blocks-only scene), the same way,
+three times per run. Not a test: timings depend on the machine and its load.
 """
 import argparse
 import json
@@ -87,6 +88,20 @@ def run_ddafem(ddafem, case, out):
             "process_s": elapsed, "peak_rss_mib": rss}
 
 
+STARTS = {
+    # name: ddafem arguments
+    "version": ["--version"],
+    "check_block_stack": ["check", os.path.join(TOP, "examples", "block_stack", "stack.yaml")],
+}
+
+
+def measure_start(ddafem, args):
+    elapsed, rss, rc, stderr = run_with_rusage([ddafem] + args)
+    if rc != 0:
+        raise SystemExit(f"ddafem {' '.join(args)} failed (exit {rc}):\n{stderr[-2000:]}")
+    return {"process_s": elapsed, "peak_rss_mib": rss}
+
+
 def medians(runs):
     return {k: statistics.median(r[k] for r in runs) for k in runs[0]}
 
@@ -109,6 +124,7 @@ def main():
 
     load_before = os.getloadavg()
     results = {case: {"ntdda": [], "ddafem": []} for case in args.cases}
+    starts = {name: [] for name in STARTS}
     with tempfile.TemporaryDirectory() as tmp:
         revision = build_ntdda(args.ntdda_git, os.path.join(tmp, "ntdda"))
         for k in range(args.runs):
@@ -123,6 +139,8 @@ def main():
                     shutil.rmtree(scratch, ignore_errors=True)
                     print(f"run {k + 1}/{args.runs} {case} {code}: {r['ms_per_step']:.4f} ms/step,"
                           f" {r['process_s']:.2f} s, {r['peak_rss_mib']:.0f} MiB", flush=True)
+            for name, start_args in STARTS.items():
+                starts[name] += [measure_start(ddafem, start_args) for _ in range(3)]
     load_after = os.getloadavg()
 
     table = {}
@@ -133,7 +151,9 @@ def main():
                        "process_speedup": n["process_s"] / d["process_s"]}
     record = {"machine": f"{platform.machine()}, {os.cpu_count()} cores",
               "load_average_before": load_before, "load_average_after": load_after,
-              "runs": args.runs, "ntdda_revision": revision, "medians": table, "all_runs": results}
+              "runs": args.runs, "ntdda_revision": revision, "medians": table, "all_runs": results,
+              "start_up": {name: medians(r) for name, r in starts.items()},
+              "start_up_runs": starts}
     os.makedirs(args.out, exist_ok=True)
     with open(os.path.join(args.out, "peers.json"), "w") as f:
         json.dump(record, f, indent=2)
@@ -176,12 +196,26 @@ def report(record):
         "solve, update and its own output: it writes measured points every step and dumps the "
         "first step's matrix); ddafem's phase timings (contact detection, assembly, solve, "
         "update, output at `output.interval=1`) over its steps. Whole process: elapsed time "
-        "from start to exit, start-up (ddafem loads deal.II's shared libraries) and input "
-        "included. Speed-ups are ntdda / ddafem (above 1: ddafem faster). Memory: peak resident "
+        "from start to exit, start-up and input included. Speed-ups are ntdda / ddafem (above 1: ddafem faster). Memory: peak resident "
         "set of the process.",
         "",
         "ntdda needs its sparse-profile capacity raised (FORTY 40 -> 400, `ntdda_run_cap`) to "
         "run the wall at all: stock ntdda overflows that array and aborts.",
+        "",
+        "## ddafem's start-up",
+        "",
+        "| command | process (median) | peak memory |",
+        "|---|---:|---:|",
+    ]
+    for name, r in record["start_up"].items():
+        command = "ddafem " + " ".join(STARTS[name]).replace(TOP + os.sep, "")
+        lines.append(f"| `{command}` | {1e3 * r['process_s']:.1f} ms | "
+                     f"{r['peak_rss_mib']:.0f} MiB |")
+    lines += [
+        "",
+        f"{3 * record['runs']} runs each. The far field (deal.II, Trilinos and their ~200 shared "
+        "libraries) is a module loaded only for scenes that have one (docs/design.md, \"Two "
+        "binaries\").",
         "",
     ]
     return lines

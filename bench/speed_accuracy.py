@@ -132,11 +132,15 @@ def run(ddafem, job, out):
 
 
 def frozen_binary(build, directory):
-    """A copy of BUILD/ddafem in directory: every run of the matrix uses the same binary even if
-    the build directory is rebuilt meanwhile."""
+    """A copy of BUILD/ddafem and of the far-field module beside it
+    (libddafem_far_field.so, loaded from the executable's directory) in directory: every run of
+    the matrix uses the same binaries even if the build directory is rebuilt meanwhile."""
     source = os.path.join(build, "ddafem")
-    if not os.access(source, os.X_OK) or os.path.getsize(source) == 0:
-        raise SystemExit(f"{source} is missing or being linked: build it first")
+    module = os.path.join(build, "libddafem_far_field.so")
+    for path in (source, module):
+        if not os.access(path, os.R_OK) or os.path.getsize(path) == 0:
+            raise SystemExit(f"{path} is missing or being linked: build it first")
+    shutil.copy2(module, os.path.join(directory, "libddafem_far_field.so"))
     return shutil.copy2(source, os.path.join(directory, "ddafem"))
 
 

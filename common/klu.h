@@ -1,5 +1,6 @@
-// Trilinos Amesos KLU (sparse LU) on a serial Epetra matrix: the one wrapper of the blocks' and
-// the far field's direct solves, with every Epetra and Amesos return code checked.
+// SuiteSparse KLU (sparse LU with BTF and AMD orderings): the one wrapper of the blocks' and the
+// far field's KLU solves, with every KLU status checked. SuiteSparse only (no Trilinos), so that
+// a blocks-only run does not load deal.II's libraries.
 #pragma once
 
 #include <memory>
@@ -7,18 +8,18 @@
 
 namespace ddafem
 {
-/// A square sparse matrix of fixed pattern, factorized and solved by Amesos KLU. Build the
-/// pattern with start_pattern, set_row for every row and finish_pattern (which also runs the
-/// symbolic factorization); then set_row replaces values, factorize and solve as often as
-/// needed. Failures are statuses (false), never exceptions: a failed set_row makes the next
+/// A square sparse matrix of fixed pattern, factorized and solved by KLU. Build the pattern
+/// with start_pattern, set_row for every row and finish_pattern (which also runs the symbolic
+/// factorization); then set_row replaces values, factorize and solve as often as needed.
+/// Failures are statuses (false), never exceptions: a failed set_row makes the next
 /// finish_pattern or factorize return false.
-class AmesosKlu
+class Klu
 {
 public:
-  AmesosKlu();
-  ~AmesosKlu();
-  AmesosKlu(const AmesosKlu&) = delete;
-  AmesosKlu& operator=(const AmesosKlu&) = delete;
+  Klu();
+  ~Klu();
+  Klu(const Klu&) = delete;
+  Klu& operator=(const Klu&) = delete;
 
   /// Starts a matrix of n rows with at most entries_per_row[r] entries in row r.
   void start_pattern(int n, const std::vector<int>& entries_per_row);

@@ -1,6 +1,6 @@
 #include "dda/linear_solver.h"
 
-#include "common/amesos_klu.h"
+#include "common/klu.h"
 #include "dda/block_cholesky.h"
 
 #include <Eigen/SparseCholesky>
@@ -153,12 +153,12 @@ private:
   std::vector<std::ptrdiff_t> upper_slots;
 };
 
-// ---- Trilinos Amesos KLU --------------------------------------------------------------------
+// ---- SuiteSparse KLU --------------------------------------------------------------------------
 
-/// Trilinos Amesos KLU (sparse LU, common/amesos_klu.h) on the full symmetric matrix. Symbolic
+/// SuiteSparse KLU (sparse LU, common/klu.h) on the full symmetric matrix. Symbolic
 /// factorization once, numeric factorization per change; a failed symbolic factorization makes
 /// factorize() return false, a failed solve leaves x not finite (the caller checks).
-class AmesosKluSolver final : public SparseDirectSolver
+class KluSolver final : public SparseDirectSolver
 {
 public:
   void analyze_pattern(const BlockSparseMatrix& a) override
@@ -197,7 +197,7 @@ public:
       x.setConstant(std::numeric_limits<double>::quiet_NaN());
   }
 
-  std::string name() const override { return name_of(SolverKind::amesos_klu); }
+  std::string name() const override { return name_of(SolverKind::klu); }
 
 private:
   /// Writes the values of a into the matrix (its pattern on the first call).
@@ -234,7 +234,7 @@ private:
       }
   }
 
-  AmesosKlu klu;
+  Klu klu;
   bool analyzed = false; ///< the symbolic factorization succeeded
   std::vector<std::vector<std::size_t>> block_neighbours;
 };
@@ -247,8 +247,8 @@ std::unique_ptr<SparseDirectSolver> make_sparse_direct_solver(SolverKind kind)
   {
   case SolverKind::eigen_ldlt:
     return std::make_unique<EigenLdltSolver>();
-  case SolverKind::amesos_klu:
-    return std::make_unique<AmesosKluSolver>();
+  case SolverKind::klu:
+    return std::make_unique<KluSolver>();
   case SolverKind::block_ldlt:
     return std::make_unique<BlockCholeskySolver>();
   }

@@ -200,7 +200,7 @@ struct InSituStress
 enum class SolverKind
 {
   eigen_ldlt, ///< Eigen SimplicialLDLT (sparse Cholesky, AMD ordering)
-  amesos_klu, ///< Trilinos Amesos KLU (sparse LU)
+  klu,        ///< SuiteSparse KLU (sparse LU)
   /// Sparse Cholesky on the 6x6 block structure (AMD ordering of the block graph, fixed-size
   /// dense block kernels); the fastest for DDA's block-sparse matrices
   block_ldlt
@@ -210,7 +210,7 @@ constexpr std::array<EnumName<SolverKind>, 3> enum_names(SolverKind)
 {
   return {{{SolverKind::block_ldlt, "block_ldlt"},
            {SolverKind::eigen_ldlt, "eigen_ldlt"},
-           {SolverKind::amesos_klu, "amesos_klu"}}};
+           {SolverKind::klu, "klu"}}};
 }
 
 /// How each step's system is solved.

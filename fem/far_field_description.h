@@ -179,7 +179,7 @@ constexpr std::array<EnumName<LinearSolver>, 2> enum_names(LinearSolver)
 enum class DirectSolver
 {
   cholmod, ///< SuiteSparse CHOLMOD, supernodal Cholesky (the matrix is SPD)
-  klu,     ///< Trilinos Amesos KLU
+  klu,     ///< SuiteSparse KLU
   umfpack  ///< deal.II SparseDirectUMFPACK
 };
 

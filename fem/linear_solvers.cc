@@ -1,8 +1,8 @@
-// Direct (CHOLMOD, UMFPACK, Amesos KLU) and iterative (preconditioned CG) solvers of the effective
+// Direct (CHOLMOD, UMFPACK, KLU) and iterative (preconditioned CG) solvers of the effective
 // matrix.
 #include "fem/linear_solvers.h"
 
-#include "common/amesos_klu.h"
+#include "common/klu.h"
 
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/solver_cg.h>
@@ -35,7 +35,7 @@ private:
   SparseDirectUMFPACK solver;
 };
 
-/// Trilinos Amesos KLU (common/amesos_klu.h) on a copy of the matrix.
+/// SuiteSparse KLU (common/klu.h) on a copy of the matrix.
 class KluSolver : public EffectiveSolver
 {
 public:
@@ -62,18 +62,18 @@ public:
       klu.set_row(r, columns, values);
     }
     if (!klu.finish_pattern() || !klu.factorize())
-      throw std::runtime_error("Amesos KLU could not factorize the effective matrix");
+      throw std::runtime_error("KLU could not factorize the effective matrix");
   }
   void solve(const Vector<double>& b, Vector<double>& x) override
   {
     x.reinit(b.size(), true);
     if (!klu.solve(b.begin(), x.begin()))
-      throw std::runtime_error("Amesos KLU solve failed");
+      throw std::runtime_error("KLU solve failed");
   }
   std::string name() const override { return "klu"; }
 
 private:
-  AmesosKlu klu;
+  Klu klu;
 };
 
 /// SuiteSparse CHOLMOD (Cholesky L L^T, fill-reducing ordering) of the upper triangle: the

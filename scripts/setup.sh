@@ -10,7 +10,10 @@ packages=(
   libyaml-cpp-dev         # scene files
   nlohmann-json3-dev      # summary.json and verification records
   libcli11-dev            # the command line (subcommands, --help, repeatable --set)
-  libhdf5-dev             # HDF5 headers (deal.II brings the OpenMPI build it links)
+  libhdf5-dev             # HDF5 (the OpenMPI build, the one deal.II links) for histories.h5
+  mpi-default-dev         # mpi.h, which the OpenMPI build's hdf5.h includes
+  libsuitesparse-dev      # KLU (blocks and far field), CHOLMOD (far field)
+  libtbb-dev              # threads (common/parallel)
   libcgal-dev libgmp-dev libmpfr-dev
   libgtest-dev googletest # tests
   python3 python3-numpy python3-matplotlib python3-h5py  # plots

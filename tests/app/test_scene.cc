@@ -405,7 +405,7 @@ fixed_points:
     displacement_x: {type: table, points: [[0, 0], [1, 0.01]]}
 gravity: [0, -9.81]
 time: {dt: 1e-4, end_time: 0.01, integrator: newmark_trapezoidal}
-solver: {type: amesos_klu}
+solver: {type: klu}
 output: {directory: out, interval: 0.5, history_every: 10}
 )");
   const dda::ModelDescription& m = scene.model;
@@ -439,7 +439,7 @@ output: {directory: out, interval: 0.5, history_every: 10}
   EXPECT_EQ(m.fixed_points[0].origin, "fixed_points[0]");
   EXPECT_EQ(m.gravity, dda::Vector2(0, -9.81));
   EXPECT_EQ(m.time.integrator, dda::Integrator::newmark_trapezoidal);
-  EXPECT_EQ(m.solver.direct, dda::SolverKind::amesos_klu);
+  EXPECT_EQ(m.solver.direct, dda::SolverKind::klu);
   EXPECT_EQ(scene.output.directory, "out");
   EXPECT_EQ(scene.output.interval, 0.5);
   EXPECT_EQ(scene.output.history_every, 10u);
@@ -1127,7 +1127,7 @@ TEST_F(SceneTest, OverridesChangeTheSceneBeforeValidation)
                      "poisson_ratio: 0.2}"),
       parse_override("blocks.0.vertices.2=[1, 2]"),
       parse_override("joint_materials.glue.friction_angle=30"),
-      parse_override("solver.type=amesos_klu"), // a section the file does not have
+      parse_override("solver.type=klu"), // a section the file does not have
       parse_override("output.interval=1e-3")};
   // The unknown top-level key in the file is an error even with overrides ...
   EXPECT_NE(error_of(scene, overrides).find("key 'materials_unused': unknown key"),
@@ -1142,7 +1142,7 @@ TEST_F(SceneTest, OverridesChangeTheSceneBeforeValidation)
   EXPECT_EQ(m.materials[1].density, 2700.0);
   EXPECT_NEAR(dda::signed_area(m.blocks[0].vertices), 1.5, 1e-12);
   EXPECT_EQ(m.joint_materials[0].friction_angle, 30.0);
-  EXPECT_EQ(m.solver.direct, dda::SolverKind::amesos_klu);
+  EXPECT_EQ(m.solver.direct, dda::SolverKind::klu);
   EXPECT_EQ(s.output.interval, 1e-3);
 }
 

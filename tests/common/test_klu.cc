@@ -1,6 +1,6 @@
-// common/amesos_klu: solves against a hand solution, value replacement, and failures as
+// common/klu: solves against a hand solution, value replacement, and failures as
 // statuses (a singular matrix, a value outside the pattern).
-#include "common/amesos_klu.h"
+#include "common/klu.h"
 
 #include <gtest/gtest.h>
 
@@ -8,10 +8,10 @@
 
 namespace
 {
-using ddafem::AmesosKlu;
+using ddafem::Klu;
 
 /// A = [[4, -1, 0], [-1, 4, -1], [0, -1, 4]] times `scale`, its pattern finished.
-void tridiagonal(AmesosKlu& klu, double scale)
+void tridiagonal(Klu& klu, double scale)
 {
   klu.start_pattern(3, {2, 3, 2});
   klu.set_row(0, {0, 1}, {4 * scale, -scale});
@@ -22,9 +22,9 @@ void tridiagonal(AmesosKlu& klu, double scale)
 
 // A x = (2, 4, 10) has x = (1, 2, 3) (4 - 2 = 2, -1 + 8 - 3 = 4, -2 + 12 = 10); with every value
 // doubled through set_row after the pattern, x halves.
-TEST(AmesosKlu, SolvesAndRefactorizesReplacedValues)
+TEST(Klu, SolvesAndRefactorizesReplacedValues)
 {
-  AmesosKlu klu;
+  Klu klu;
   tridiagonal(klu, 1.0);
   ASSERT_TRUE(klu.finish_pattern());
   ASSERT_TRUE(klu.factorize());
@@ -43,9 +43,9 @@ TEST(AmesosKlu, SolvesAndRefactorizesReplacedValues)
 }
 
 // A singular matrix (two equal rows) fails to factorize: a status, no exception.
-TEST(AmesosKlu, SingularMatrixIsAStatus)
+TEST(Klu, SingularMatrixIsAStatus)
 {
-  AmesosKlu klu;
+  Klu klu;
   klu.start_pattern(2, {2, 2});
   klu.set_row(0, {0, 1}, {1.0, 1.0});
   klu.set_row(1, {0, 1}, {1.0, 1.0});
@@ -53,11 +53,11 @@ TEST(AmesosKlu, SingularMatrixIsAStatus)
   EXPECT_FALSE(klu.factorize());
 }
 
-// After the pattern, a value at a column outside it would be ignored by Epetra: the next
+// After the pattern, a value at a column outside it is not stored: the next
 // factorization reports the failure instead.
-TEST(AmesosKlu, ValueOutsideThePatternFails)
+TEST(Klu, ValueOutsideThePatternFails)
 {
-  AmesosKlu klu;
+  Klu klu;
   tridiagonal(klu, 1.0);
   ASSERT_TRUE(klu.finish_pattern());
   ASSERT_TRUE(klu.factorize());
@@ -65,6 +65,6 @@ TEST(AmesosKlu, ValueOutsideThePatternFails)
   EXPECT_FALSE(klu.factorize());
   std::vector<double> x(3);
   const std::vector<double> b{1.0, 1.0, 1.0};
-  AmesosKlu unused;
+  Klu unused;
   EXPECT_FALSE(unused.solve(b.data(), x.data())); // nothing factorized
 }

@@ -188,7 +188,7 @@ TEST(System, SolversAgree)
   m.monitors.push_back({"m", {10.5, 0.5}});
   m.time = {1e-5, 1e-3, Integrator::dda};
   ModelDescription m2 = m;
-  m2.solver.direct = SolverKind::amesos_klu;
+  m2.solver.direct = SolverKind::klu;
   System a(m), b(m2);
   for (int k = 0; k < 100; ++k)
   {

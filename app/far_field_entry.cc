@@ -1,0 +1,34 @@
+// The far-field module's entry point (app/far_field_module.h): libddafem_far_field.so exports
+// ddafem_far_field_module(), which the core looks up after dlopen; the test programs link these
+// objects and reach it directly.
+#include "app/far_field_parts.h"
+
+namespace ddafem
+{
+namespace
+{
+class FarFieldModuleImpl : public FarFieldModule
+{
+public:
+  std::unique_ptr<TiedFarField> tie(const Scene& scene, dda::System& system) const override
+  {
+    return make_tied_far_field(scene, system);
+  }
+  std::unique_ptr<Simulation> far_field_simulation(const Scene& scene) const override
+  {
+    return make_far_field_simulation(scene);
+  }
+  std::string check_far_field(const Scene& scene) const override
+  {
+    return ddafem::check_far_field(scene);
+  }
+};
+} // namespace
+} // namespace ddafem
+
+extern "C" const ddafem::FarFieldModule* ddafem_far_field_module()
+{
+  // Stateless: one constant object for the program's lifetime.
+  static const ddafem::FarFieldModuleImpl module;
+  return &module;
+}

@@ -1,0 +1,72 @@
+// The far field (deal.II continuum) and its ties to the blocks live in a module,
+// libddafem_far_field.so, loaded when a scene has a far field: a blocks-only run starts without
+// deal.II, Trilinos and their ~200 shared libraries (issue 19: 0.19 s and 150 MiB before). This
+// header is all the core (the blocks, the scenes, the run driver) sees of it; the module's side
+// is app/far_field_parts.h.
+#pragma once
+
+#include "app/scene.h"
+#include "app/simulation.h"
+
+#include "common/history_writer.h"
+#include "dda/system.h"
+#include "dda/vtu_writer.h"
+#include "fem/far_field_description.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace ddafem
+{
+/// A far field tied to the blocks of a System (the ties enter the System's steps through
+/// dda::TiedBody), as the blocks' run, its outputs and `check` see it.
+class TiedFarField
+{
+public:
+  virtual ~TiedFarField() = default;
+
+  /// Why the interface reflects more than 1 % of a normally incident wave; empty below.
+  virtual std::string impedance_warning() const = 0;
+  /// The far field's and the interface's history channels (after the blocks').
+  virtual void add_channels(std::vector<HistoryChannel>& channels) const = 0;
+  /// Their values now, in the order of add_channels.
+  virtual void append_row(std::vector<double>& row) const = 0;
+  /// Writes the far field's VTU snapshot into `dir`; returns its file name.
+  virtual std::string write_snapshot(const std::filesystem::path& dir,
+                                     fem::VtuCompression compression) = 0;
+  /// The ties as contact points for VTU (state, normal, forces, opening and slip).
+  virtual std::vector<dda::ContactSnapshot> tie_snapshot() const = 0;
+  /// summary.json's far-field sizes (in "model"), "far_field" and "interface".
+  virtual void add_to_summary(nlohmann::json& summary) const = 0;
+  /// `check`'s lines on the far field and the interface.
+  virtual void describe(std::ostream& out) const = 0;
+};
+
+/// What the module offers.
+class FarFieldModule
+{
+public:
+  virtual ~FarFieldModule() = default;
+
+  /// Builds the scene's far field and ties it to `system` (which must outlive the result).
+  virtual std::unique_ptr<TiedFarField> tie(const Scene& scene, dda::System& system) const = 0;
+  /// A run of a far field alone.
+  virtual std::unique_ptr<Simulation> far_field_simulation(const Scene& scene) const = 0;
+  /// `check` of a far field alone.
+  virtual std::string check_far_field(const Scene& scene) const = 0;
+};
+
+/// The module: linked in (the test programs) or loaded from libddafem_far_field.so beside the
+/// executable on first use, and never unloaded. Throws InputError naming the file and the
+/// loader's reason if it cannot be loaded.
+const FarFieldModule& far_field_module();
+
+} // namespace ddafem
+
+/// The module's one entry point (app/far_field_entry.cc).
+extern "C" const ddafem::FarFieldModule* ddafem_far_field_module();

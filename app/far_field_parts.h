@@ -1,0 +1,76 @@
+// The module's side of app/far_field_module.h: what libddafem_far_field.so builds from
+// fem::ElasticWaveModel and coupling::FarFieldTies. Only the module's files and the test
+// programs include this header; the core reaches these through FarFieldModule.
+#pragma once
+
+#include "app/far_field_module.h"
+#include "app/run_outputs.h"
+
+#include "fem/elastic_wave_model.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace ddafem
+{
+/// The scene's far field, tied to `system` (app/tied_far_field.cc).
+std::unique_ptr<TiedFarField> make_tied_far_field(const Scene& scene, dda::System& system);
+/// A far field alone behind the driver's interface (app/far_field_simulation.cc).
+std::unique_ptr<Simulation> make_far_field_simulation(const Scene& scene);
+/// `check` of a far-field-only scene: mesh, wave speeds, elements per wavelength, boundaries
+/// (app/far_field_outputs.cc).
+std::string check_far_field(const Scene& scene);
+
+/// Appends the displacement, velocity and stress of the far field's first `n_monitors` monitors
+/// to a history row (the channels of run_support::add_monitor_channels).
+void append_far_field_monitors(std::vector<double>& row, const fem::ElasticWaveModel& far_field,
+                               std::size_t n_monitors);
+/// The far field's timings for summary.json [s]: setup, assemble, solve, update.
+nlohmann::json far_field_timings(const fem::Timings& timings);
+
+/// Writes the histories and snapshots of a far field alone into one directory, timing itself.
+class FarFieldOutputs
+{
+public:
+  /// Opens DIR/histories.h5 with the far field's monitors and energies; `scene_file` goes into
+  /// its attributes.
+  FarFieldOutputs(const std::filesystem::path& dir, const std::string& scene_file,
+                  fem::ElasticWaveModel& model, const fem::FarFieldDescription& description,
+                  fem::VtuCompression vtu_compression);
+
+  /// A history row of the state now, and with `snapshot` far_field_NNNNN.vtu and far_field.pvd.
+  void write_state(bool snapshot);
+  void flush() { history.flush(); }
+
+  double seconds() const { return time_output; } ///< all writing [s]
+  std::size_t n_snapshots() const { return n_written; }
+
+private:
+  std::filesystem::path dir;
+  fem::ElasticWaveModel& model;
+  std::size_t n_monitors;
+  fem::VtuCompression vtu_compression;
+  HistoryWriter history;
+  std::size_t n_written = 0;
+  double time_output = 0.0;
+};
+
+/// Everything summary.json says about a run of a far field alone that has ended.
+struct FarFieldRunRecord
+{
+  const Scene& scene;
+  const fem::ElasticWaveModel& model;
+  const fem::StepStatus& failure; ///< outcome success if the run completed
+  const FarFieldOutputs& outputs;
+  const std::vector<std::string>& warnings;
+  double wall_time = 0.0; ///< [s]
+};
+
+nlohmann::json far_field_run_summary(const FarFieldRunRecord& run);
+
+} // namespace ddafem

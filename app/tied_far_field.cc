@@ -1,0 +1,224 @@
+// A far field tied to the blocks (module side of app/far_field_module.h): fem::ElasticWaveModel
+// and coupling::FarFieldTies behind TiedFarField, with the far field's and the interface's
+// history channels, snapshots, summary and `check` lines.
+#include "app/far_field_parts.h"
+#include "app/run_support.h"
+
+#include "common/format.h"
+#include "coupling/far_field_ties.h"
+#include "coupling/interface_impedance.h"
+
+#include <cmath>
+
+namespace ddafem
+{
+namespace
+{
+/// Why the interface reflects and how to avoid it.
+std::string impedance_message(const coupling::InterfaceImpedance& z)
+{
+  return "the far field (E = " + format_significant(z.far_field_modulus) +
+         " Pa) and the tied blocks with their joints (E_eff = " +
+         format_significant(z.blocks_modulus) +
+         " Pa) differ in impedance: the interface reflects about " +
+         format_significant(100 * z.reflection, 2) +
+         "% of a normally incident wave; a far-field material of the rock mass (E_eff) avoids it";
+}
+
+class TiedFarFieldModel : public TiedFarField
+{
+public:
+  TiedFarFieldModel(const Scene& scene_, dda::System& system_)
+      : scene(scene_), system(system_), far_field(*scene.far_field),
+        ties(system, far_field, *scene.interface)
+  {
+  }
+
+  std::string impedance_warning() const override
+  {
+    const auto z = impedance();
+    return z && z->reflection > 0.01 ? impedance_message(*z) : std::string();
+  }
+  void add_channels(std::vector<HistoryChannel>& channels) const override;
+  void append_row(std::vector<double>& row) const override;
+  std::string write_snapshot(const std::filesystem::path& dir,
+                             fem::VtuCompression compression) override
+  {
+    return far_field.write_snapshot(dir.string(), "far_field", compression);
+  }
+  std::vector<dda::ContactSnapshot> tie_snapshot() const override;
+  void add_to_summary(nlohmann::json& summary) const override;
+  void describe(std::ostream& out) const override
+  {
+    describe_far_field(out);
+    describe_interface(out);
+  }
+
+private:
+  std::optional<coupling::InterfaceImpedance> impedance() const
+  {
+    return coupling::interface_impedance(scene.model, system, ties,
+                                         scene.far_field->youngs_modulus);
+  }
+  void describe_far_field(std::ostream& out) const;
+  void describe_interface(std::ostream& out) const;
+
+  const Scene& scene;
+  dda::System& system;
+  fem::ElasticWaveModel far_field;
+  coupling::FarFieldTies ties; ///< after far_field: it holds a reference to it
+};
+
+void TiedFarFieldModel::add_channels(std::vector<HistoryChannel>& channels) const
+{
+  for (const fem::Monitor& m : scene.far_field->monitors)
+    run_support::add_monitor_channels(channels, m.name, "of the far field at the point",
+                                      "of the far field at the point");
+  const std::string ff = "far_field/energy/";
+  channels.push_back({ff + "kinetic", 1, "J", "v^T M v / 2 of the far field"});
+  channels.push_back({ff + "strain", 1, "J", "u^T K u / 2 of the far field"});
+  channels.push_back({ff + "work_of_input", 1, "J", "incident-wave tractions since t = 0"});
+  channels.push_back(
+      {ff + "work_of_dashpots", 1, "J", "Lysmer dashpots since t = 0 (negative: absorbed)"});
+  channels.push_back(
+      {ff + "work_of_rayleigh", 1, "J", "Rayleigh damping since t = 0 (negative: absorbed)"});
+  channels.push_back({ff + "work_of_ties", 1, "J",
+                      "ties on the far field since t = 0: the energy that crossed the interface "
+                      "into it"});
+  channels.push_back({ff + "dissipated", 1, "J", "initial + work - stored: the integrator's"});
+  channels.push_back({"interface/tie_energy", 1, "J",
+                      "held in or dissipated by the tie springs: -(work of the ties on the "
+                      "blocks without their preloads' + on the far field)"});
+  channels.push_back({"interface/ties", 4, "", "number of ties (intact, locked, sliding, open)"});
+}
+
+void TiedFarFieldModel::append_row(std::vector<double>& row) const
+{
+  append_far_field_monitors(row, far_field, scene.far_field->monitors.size());
+  const fem::EnergyBalance e = far_field.energy();
+  row.insert(row.end(), {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots,
+                         e.work_of_rayleigh, e.work_of_springs, e.dissipated, ties.tie_energy()});
+  const coupling::TieCounts n = ties.counts();
+  row.insert(row.end(), {static_cast<double>(n.intact), static_cast<double>(n.lock),
+                         static_cast<double>(n.slide), static_cast<double>(n.open)});
+}
+
+std::vector<dda::ContactSnapshot> TiedFarFieldModel::tie_snapshot() const
+{
+  std::vector<dda::ContactSnapshot> out;
+  const std::vector<dda::MaterialPoint>& points = system.get_tie_points();
+  for (std::size_t k = 0; k < ties.n_ties(); ++k)
+  {
+    const coupling::Tie& t = ties.get_ties()[k];
+    dda::ContactSnapshot c;
+    c.id = k;
+    c.block_a = c.block_b = t.block;
+    switch (t.forces.state)
+    {
+    case dda::ContactState::lock:
+      c.state = t.forces.intact ? dda::ContactPointState::bonded : dda::ContactPointState::lock;
+      break;
+    case dda::ContactState::slide:
+      c.state = dda::ContactPointState::slide;
+      break;
+    case dda::ContactState::open:
+      c.state = dda::ContactPointState::open;
+      break;
+    }
+    c.position = points[k].position;
+    c.normal = t.normal;
+    const dda::Vector2 f = ties.total_force(k); // preload included
+    c.normal_force = t.normal.dot(f);
+    c.shear_force = t.tangent.dot(f);
+    c.gap = -t.normal.dot(t.stretch);
+    c.slip = t.tangent.dot(t.stretch);
+    out.push_back(c);
+  }
+  return out;
+}
+
+void TiedFarFieldModel::add_to_summary(nlohmann::json& summary) const
+{
+  const fem::Timings& ft = far_field.timings();
+  const fem::EnergyBalance fe = far_field.energy();
+  summary["model"]["far_field_cells"] = far_field.n_cells();
+  summary["model"]["far_field_dofs"] = far_field.n_dofs();
+  summary["model"]["element_size_m"] = far_field.element_size();
+  summary["model"]["ties"] = ties.n_ties();
+  summary["model"]["tied_edges"] = ties.n_tied_edges();
+  summary["model"]["tied_blocks"] = ties.n_tied_blocks();
+  summary["far_field"] = {{"solver", far_field.solver_name()},
+                          {"timings_s", far_field_timings(ft)},
+                          {"energy_J",
+                           {{"kinetic", fe.kinetic},
+                            {"strain", fe.strain},
+                            {"work_of_input", fe.work_of_input},
+                            {"work_of_dashpots", fe.work_of_dashpots},
+                            {"work_of_rayleigh", fe.work_of_rayleigh},
+                            {"work_of_ties", fe.work_of_springs},
+                            {"dissipated", fe.dissipated}}}};
+  const coupling::TieCounts n = ties.counts();
+  summary["interface"] = {
+      {"ties", {{"intact", n.intact}, {"lock", n.lock}, {"slide", n.slide}, {"open", n.open}}},
+      {"work_into_blocks_J", ties.work_on_blocks()},
+      {"work_into_far_field_J", fe.work_of_springs},
+      {"tie_energy_J", ties.tie_energy()},
+      {"timings_s", {{"condensation", ties.condensation_seconds()}, {"ties", ties.tie_seconds()}}}};
+}
+
+/// The far field (mesh, solver, material, resolution).
+void TiedFarFieldModel::describe_far_field(std::ostream& out) const
+{
+  const fem::FarFieldDescription& d = *scene.far_field;
+  out << "  far field: " << far_field.n_cells() << " cells of "
+      << format_significant(far_field.smallest_element_size()) << " to "
+      << format_significant(far_field.element_size()) << " m, FE_Q(" << d.degree << "), "
+      << far_field.n_dofs() << " DOFs, solver " << far_field.solver_name() << ", integrator "
+      << fem::name_of(d.integrator) << "\n";
+  out << "  far field material: VP " << format_significant(far_field.p_wave_speed(), 5)
+      << " m/s, VS " << format_significant(far_field.s_wave_speed(), 5) << " m/s\n";
+  const double f = std::max(d.max_frequency, d.incident.velocity.characteristic_frequency());
+  if (f > 0.0)
+    out << "  far-field resolution at " << format_significant(f) << " Hz: "
+        << format_significant(far_field.s_wave_speed() / f / far_field.element_size() * d.degree, 3)
+        << " nodes per S wavelength in the largest element\n";
+}
+
+/// The interface: ties, their springs and strength, the impedance contrast, the far field's
+/// boundaries and monitors.
+void TiedFarFieldModel::describe_interface(std::ostream& out) const
+{
+  const coupling::InterfaceDescription& i = *scene.interface;
+  out << "  interface: part " << fem::name_of(i.part) << " ("
+      << format_significant(ties.part_length()) << " m), " << ties.n_tied_edges()
+      << " block edges of " << ties.n_tied_blocks() << " blocks, " << ties.n_ties() << " ties ("
+      << 2 * ties.n_ties() << " condensed unknowns); p " << format_significant(i.normal_stiffness)
+      << " N/m, shear ratio " << i.shear_ratio << ", "
+      << (std::isinf(i.cohesion) && std::isinf(i.tensile_strength)
+              ? std::string("bonded (unlimited strength)")
+              : "phi " + format_significant(i.friction_angle) + " deg, c " +
+                    format_significant(i.cohesion) + " Pa, tensile " +
+                    format_significant(i.tensile_strength) + " Pa")
+      << "\n";
+  if (const auto z = impedance())
+  {
+    out << "  rock mass at the interface: E_eff " << format_significant(z->blocks_modulus)
+        << " Pa (blocks with their joints), far field E "
+        << format_significant(z->far_field_modulus)
+        << " Pa: reflection of a normally incident wave about "
+        << format_significant(100 * z->reflection, 2) << "%\n";
+    if (z->reflection > 0.01)
+      out << "warning: " << impedance_message(*z) << "\n";
+  }
+  for (const fem::BoundaryCondition& b : scene.far_field->boundaries)
+    out << "  far field " << fem::name_of(b.part) << ": " << fem::name_of(b.kind) << "\n";
+  out << "  far-field monitors: " << scene.far_field->monitors.size() << "\n";
+}
+} // namespace
+
+std::unique_ptr<TiedFarField> make_tied_far_field(const Scene& scene, dda::System& system)
+{
+  return std::make_unique<TiedFarFieldModel>(scene, system);
+}
+
+} // namespace ddafem
