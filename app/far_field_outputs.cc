@@ -89,7 +89,7 @@ nlohmann::json far_field_run_summary(const FarFieldRunRecord& run)
                                         d.end_time, t.n_steps, d.dt);
   summary["integrator"] = fem::name_of(d.integrator);
   summary["solver"] = {{"name", model.solver_name()},
-                       {"factorizations", 1},
+                       {"factorizations", t.n_factorizations},
                        {"linear_iterations", t.linear_iterations}};
   summary["model"] = {{"far_field_cells", model.n_cells()},
                       {"far_field_dofs", model.n_dofs()},

@@ -148,6 +148,7 @@ void TiedFarFieldModel::add_to_summary(nlohmann::json& summary) const
   summary["model"]["tied_edges"] = ties.n_tied_edges();
   summary["model"]["tied_blocks"] = ties.n_tied_blocks();
   summary["far_field"] = {{"solver", far_field.solver_name()},
+                          {"factorizations", ft.n_factorizations},
                           {"timings_s", far_field_timings(ft)},
                           {"energy_J",
                            {{"kinetic", fe.kinetic},
@@ -163,6 +164,7 @@ void TiedFarFieldModel::add_to_summary(nlohmann::json& summary) const
       {"work_into_blocks_J", ties.work_on_blocks()},
       {"work_into_far_field_J", fe.work_of_springs},
       {"tie_energy_J", ties.tie_energy()},
+      {"condensations", ties.n_condensations()},
       {"timings_s", {{"condensation", ties.condensation_seconds()}, {"ties", ties.tie_seconds()}}}};
 }
 

@@ -301,6 +301,7 @@ void FarFieldTies::select_condensation(const double dt)
   auto c = std::make_unique<Condensation>();
   c->flexibility = 0.5 * (gm + gm.transpose()); // symmetric up to the solver's round-off
   condensations.insert(dt, std::move(c));
+  ++condensation_count;
   time_condensation += seconds_since(t0);
 }
 

@@ -127,6 +127,8 @@ public:
   /// Wall time [s]: G (once per dt), the tie algebra of the steps (H, g, states).
   double condensation_seconds() const { return time_condensation; }
   double tie_seconds() const { return time_ties; }
+  /// Condensations G built (one per dt kept, rebuilds after the cache dropped one too).
+  std::size_t n_condensations() const { return condensation_count; }
 
 private:
   /// Ties along block `block`'s edge from a to b [m] (anticlockwise), lying on the far field's
@@ -190,6 +192,7 @@ private:
   double work_blocks = 0.0;
   double work_preloads = 0.0;
   double time_condensation = 0.0, time_ties = 0.0;
+  std::size_t condensation_count = 0;
 };
 
 } // namespace ddafem::coupling

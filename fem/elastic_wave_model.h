@@ -66,6 +66,7 @@ struct Timings
   double update = 0.0;
   std::size_t n_steps = 0;
   std::size_t linear_iterations = 0; ///< summed over steps (iterative solver; 0 for direct)
+  std::size_t n_factorizations = 0;  ///< of the effective matrix (one per dt kept, rebuilds too)
 };
 
 /// A far field in time (a rectangle, optionally with a graded hole, or a Gmsh mesh). The

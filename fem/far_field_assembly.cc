@@ -265,6 +265,7 @@ void ElasticWaveModel::Impl::factorize(const double dt)
                                     description.solver_tolerance);
   f->solver->initialize(effective);
   factorizations.insert(dt, std::move(f));
+  ++timings.n_factorizations;
 }
 
 void ElasticWaveModel::Impl::forget_factorizations()
