@@ -1,4 +1,4 @@
-// Loops over fixed chunks on a set number of threads (TBB, which deal.II brings), with results
+// Loops over fixed chunks on a set number of threads (TBB, linked directly), with results
 // that do not depend on the thread count: the chunks are set by the problem size and a grain,
 // never by the threads; each chunk writes only its own slots; sums are one partial per chunk,
 // added in chunk order. One thread runs the same chunks in a plain loop.
