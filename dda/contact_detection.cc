@@ -52,8 +52,10 @@ void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_
 {
   mark_jointed_vertices();
   find_trial_contacts(pairs);
-  inherit_contact_states();
   set_contact_structure();
+  detected.contacts = trial_contacts;
+  detected.epoch = geometry_epoch;
+  inherit_contact_states();
 }
 
 void System::mark_jointed_vertices()
@@ -119,45 +121,71 @@ void System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::s
       bonded_pairs.emplace_back(j.block_a, j.block_b);
   std::sort(bonded_pairs.begin(), bonded_pairs.end());
 
+  // Each chunk of pairs lists its contacts apart; the lists are joined in chunk order, so the
+  // result does not depend on the number of threads. A chunk is ~0.2 ms of work (a model of
+  // fewer pairs stays on one thread: a parallel region costs tens of microseconds).
+  constexpr std::size_t grain = 256;
+  const std::size_t n_chunks = (pairs.size() + grain - 1) / grain;
+  if (narrow_chunks.size() < n_chunks)
+    narrow_chunks.resize(n_chunks);
+  parallel.for_chunks(pairs.size(), grain,
+                      [&](std::size_t begin, std::size_t end)
+                      {
+                        NarrowPhaseChunk& chunk = narrow_chunks[begin / grain];
+                        chunk.found.clear();
+                        for (std::size_t k = begin; k < end; ++k)
+                          add_pair_contacts(pairs[k].first, pairs[k].second, chunk);
+                      });
+  // Sorted by key (unique: each pair is listed once and its contacts differ in vertex or
+  // edge), through a list of keys that is cheaper to sort than the contacts.
+  using Key = decltype(std::declval<Contact>().key());
+  std::vector<std::pair<Key, const Contact*>> order;
+  for (std::size_t k = 0; k < n_chunks; ++k)
+    for (const Contact& c : narrow_chunks[k].found)
+      order.emplace_back(c.key(), &c);
+  std::sort(order.begin(), order.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
   trial_contacts.clear();
-  for (const auto& [a, b] : pairs)
+  trial_contacts.reserve(order.size());
+  for (const auto& entry : order)
+    trial_contacts.push_back(*entry.second);
+}
+
+void System::add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& chunk) const
+{
+  if (std::binary_search(bonded_pairs.begin(), bonded_pairs.end(), std::make_pair(a, b)))
+    return;
+  find_vertex_edge_pairs(blocks[a].vertices, blocks[b].vertices, contact_search_distance,
+                         angle_tolerance, chunk.work);
+  for (const VertexEdgePair& f : chunk.work.pairs)
   {
-    if (std::binary_search(bonded_pairs.begin(), bonded_pairs.end(), std::make_pair(a, b)))
+    Contact c;
+    c.vertex_block = f.vertex_polygon == 0 ? a : b;
+    c.edge_block = f.vertex_polygon == 0 ? b : a;
+    if (jointed(c.vertex_block, f.vertex, c.edge_block))
       continue;
-    const std::vector<VertexEdgePair> found = find_vertex_edge_pairs(
-        blocks[a].vertices, blocks[b].vertices, contact_search_distance, angle_tolerance);
-    for (const VertexEdgePair& f : found)
+    // Corners of diagonal neighbours (four blocks meeting at a point of a jointed grid): when
+    // both corners are held by intact joints to a common third block, that block keeps them
+    // apart and the vertex-vertex contact between them would only flip between states at
+    // rounding-level gaps, costing open-close iterations.
+    if (f.kind == ContactKind::vertex_vertex)
     {
-      Contact c;
-      c.vertex_block = f.vertex_polygon == 0 ? a : b;
-      c.edge_block = f.vertex_polygon == 0 ? b : a;
-      if (jointed(c.vertex_block, f.vertex, c.edge_block))
-        continue;
-      // Corners of diagonal neighbours (four blocks meeting at a point of a jointed grid): when
-      // both corners are held by intact joints to a common third block, that block keeps them
-      // apart and the vertex-vertex contact between them would only flip between states at
-      // rounding-level gaps, costing open-close iterations.
-      if (f.kind == ContactKind::vertex_vertex)
-      {
-        const std::vector<Point>& ev = blocks[c.edge_block].vertices;
-        const std::size_t corner = f.ratio < 0.5 ? f.edge : (f.edge + 1) % ev.size();
-        if (held_by_common_block(c.vertex_block, f.vertex, c.edge_block, corner))
-          continue;
-      }
-      c.vertex = f.vertex;
-      c.edge = f.edge;
-      c.kind = f.kind;
-      c.ratio = f.ratio;
-      c.gap = f.distance;
-      c.joint_material = joint_material_at_edge(model, c.edge_block, c.edge, c.vertex_block);
       const std::vector<Point>& ev = blocks[c.edge_block].vertices;
-      c.length = carried_length(blocks[c.vertex_block].vertices, c.vertex, ev[c.edge],
-                                ev[(c.edge + 1) % ev.size()], angle_tolerance);
-      trial_contacts.push_back(c);
+      const std::size_t corner = f.ratio < 0.5 ? f.edge : (f.edge + 1) % ev.size();
+      if (held_by_common_block(c.vertex_block, f.vertex, c.edge_block, corner))
+        continue;
     }
+    c.vertex = f.vertex;
+    c.edge = f.edge;
+    c.kind = f.kind;
+    c.ratio = f.ratio;
+    c.gap = f.distance;
+    c.joint_material = joint_material_at_edge(model, c.edge_block, c.edge, c.vertex_block);
+    const std::vector<Point>& ev = blocks[c.edge_block].vertices;
+    c.length = carried_length(blocks[c.vertex_block].vertices, c.vertex, ev[c.edge],
+                              ev[(c.edge + 1) % ev.size()], angle_tolerance);
+    chunk.found.push_back(c);
   }
-  std::sort(trial_contacts.begin(), trial_contacts.end(),
-            [](const Contact& x, const Contact& y) { return x.key() < y.key(); });
 }
 
 void System::inherit_contact_states()
@@ -216,24 +244,30 @@ void System::set_contact_structure()
     couplings.emplace_back(std::min(c.vertex_block, c.edge_block),
                            std::max(c.vertex_block, c.edge_block));
   set_matrix_structure(std::move(couplings));
-  for (Contact& c : trial_contacts)
-    c.coupling = coupling_of(c.vertex_block, c.edge_block);
 
-  // The contacts' frames in the configuration at the step start.
+  // Each contact's coupling and frame, in the configuration at the step start.
   frames.resize(trial_contacts.size());
-  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
-  {
-    const Contact& c = trial_contacts[k];
-    const Block& vb = blocks[c.vertex_block];
-    const Block& eb = blocks[c.edge_block];
-    const Point& e0 = eb.vertices[c.edge];
-    const Point& e1 = eb.vertices[(c.edge + 1) % eb.vertices.size()];
-    ContactFrame& f = frames[k];
-    f.tangent = (e1 - e0).normalized();
-    f.normal = Vector2(f.tangent.y(), -f.tangent.x());
-    f.t_vertex = displacement_matrix(vb.moments.centroid, vb.vertices[c.vertex]);
-    f.t_edge = displacement_matrix(eb.moments.centroid, e0 + c.ratio * (e1 - e0));
-  }
+  parallel.for_chunks(trial_contacts.size(), 1024,
+                      [&](std::size_t begin, std::size_t end)
+                      {
+                        for (std::size_t k = begin; k < end; ++k)
+                          set_contact_frame(k);
+                      });
+}
+
+void System::set_contact_frame(std::size_t k)
+{
+  Contact& c = trial_contacts[k];
+  c.coupling = coupling_of(c.vertex_block, c.edge_block);
+  const Block& vb = blocks[c.vertex_block];
+  const Block& eb = blocks[c.edge_block];
+  const Point& e0 = eb.vertices[c.edge];
+  const Point& e1 = eb.vertices[(c.edge + 1) % eb.vertices.size()];
+  ContactFrame& f = frames[k];
+  f.tangent = (e1 - e0).normalized();
+  f.normal = Vector2(f.tangent.y(), -f.tangent.x());
+  f.t_vertex = displacement_matrix(vb.moments.centroid, vb.vertices[c.vertex]);
+  f.t_edge = displacement_matrix(eb.moments.centroid, e0 + c.ratio * (e1 - e0));
 }
 
 void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings)

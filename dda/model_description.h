@@ -238,8 +238,8 @@ struct SolverSettings
   double tolerance = 1e-10;
   /// block_pcg: iterations before it falls back to the direct solver
   unsigned max_iterations = 200;
-  /// block_pcg's threads (`ddafem run --threads`, not a scene key; 0: all cores). The
-  /// results do not depend on it.
+  /// Threads of contact detection and block_pcg (`ddafem run --threads`, not a scene key; 0:
+  /// all cores). The results do not depend on it.
   unsigned threads = 1;
 };
 

@@ -28,7 +28,8 @@ Point System::AttachedFixedPoint::target(double t) const
 }
 
 System::System(const ModelDescription& model_)
-    : model(model_), matrix(0, {}), base_matrix(0, {}), tied_matrix(0, {}), solver(model_.solver)
+    : model(model_), matrix(0, {}), base_matrix(0, {}), tied_matrix(0, {}), solver(model_.solver),
+      parallel(model_.solver.threads)
 {
   set_material_constants();
   const std::vector<std::string> names = make_blocks();
@@ -296,6 +297,7 @@ void System::tie(TiedBody& body, const std::vector<MaterialPoint>& points)
     tie_origins.push_back(p.position);
   tie_matrices.resize(points.size());
   set_matrix_structure(coupling_pairs);
+  ++geometry_epoch;
 }
 
 void System::hold_block(std::size_t i)
@@ -312,6 +314,7 @@ void System::remove_block(std::size_t i)
   b.acceleration.setZero();
   removed[i] = true;
   matrix_dt = 0.0;
+  ++geometry_epoch;
   joints.erase(std::remove_if(joints.begin(), joints.end(),
                               [&](const Joint& j) { return j.block_a == i || j.block_b == i; }),
                joints.end());
@@ -333,6 +336,7 @@ void System::begin_stage(StageMode new_mode)
   const bool after_static = mode == StageMode::static_equilibrium;
   mode = new_mode;
   matrix_dt = 0.0; // the boundary terms change with the stage: assemble the matrix anew
+  ++geometry_epoch;
   held.assign(blocks.size(), false);
   if (tied_body)
     tied_body->begin_stage(mode);

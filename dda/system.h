@@ -4,8 +4,10 @@
 // step_scheme.cc, system_update.cc, system_energy.cc.
 #pragma once
 
+#include "common/parallel.h"
 #include "dda/block.h"
 #include "dda/contact/contact.h"
+#include "dda/contact/narrow_phase.h"
 #include "dda/joints.h"
 #include "dda/linear_solver.h"
 #include "dda/model_description.h"
@@ -17,7 +19,9 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <cstdint>
 #include <future>
+#include <limits>
 #include <map>
 #include <string>
 #include <tuple>
@@ -346,12 +350,17 @@ private:
   /// The narrow phase: the vertex-edge contacts of the pairs, sorted by key, into
   /// trial_contacts (without state).
   void find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
+  struct NarrowPhaseChunk;
+  /// The contacts of candidate pair (a, b), a < b, appended to `chunk.found` (in key order).
+  void add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& chunk) const;
   /// Id, state, forces and slip history of the previous step's contacts that persist; a new
   /// contact starts closed if its blocks touch, else open.
   void inherit_contact_states();
   /// The matrix structure (joined blocks and blocks in contact) and the contacts' frames at
   /// the step's start.
   void set_contact_structure();
+  /// Trial contact k's coupling (after set_matrix_structure) and frame.
+  void set_contact_frame(std::size_t k);
   ContactLaw contact_law(const Contact& c) const;
   /// Phase 4: solves with the contacts in their trial states until no state changes.
   /// `new_matrix`: the matrix was assembled for this step (else base_matrix holds it).
@@ -424,7 +433,7 @@ private:
   /// middle (kept by the first half): with the true a_n the composite would be first order.
   Vector6 composite_acceleration(std::size_t i, const Matrix6& m, const KinematicState& end);
   /// Phases 1 and 2 of a step: find_contact_candidates among the blocks not removed, then
-  /// update_contacts.
+  /// update_contacts; a retry at the same geometry_epoch reuses `detected`.
   void detect_contacts();
   /// Phase 3: the step's matrix and right-hand side; true if the matrix was assembled anew
   /// (a small-displacement analysis keeps it while dt is unchanged).
@@ -531,6 +540,25 @@ private:
   std::vector<Contact> contacts;       ///< of the last accepted step
   std::vector<Contact> trial_contacts; ///< of the step being tried
   std::vector<ContactFrame> frames;    ///< of trial_contacts
+  /// find_trial_contacts' scratch per chunk of candidate pairs, kept from step to step (a cache
+  /// line each: chunks run on different threads).
+  struct alignas(64) NarrowPhaseChunk
+  {
+    std::vector<Contact> found;
+    NarrowPhaseWorkspace work;
+  };
+  std::vector<NarrowPhaseChunk> narrow_chunks;
+  /// Counts the changes of what contact detection depends on (the blocks' geometry, removed
+  /// blocks, joints, stage, ties, the accepted contacts): detection is redone only when it moved.
+  std::uint64_t geometry_epoch = 0;
+  /// The narrow phase's result at `epoch` (trial contacts before inherit_contact_states, with
+  /// their couplings; `frames` and the matrix structure go with it): a retried step (cut dt,
+  /// slip reversal, raised penalties) starts from the same accepted state and reuses it.
+  struct DetectedContacts
+  {
+    std::uint64_t epoch = std::numeric_limits<std::uint64_t>::max();
+    std::vector<Contact> contacts;
+  } detected;
   std::size_t next_contact_id = 0;
   /// Penalty factors raised by a failed step, by contact key, for the retry
   std::map<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>, double> raised_penalties;
@@ -591,6 +619,8 @@ private:
   Eigen::VectorXd rhs;
   Eigen::VectorXd solution;
   StepSolver solver;
+  /// Threads of contact detection (the solver has its own; results do not depend on either).
+  Parallel parallel;
 
   double current_time = 0.0;
   double work_of_loads = 0.0;

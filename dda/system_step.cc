@@ -86,6 +86,15 @@ StepStatus System::attempt_step(double dt)
 void System::detect_contacts()
 {
   auto start = Clock::now();
+  if (detected.epoch == geometry_epoch)
+  {
+    // A retry from the same accepted state: the same contacts, frames and structure; only
+    // their states are inherited again (penalties may have been raised).
+    trial_contacts = detected.contacts;
+    inherit_contact_states();
+    timings.narrow_phase += seconds_since(start);
+    return;
+  }
   std::vector<std::pair<std::size_t, std::size_t>> pairs =
       contacts_enabled ? find_contact_candidates()
                        : std::vector<std::pair<std::size_t, std::size_t>>{};
@@ -209,6 +218,7 @@ std::string System::accept_step(double dt)
   }
   contacts.swap(trial_contacts);
   raised_penalties.clear();
+  ++geometry_epoch;
   if (mode == StageMode::static_equilibrium)
     set_at_rest();
   else

@@ -147,6 +147,7 @@ std::string System::break_joints()
                 "analysis cannot follow: expected `analysis.geometry: updated`";
   }
   joints.swap(intact);
+  ++geometry_epoch;
   return failure;
 }
 

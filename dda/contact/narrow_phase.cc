@@ -77,23 +77,23 @@ class PairSearch
 {
 public:
   PairSearch(const std::vector<Point>& a, const std::vector<Point>& b, double search_distance,
-             double angle_tolerance_)
-      : polygons{&a, &b}, d0(search_distance), angle_tolerance(angle_tolerance_),
-        sin_tolerance(std::sin(angle_tolerance_))
+             double angle_tolerance_, NarrowPhaseWorkspace& work)
+      : polygons{&a, &b}, shapes(work.shapes), near(work.near), d0(search_distance),
+        angle_tolerance(angle_tolerance_), sin_tolerance(std::sin(angle_tolerance_))
   {
     for (std::size_t s = 0; s < 2; ++s)
     {
       shapes[s].assign(polygons[s]->size(), unknown_shape);
-      near[s] = near_vertices(*polygons[s], *polygons[1 - s]);
+      find_near_vertices(*polygons[s], *polygons[1 - s], near[s]);
     }
   }
 
   /// Rules 3 and 4, in any order (the caller sorts). Only vertices near the other polygon's
   /// bounding box are visited: a vertex farther than d0 from it is farther than d0 from every
   /// edge and vertex of the other polygon and pairs with none.
-  std::vector<VertexEdgePair> find() const
+  void find(std::vector<VertexEdgePair>& pairs) const
   {
-    std::vector<VertexEdgePair> pairs;
+    pairs.clear();
     for (std::size_t s = 0; s < 2; ++s)
       for (const std::size_t v : near[s])
         if (shape(s, v) == VertexShape::convex)
@@ -113,7 +113,6 @@ public:
         else if (shape(1, j) == VertexShape::convex)
           add_corner_pairs(1, j, i, pairs);
       }
-    return pairs;
   }
 
 private:
@@ -192,14 +191,15 @@ private:
     const std::size_t n_other = polygons[1 - s]->size();
     std::array<std::size_t, 2> edges{previous(w, n_other), w};
     std::sort(edges.begin(), edges.end());
-    std::vector<VertexEdgePair> entered;
+    std::array<VertexEdgePair, 2> entered;
+    std::size_t n_entered = 0;
     for (const std::size_t e : edges)
       if (enters(s, v, e))
-        entered.push_back(pair_of(s, v, e, ContactKind::vertex_vertex));
+        entered[n_entered++] = pair_of(s, v, e, ContactKind::vertex_vertex);
 
-    if (shape(1 - s, w) == VertexShape::concave || entered.size() < 2)
+    if (shape(1 - s, w) == VertexShape::concave || n_entered < 2)
     {
-      pairs.insert(pairs.end(), entered.begin(), entered.end());
+      pairs.insert(pairs.end(), entered.begin(), entered.begin() + n_entered);
       return;
     }
     // Straight w, both edges entered: the one on which v projects farther from the ends.
@@ -211,9 +211,10 @@ private:
   VertexEdgePair entrance_pair(std::size_t i, std::size_t j) const
   {
     // Candidates in (vertex_polygon, vertex, edge) order: i on b's edges at j, j on a's at i.
-    std::vector<VertexEdgePair> candidates;
-    std::vector<bool> valid;
+    std::array<VertexEdgePair, 4> candidates;
+    std::array<bool, 4> valid;
     const std::array<std::size_t, 2> touching{i, j}; // the vertex of a and the vertex of b
+    std::size_t n = 0;
     for (std::size_t s = 0; s < 2; ++s)
     {
       const std::size_t v = touching[s], w = touching[1 - s];
@@ -222,13 +223,13 @@ private:
       std::sort(edges.begin(), edges.end());
       for (const std::size_t e : edges)
       {
-        candidates.push_back(pair_of(s, v, e, ContactKind::vertex_vertex));
-        valid.push_back(enters(s, v, e));
+        candidates[n] = pair_of(s, v, e, ContactKind::vertex_vertex);
+        valid[n++] = enters(s, v, e);
       }
     }
     // Interlocked wedges (no valid candidate): every candidate competes.
     if (std::find(valid.begin(), valid.end(), true) == valid.end())
-      valid.assign(valid.size(), true);
+      valid.fill(true);
     double largest = -std::numeric_limits<double>::infinity();
     for (std::size_t c = 0; c < candidates.size(); ++c)
       if (valid[c])
@@ -251,8 +252,8 @@ private:
 
   /// The vertices of p within d0 of q's bounding box (a conservative margin of 1e-9 d0 covers
   /// rounding), in ascending order.
-  std::vector<std::size_t> near_vertices(const std::vector<Point>& p,
-                                         const std::vector<Point>& q) const
+  void find_near_vertices(const std::vector<Point>& p, const std::vector<Point>& q,
+                          std::vector<std::size_t>& vertices) const
   {
     Point lower = q.front(), upper = q.front();
     for (const Point& x : q)
@@ -261,21 +262,20 @@ private:
       upper = upper.cwiseMax(x);
     }
     const double reach = d0 * (1.0 + 1e-9);
-    std::vector<std::size_t> vertices;
+    vertices.clear();
     for (std::size_t k = 0; k < p.size(); ++k)
       if (p[k].x() >= lower.x() - reach && p[k].x() <= upper.x() + reach &&
           p[k].y() >= lower.y() - reach && p[k].y() <= upper.y() + reach)
         vertices.push_back(k);
-    return vertices;
   }
 
   static constexpr signed char unknown_shape = -1;
   std::array<const std::vector<Point>*, 2> polygons;
-  mutable std::array<std::vector<signed char>, 2> shapes; ///< VertexShape, or unknown_shape
-  std::array<std::vector<std::size_t>, 2> near;           ///< vertices near the other's box
-  double d0;                                              ///< search distance [m]
-  double angle_tolerance;                                 ///< [rad]
-  double sin_tolerance;                                   ///< sine of the angle tolerance [-]
+  std::array<std::vector<signed char>, 2>& shapes; ///< VertexShape, or unknown_shape
+  std::array<std::vector<std::size_t>, 2>& near;   ///< vertices near the other's box
+  double d0;                                       ///< search distance [m]
+  double angle_tolerance;                          ///< [rad]
+  double sin_tolerance;                            ///< sine of the angle tolerance [-]
 };
 
 void check_polygon(const std::vector<Point>& polygon, const std::string& name)
@@ -302,6 +302,15 @@ std::vector<VertexEdgePair> find_vertex_edge_pairs(const std::vector<Point>& a,
                                                    const std::vector<Point>& b,
                                                    double search_distance, double angle_tolerance)
 {
+  NarrowPhaseWorkspace work;
+  find_vertex_edge_pairs(a, b, search_distance, angle_tolerance, work);
+  return std::move(work.pairs);
+}
+
+void find_vertex_edge_pairs(const std::vector<Point>& a, const std::vector<Point>& b,
+                            double search_distance, double angle_tolerance,
+                            NarrowPhaseWorkspace& work)
+{
   check_polygon(a, "a");
   check_polygon(b, "b");
   if (!(search_distance > 0.0))
@@ -311,18 +320,19 @@ std::vector<VertexEdgePair> find_vertex_edge_pairs(const std::vector<Point>& a,
     throw std::invalid_argument("find_vertex_edge_pairs: angle tolerance " +
                                 std::to_string(angle_tolerance) + " rad, expected in [0, pi/2)");
 
-  std::vector<VertexEdgePair> pairs = PairSearch(a, b, search_distance, angle_tolerance).find();
+  std::vector<VertexEdgePair>& pairs = work.pairs;
+  PairSearch(a, b, search_distance, angle_tolerance, work).find(pairs);
+  // A stable sort by key (insertion: a pair of polygons has a few pairs), then one of each key.
   const auto key = [](const VertexEdgePair& p) {
     return std::array<std::size_t, 3>{p.vertex_polygon, p.vertex, p.edge};
   };
-  std::stable_sort(pairs.begin(), pairs.end(),
-                   [&](const VertexEdgePair& p, const VertexEdgePair& q)
-                   { return key(p) < key(q); });
+  for (std::size_t k = 1; k < pairs.size(); ++k)
+    for (std::size_t m = k; m > 0 && key(pairs[m]) < key(pairs[m - 1]); --m)
+      std::swap(pairs[m], pairs[m - 1]);
   pairs.erase(std::unique(pairs.begin(), pairs.end(),
                           [&](const VertexEdgePair& p, const VertexEdgePair& q)
                           { return key(p) == key(q); }),
               pairs.end());
-  return pairs;
 }
 
 } // namespace ddafem::dda

@@ -9,6 +9,7 @@
 
 #include "dda/types.h"
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -69,5 +70,19 @@ double interior_angle(const std::vector<Point>& polygon, std::size_t k);
 std::vector<VertexEdgePair> find_vertex_edge_pairs(const std::vector<Point>& a,
                                                    const std::vector<Point>& b,
                                                    double search_distance, double angle_tolerance);
+
+/// Scratch of find_vertex_edge_pairs, kept between calls (one per thread) so that a search
+/// allocates nothing once the vectors have grown; `pairs` holds the last search's result.
+struct NarrowPhaseWorkspace
+{
+  std::array<std::vector<signed char>, 2> shapes; ///< per vertex of a and b: its shape, if known
+  std::array<std::vector<std::size_t>, 2> near;   ///< vertices near the other's bounding box
+  std::vector<VertexEdgePair> pairs;
+};
+
+/// The same search, its result in `work.pairs` (the same pairs in the same order).
+void find_vertex_edge_pairs(const std::vector<Point>& a, const std::vector<Point>& b,
+                            double search_distance, double angle_tolerance,
+                            NarrowPhaseWorkspace& work);
 
 } // namespace ddafem::dda
