@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 // Contact detection of System: phases 1 and 2 of a step (broad phase, narrow phase, contacts
@@ -51,8 +52,7 @@ std::vector<std::pair<std::size_t, std::size_t>> System::find_contact_candidates
 void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs)
 {
   mark_jointed_vertices();
-  find_trial_contacts(pairs);
-  set_contact_structure();
+  set_contact_structure(find_trial_contacts(pairs));
   detected.contacts = trial_contacts;
   detected.epoch = geometry_epoch;
   inherit_contact_states();
@@ -111,7 +111,8 @@ bool System::held_by_common_block(std::size_t a, std::size_t va, std::size_t b,
   return false;
 }
 
-void System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs)
+std::vector<std::pair<std::size_t, std::size_t>>
+System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs)
 {
   // Two convex blocks held by an intact joint touch only along it (their other vertices lie
   // more than d0 away, d0 being below a quarter of the shortest edge): no narrow phase.
@@ -149,6 +150,18 @@ void System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::s
   trial_contacts.reserve(order.size());
   for (const auto& entry : order)
     trial_contacts.push_back(*entry.second);
+
+  // The pairs with contacts: the chunks list them in the candidates' (lexicographic) order.
+  std::vector<std::pair<std::size_t, std::size_t>> touching;
+  for (std::size_t k = 0; k < n_chunks; ++k)
+    for (const Contact& c : narrow_chunks[k].found)
+    {
+      const std::pair<std::size_t, std::size_t> pair(std::min(c.vertex_block, c.edge_block),
+                                                     std::max(c.vertex_block, c.edge_block));
+      if (touching.empty() || touching.back() != pair)
+        touching.emplace_back(pair);
+    }
+  return touching;
 }
 
 void System::add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& chunk) const
@@ -190,59 +203,72 @@ void System::add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& c
 
 void System::inherit_contact_states()
 {
-  // Keep id, state and forces of contacts that persist; a vertex that moved on to another edge
-  // of the same block inherits its previous contact there (sliding past a corner).
+  // Each contact finds its predecessor on the threads; the new ones take ids afterwards, in
+  // contact order, so the ids do not depend on the number of threads either.
+  constexpr std::size_t no_id = std::numeric_limits<std::size_t>::max();
+  parallel.for_chunks(trial_contacts.size(), 1024,
+                      [&](std::size_t begin, std::size_t end)
+                      {
+                        for (std::size_t k = begin; k < end; ++k)
+                          inherit_contact_state(trial_contacts[k], no_id);
+                      });
   for (Contact& c : trial_contacts)
-  {
-    const auto same =
-        std::lower_bound(contacts.begin(), contacts.end(), c.key(),
-                         [](const Contact& x, const auto& key) { return x.key() < key; });
-    const Contact* previous = nullptr;
-    if (same != contacts.end() && same->key() == c.key())
-      previous = &*same;
-    else
-      for (auto it = std::lower_bound(
-               contacts.begin(), contacts.end(),
-               std::make_tuple(c.vertex_block, c.vertex, c.edge_block, std::size_t{0}),
-               [](const Contact&x, const auto&key) { return x.key() < key; });
-           it != contacts.end() && it->vertex_block == c.vertex_block && it->vertex == c.vertex &&
-           it->edge_block == c.edge_block;
-           ++it)
-        if (it->forces.state != ContactState::open)
-          previous = &*it;
-    if (previous)
-    {
-      c.id = previous->id;
-      c.forces = previous->forces;
-      c.total_slip = previous->total_slip;
-      c.slide_duration = previous->slide_duration;
-      c.penalty_factor = previous->penalty_factor;
-    }
-    else
-    {
-      // A new contact starts closed if its blocks touch (within the 1e-9 of the model size that
-      // joins shared edges): blocks stacked in the scene then start closed together, where
-      // starting open would close them one course per open-close iteration (a stack of n
-      // courses would need n iterations, and Shi's 6 then cut dt without end). Those in
-      // tension open in the first iteration.
+    if (c.id == no_id)
       c.id = next_contact_id++;
-      c.forces.state = c.gap <= 2e-9 * w0 ? ContactState::lock : ContactState::open;
-    }
-    if (const auto raised = raised_penalties.find(c.key()); raised != raised_penalties.end())
-      c.penalty_factor = std::max(c.penalty_factor, raised->second);
-    c.trial = c.forces;
-  }
 }
 
-void System::set_contact_structure()
+void System::inherit_contact_state(Contact& c, std::size_t no_id) const
 {
-  // The matrix couples joined blocks and blocks in contact.
-  std::vector<std::pair<std::size_t, std::size_t>> couplings;
+  // Keep id, state and forces of contacts that persist; a vertex that moved on to another edge
+  // of the same block inherits its previous contact there (sliding past a corner).
+  const auto same =
+      std::lower_bound(contacts.begin(), contacts.end(), c.key(),
+                       [](const Contact& x, const auto& key) { return x.key() < key; });
+  const Contact* previous = nullptr;
+  if (same != contacts.end() && same->key() == c.key())
+    previous = &*same;
+  else
+    for (auto it = std::lower_bound(
+             contacts.begin(), contacts.end(),
+             std::make_tuple(c.vertex_block, c.vertex, c.edge_block, std::size_t{0}),
+             [](const Contact&x, const auto&key) { return x.key() < key; });
+         it != contacts.end() && it->vertex_block == c.vertex_block && it->vertex == c.vertex &&
+         it->edge_block == c.edge_block;
+         ++it)
+      if (it->forces.state != ContactState::open)
+        previous = &*it;
+  if (previous)
+  {
+    c.id = previous->id;
+    c.forces = previous->forces;
+    c.total_slip = previous->total_slip;
+    c.slide_duration = previous->slide_duration;
+    c.penalty_factor = previous->penalty_factor;
+  }
+  else
+  {
+    // A new contact starts closed if its blocks touch (within the 1e-9 of the model size that
+    // joins shared edges): blocks stacked in the scene then start closed together, where
+    // starting open would close them one course per open-close iteration (a stack of n
+    // courses would need n iterations, and Shi's 6 then cut dt without end). Those in
+    // tension open in the first iteration.
+    c.id = no_id;
+    c.forces.state = c.gap <= 2e-9 * w0 ? ContactState::lock : ContactState::open;
+  }
+  if (const auto raised = raised_penalties.find(c.key()); raised != raised_penalties.end())
+    c.penalty_factor = std::max(c.penalty_factor, raised->second);
+  c.trial = c.forces;
+}
+
+void System::set_contact_structure(std::vector<std::pair<std::size_t, std::size_t>> touching)
+{
+  // The matrix couples joined blocks and blocks in contact (both lists sorted: merged).
+  std::vector<std::pair<std::size_t, std::size_t>> joined;
   for (const Joint& j : joints)
-    couplings.emplace_back(j.block_a, j.block_b);
-  for (const Contact& c : trial_contacts)
-    couplings.emplace_back(std::min(c.vertex_block, c.edge_block),
-                           std::max(c.vertex_block, c.edge_block));
+    joined.emplace_back(j.block_a, j.block_b);
+  std::sort(joined.begin(), joined.end());
+  std::vector<std::pair<std::size_t, std::size_t>> couplings(joined.size() + touching.size());
+  std::merge(joined.begin(), joined.end(), touching.begin(), touching.end(), couplings.begin());
   set_matrix_structure(std::move(couplings));
 
   // Each contact's coupling and frame, in the configuration at the step start.
@@ -277,7 +303,8 @@ void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t
   for (std::size_t i = 0; i < tie_blocks.size(); ++i)
     for (std::size_t j = i + 1; j < tie_blocks.size(); ++j)
       couplings.emplace_back(tie_blocks[i], tie_blocks[j]);
-  std::sort(couplings.begin(), couplings.end());
+  if (!std::is_sorted(couplings.begin(), couplings.end()))
+    std::sort(couplings.begin(), couplings.end());
   couplings.erase(std::unique(couplings.begin(), couplings.end()), couplings.end());
   if (couplings != coupling_pairs || matrix.n_blocks() != blocks.size())
   {

@@ -349,16 +349,20 @@ private:
   bool held_by_common_block(std::size_t a, std::size_t va, std::size_t b, std::size_t vb) const;
   /// The narrow phase: the vertex-edge contacts of the pairs, sorted by key, into
   /// trial_contacts (without state).
-  void find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
+  /// Returns the pairs with contacts, sorted (the matrix couples them).
+  std::vector<std::pair<std::size_t, std::size_t>>
+  find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
   struct NarrowPhaseChunk;
   /// The contacts of candidate pair (a, b), a < b, appended to `chunk.found` (in key order).
   void add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& chunk) const;
   /// Id, state, forces and slip history of the previous step's contacts that persist; a new
   /// contact starts closed if its blocks touch, else open.
   void inherit_contact_states();
+  /// One contact's: its predecessor's, or a new contact's first state and id `no_id`.
+  void inherit_contact_state(Contact& c, std::size_t no_id) const;
   /// The matrix structure (joined blocks and blocks in contact) and the contacts' frames at
   /// the step's start.
-  void set_contact_structure();
+  void set_contact_structure(std::vector<std::pair<std::size_t, std::size_t>> touching);
   /// Trial contact k's coupling (after set_matrix_structure) and frame.
   void set_contact_frame(std::size_t k);
   ContactLaw contact_law(const Contact& c) const;
