@@ -55,6 +55,7 @@ usage: /usr/bin/python3 bench/speed_accuracy.py [--quick] [--jobs 2] [--build bu
 import argparse
 import concurrent.futures
 import csv
+import hashlib
 import json
 import math
 import os
@@ -142,6 +143,18 @@ def frozen_binary(build, directory):
             raise SystemExit(f"{path} is missing or being linked: build it first")
     shutil.copy2(module, os.path.join(directory, "libddafem_far_field.so"))
     return shutil.copy2(source, os.path.join(directory, "ddafem"))
+
+
+def binaries_sha256(ddafem):
+    """SHA-256 of the executable's bytes followed by those of the far-field module beside it
+    (when there is one): what identifies the code that ran."""
+    digest = hashlib.sha256()
+    module = os.path.join(os.path.dirname(ddafem), "libddafem_far_field.so")
+    for path in (ddafem, module):
+        if os.path.exists(path):
+            with open(path, "rb") as f:
+                digest.update(f.read())
+    return digest.hexdigest()
 
 
 def check_accepts(ddafem, scene, settings):
