@@ -142,6 +142,8 @@ FarFieldTies::FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field
                        " m from the far field's part '" + part + "', expected within " +
                        format_number(tol) + " m");
   set_bonded_state(system.get_model(), springs);
+  h = &k_bonded;
+  m_matrix = &m_trial;
   system.tie(*this, points);
 }
 
@@ -228,7 +230,7 @@ void FarFieldTies::begin_stage(const dda::StageMode mode)
                        "and does not follow a frictional interface: expected no "
                        "`interface.joint_material`");
     held = true;
-    h = k_bonded; // H = K for the whole stage
+    h = &k_bonded; // H = K for the whole stage
     bonded_terms_valid = false;
     return;
   }
@@ -348,8 +350,8 @@ void FarFieldTies::build_terms()
       Condensation& c = condensations.front();
       if (c.bonded_h.size() == 0)
         c.bonded_h = k_bonded - congruence(k_ties, c.flexibility);
-      m_matrix = c.flexibility;
-      h = c.bonded_h;
+      m_matrix = &c.flexibility;
+      h = &c.bonded_h;
       bonded_terms_valid = true;
     }
     r_w0 = w0;
@@ -363,19 +365,21 @@ void FarFieldTies::build_terms()
       a.middleCols<2>(2 * k) += flexibility().middleCols<2>(2 * k) * dk[k];
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a);
     r_w0 = lu.solve(w0);
-    m_matrix = lu.solve(flexibility());
-    m_matrix = 0.5 * (m_matrix + m_matrix.transpose()).eval();
-    h = -congruence(k_ties, m_matrix);
+    m_trial = lu.solve(flexibility());
+    m_trial = 0.5 * (m_trial + m_trial.transpose()).eval();
+    h_trial = -congruence(k_ties, m_trial);
     for (std::size_t k = 0; k < m; ++k)
-      h.block<2, 2>(2 * k, 2 * k) += k_ties[k];
+      h_trial.block<2, 2>(2 * k, 2 * k) += k_ties[k];
+    m_matrix = &m_trial;
+    h = &h_trial;
     bonded_terms_valid = false;
   }
   // f on the blocks = P - (K' (z - w) + F0) = g - H delta, z = c + delta. A linear interface's
   // ties are bonded springs, F0 = 0.
   if (linear)
     f_trial.setZero();
-  const Eigen::VectorXd w_f = linear ? r_w0 : Eigen::VectorXd(r_w0 + m_matrix * f_trial);
-  g = preload + block_diagonal_times(k_ties, w_f) - f_trial - h * start;
+  const Eigen::VectorXd w_f = linear ? r_w0 : Eigen::VectorXd(r_w0 + *m_matrix * f_trial);
+  g = preload + block_diagonal_times(k_ties, w_f) - f_trial - *h * start;
 }
 
 Eigen::VectorXd FarFieldTies::far_field_displacements(const Eigen::VectorXd& z) const
@@ -383,7 +387,7 @@ Eigen::VectorXd FarFieldTies::far_field_displacements(const Eigen::VectorXd& z) 
   Eigen::VectorXd kz(z.size());
   for (std::size_t k = 0; k < ties.size(); ++k)
     kz.segment<2>(2 * k) = k_trial.middleRows<2>(2 * k) * z.segment<2>(2 * k);
-  return r_w0 + m_matrix * (kz + f_trial);
+  return r_w0 + *m_matrix * (kz + f_trial);
 }
 
 std::size_t FarFieldTies::update_trial_states(const Eigen::VectorXd& delta,

@@ -97,7 +97,7 @@ public:
   /// Held (static stage): H = K, one 2 x 2 spring per tie.
   bool stiffness_is_block_diagonal() const override { return held; }
   std::string begin_step(double dt, const Eigen::VectorXd& displacements) override;
-  const Eigen::MatrixXd& stiffness() const override { return h; }
+  const Eigen::MatrixXd& stiffness() const override { return *h; }
   const Eigen::VectorXd& force() const override { return g; }
   std::size_t update_trial_states(const Eigen::VectorXd& delta, unsigned iteration,
                                   double negligible, std::size_t& n_ignored) override;
@@ -175,13 +175,17 @@ private:
   const Eigen::MatrixXd& flexibility() const { return condensations.front().flexibility; }
 
   // The step in progress.
-  Eigen::VectorXd w0;              ///< free far-field displacements at the ties [m]
-  Eigen::VectorXd start;           ///< c: the blocks' tie displacements at the step start [m]
-  Eigen::MatrixXd k_trial;         ///< K' [N/m]
-  Eigen::VectorXd f_trial;         ///< F0 [N]
-  Eigen::VectorXd r_w0;            ///< R w0 [m]
-  Eigen::MatrixXd m_matrix;        ///< M = R G [m/N]
-  Eigen::MatrixXd h;               ///< H = K' - K' M K' [N/m]
+  Eigen::VectorXd w0;      ///< free far-field displacements at the ties [m]
+  Eigen::VectorXd start;   ///< c: the blocks' tie displacements at the step start [m]
+  Eigen::MatrixXd k_trial; ///< K' [N/m]
+  Eigen::VectorXd f_trial; ///< F0 [N]
+  Eigen::VectorXd r_w0;    ///< R w0 [m]
+  /// M = R G [m/N] and H = K' - K' M K' [N/m]: the current condensation's G and all-bonded H
+  /// while every tie is bonded (no copy of these (2m)^2 matrices per step), else m_trial and
+  /// h_trial; K while the far field is held.
+  const Eigen::MatrixXd* m_matrix = nullptr;
+  const Eigen::MatrixXd* h = nullptr;
+  Eigen::MatrixXd m_trial, h_trial;
   Eigen::VectorXd g;               ///< [N]
   bool bonded_terms_valid = false; ///< h holds the current condensation's all-bonded H
 

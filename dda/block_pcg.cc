@@ -1,9 +1,11 @@
 #include "dda/block_pcg.h"
 
-#include <Eigen/Cholesky>
+#include "dda/dense6.h"
 
 #include <atomic>
 #include <cmath>
+#include <cstring>
+#include <limits>
 
 namespace ddafem::dda
 {
@@ -20,20 +22,32 @@ BlockJacobiPcg::BlockJacobiPcg(const unsigned n_threads) : parallel(n_threads) {
 bool BlockJacobiPcg::set_preconditioner(const BlockSparseMatrix& a)
 {
   const std::size_t n = a.n_blocks();
-  inverses.resize(n);
+  if (inverted.size() != n)
+  {
+    // Nothing inverted yet (NaN never compares equal byte for byte to a finite block).
+    inverted.assign(n, Matrix6::Constant(std::numeric_limits<double>::quiet_NaN()));
+    inverses.resize(n);
+  }
   std::atomic<bool> positive{true};
-  parallel.for_chunks(n, grain,
-                      [&](std::size_t begin, std::size_t end)
-                      {
-                        for (std::size_t i = begin; i < end; ++i)
-                        {
-                          const Eigen::LLT<Matrix6> llt(a.diagonal(i));
-                          if (llt.info() != Eigen::Success)
-                            positive.store(false, std::memory_order_relaxed);
-                          else
-                            inverses[i] = llt.solve(Matrix6::Identity());
-                        }
-                      });
+  parallel.for_chunks(
+      n, grain,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          // Between open-close iterations only the blocks whose contacts
+          // changed state have a new diagonal: the others keep their inverse.
+          if (std::memcmp(inverted[i].data(), a.diagonal(i).data(), sizeof(Matrix6)) == 0)
+            continue;
+          if (!spd_inverse_6(a.diagonal(i), inverses[i]))
+          {
+            positive.store(false, std::memory_order_relaxed);
+            inverted[i].setConstant(std::numeric_limits<double>::quiet_NaN());
+          }
+          else
+            inverted[i] = a.diagonal(i);
+        }
+      });
   if (!positive)
     return false;
   // Row index of the non-zero couplings: count, prefix sum, fill in coupling order.

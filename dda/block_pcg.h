@@ -83,6 +83,7 @@ private:
 
   Parallel parallel;
   std::vector<Matrix6> inverses;      ///< of the diagonal blocks
+  std::vector<Matrix6> inverted;      ///< the diagonal blocks `inverses` were computed from
   std::vector<std::size_t> row_start; ///< per block row into row_entries, and the end
   std::vector<RowEntry> row_entries;  ///< by row, in ascending coupling order
   Eigen::VectorXd r, z, p, q;

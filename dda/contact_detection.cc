@@ -54,6 +54,7 @@ void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_
   mark_jointed_vertices();
   set_contact_structure(find_trial_contacts(pairs));
   detected.contacts = trial_contacts;
+  detected.predecessors.clear();
   detected.epoch = geometry_epoch;
   inherit_contact_states();
 }
@@ -205,38 +206,51 @@ void System::inherit_contact_states()
 {
   // Each contact finds its predecessor on the threads; the new ones take ids afterwards, in
   // contact order, so the ids do not depend on the number of threads either.
-  constexpr std::size_t no_id = std::numeric_limits<std::size_t>::max();
+  constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t>& predecessors = detected.predecessors;
+  const bool search = predecessors.size() != trial_contacts.size();
+  if (search)
+    predecessors.resize(trial_contacts.size());
   parallel.for_chunks(trial_contacts.size(), 1024,
                       [&](std::size_t begin, std::size_t end)
                       {
                         for (std::size_t k = begin; k < end; ++k)
-                          inherit_contact_state(trial_contacts[k], no_id);
+                        {
+                          if (search)
+                            predecessors[k] = find_predecessor(trial_contacts[k], none);
+                          const std::size_t p = predecessors[k];
+                          inherit_contact_state(trial_contacts[k],
+                                                p == none ? nullptr : &contacts[p], none);
+                        }
                       });
   for (Contact& c : trial_contacts)
-    if (c.id == no_id)
+    if (c.id == none)
       c.id = next_contact_id++;
 }
 
-void System::inherit_contact_state(Contact& c, std::size_t no_id) const
+std::size_t System::find_predecessor(const Contact& c, std::size_t none) const
 {
-  // Keep id, state and forces of contacts that persist; a vertex that moved on to another edge
-  // of the same block inherits its previous contact there (sliding past a corner).
-  const auto same =
-      std::lower_bound(contacts.begin(), contacts.end(), c.key(),
-                       [](const Contact& x, const auto& key) { return x.key() < key; });
-  const Contact* previous = nullptr;
+  // The same key; else a vertex that moved on to another edge of the same block inherits its
+  // previous contact there (sliding past a corner): the last one not open.
+  const auto key_less = [](const Contact& x, const auto& key) { return x.key() < key; };
+  const auto same = std::lower_bound(contacts.begin(), contacts.end(), c.key(), key_less);
   if (same != contacts.end() && same->key() == c.key())
-    previous = &*same;
-  else
-    for (auto it = std::lower_bound(
-             contacts.begin(), contacts.end(),
-             std::make_tuple(c.vertex_block, c.vertex, c.edge_block, std::size_t{0}),
-             [](const Contact&x, const auto&key) { return x.key() < key; });
-         it != contacts.end() && it->vertex_block == c.vertex_block && it->vertex == c.vertex &&
-         it->edge_block == c.edge_block;
-         ++it)
-      if (it->forces.state != ContactState::open)
-        previous = &*it;
+    return static_cast<std::size_t>(same - contacts.begin());
+  std::size_t previous = none;
+  for (auto it = std::lower_bound(
+           contacts.begin(), contacts.end(),
+           std::make_tuple(c.vertex_block, c.vertex, c.edge_block, std::size_t{0}), key_less);
+       it != contacts.end() && it->vertex_block == c.vertex_block && it->vertex == c.vertex &&
+       it->edge_block == c.edge_block;
+       ++it)
+    if (it->forces.state != ContactState::open)
+      previous = static_cast<std::size_t>(it - contacts.begin());
+  return previous;
+}
+
+void System::inherit_contact_state(Contact& c, const Contact* previous, std::size_t no_id) const
+{
+  // Keep id, state and forces of contacts that persist.
   if (previous)
   {
     c.id = previous->id;
@@ -255,8 +269,9 @@ void System::inherit_contact_state(Contact& c, std::size_t no_id) const
     c.id = no_id;
     c.forces.state = c.gap <= 2e-9 * w0 ? ContactState::lock : ContactState::open;
   }
-  if (const auto raised = raised_penalties.find(c.key()); raised != raised_penalties.end())
-    c.penalty_factor = std::max(c.penalty_factor, raised->second);
+  if (!raised_penalties.empty())
+    if (const auto raised = raised_penalties.find(c.key()); raised != raised_penalties.end())
+      c.penalty_factor = std::max(c.penalty_factor, raised->second);
   c.trial = c.forces;
 }
 

@@ -356,10 +356,14 @@ private:
   /// The contacts of candidate pair (a, b), a < b, appended to `chunk.found` (in key order).
   void add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& chunk) const;
   /// Id, state, forces and slip history of the previous step's contacts that persist; a new
-  /// contact starts closed if its blocks touch, else open.
+  /// contact starts closed if its blocks touch, else open. The predecessors are searched for
+  /// once per geometry_epoch (kept in `detected`); a retry only copies their states again.
   void inherit_contact_states();
-  /// One contact's: its predecessor's, or a new contact's first state and id `no_id`.
-  void inherit_contact_state(Contact& c, std::size_t no_id) const;
+  /// Index in `contacts` of c's predecessor, or `none`.
+  std::size_t find_predecessor(const Contact& c, std::size_t none) const;
+  /// c's state from the accepted contact `previous` (or a new contact's first state and id
+  /// `no_id` if `previous` is null), with a raised penalty.
+  void inherit_contact_state(Contact& c, const Contact* previous, std::size_t no_id) const;
   /// The matrix structure (joined blocks and blocks in contact) and the contacts' frames at
   /// the step's start.
   void set_contact_structure(std::vector<std::pair<std::size_t, std::size_t>> touching);
@@ -562,6 +566,9 @@ private:
   {
     std::uint64_t epoch = std::numeric_limits<std::uint64_t>::max();
     std::vector<Contact> contacts;
+    /// Per contact its predecessor's index in `contacts` (the accepted ones), or the maximum
+    /// std::size_t; empty until inherit_contact_states searched them at `epoch`.
+    std::vector<std::size_t> predecessors;
   } detected;
   std::size_t next_contact_id = 0;
   /// Penalty factors raised by a failed step, by contact key, for the retry
