@@ -373,7 +373,17 @@ private:
   /// Phase 4: solves with the contacts in their trial states until no state changes.
   /// `new_matrix`: the matrix was assembled for this step (else base_matrix holds it).
   StepStatus solve_with_open_close(const std::string& when, bool new_matrix);
+  /// Trial contact k's springs K2 [N/m] and force on its vertex [N] (minus on its edge).
+  void contact_spring(std::size_t k, Eigen::Matrix2d& k2, Vector2& force_on_vertex) const;
+  /// Adds every closed trial contact's terms to the matrix and right-hand side (an attempt's
+  /// first open-close iteration, or after the tie terms changed).
   void add_contact_terms();
+  /// A later iteration: `matrix` holds `start` plus the terms of the states last added; the
+  /// blocks of contacts that changed state are summed again from `start`, and the contacts'
+  /// forces are added to `rhs` (which holds the start's).
+  void update_contact_terms(const BlockSparseMatrix& start);
+  /// Per block and per coupling the trial contacts on it, once per attempt.
+  void index_contact_terms();
   /// The tied body's H and g on the blocks of the tie points (T at the step start).
   void add_tie_terms();
   /// The tie points' displacement increments T d (2m) of a solution.
@@ -624,6 +634,16 @@ private:
   BlockSparseMatrix base_matrix; ///< the step's matrix without contacts (when there are some)
   Eigen::VectorXd base_rhs;
   BlockSparseMatrix tied_matrix; ///< base_matrix with a tied body's terms (open-close iteration)
+  /// The contact terms in `matrix`: each trial contact's state when they were added, and the
+  /// contacts by block and by coupling (ascending) to sum a block again.
+  struct ContactTermsIndex
+  {
+    std::vector<ContactState> states;
+    bool indexed = false;
+    std::vector<std::size_t> block_start, block_contacts;       ///< CSR by block
+    std::vector<std::size_t> coupling_start, coupling_contacts; ///< CSR by coupling
+    std::vector<std::size_t> changed_blocks, changed_couplings; ///< scratch
+  } contact_terms;
   Eigen::VectorXd tied_rhs;
   double matrix_dt = 0.0;          ///< dt the matrix was assembled for (small-displacement reuse)
   double matrix_mass_factor = 0.0; ///< and its factor of M [1/s^2]

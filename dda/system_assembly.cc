@@ -1,6 +1,6 @@
-// Phase 3 of the step (and the contact terms of phase 4): the matrix and right-hand side of
-// blocks, loads, fixed points, boundaries, joints and contacts, in the configuration the step
-// is linearised about.
+// Phase 3 of the step: the matrix and right-hand side of blocks, loads, fixed points,
+// boundaries and joints, in the configuration the step is linearised about (the contacts' terms
+// of phase 4 are in system_contact_terms.cc).
 #include "dda/system.h"
 
 #include "dda/submatrices.h"
@@ -118,31 +118,6 @@ void System::add_joint_terms(bool with_matrix)
       rhs.segment<6>(6 * j.block_a).noalias() += ta.transpose() * force;
       rhs.segment<6>(6 * j.block_b).noalias() -= tb.transpose() * force;
     }
-  }
-}
-
-void System::add_contact_terms()
-{
-  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
-  {
-    const Contact& c = trial_contacts[k];
-    if (c.trial.state == ContactState::open)
-      continue;
-    const ContactFrame& f = frames[k];
-    const ContactLaw law = contact_law(c);
-    Eigen::Matrix2d k2 = law.normal_stiffness * (f.normal * f.normal.transpose());
-    // Lock: the shear spring on the step's slip, starting from the previous shear force;
-    // slide: the friction force of the trial, no shear spring.
-    const bool was_closed = c.forces.state != ContactState::open;
-    double shear = c.trial.shear_force;
-    if (c.trial.state == ContactState::lock)
-    {
-      k2 += law.shear_stiffness * (f.tangent * f.tangent.transpose());
-      shear = was_closed ? c.forces.shear_force : 0.0;
-    }
-    const Vector2 force_on_vertex = -law.normal_stiffness * c.gap * f.normal - shear * f.tangent;
-    add_pair_spring(matrix, rhs, c.coupling, c.vertex_block, f.t_vertex, c.edge_block, f.t_edge, k2,
-                    force_on_vertex);
   }
 }
 

@@ -48,14 +48,17 @@ StepStatus System::solve_with_open_close(const std::string& when, bool new_matri
   const unsigned max_iterations = std::max(1u, model.contacts.max_open_close_iterations);
   for (unsigned iteration = 1; iteration <= max_iterations; ++iteration)
   {
-    if (iteration > 1 && ties_changed)
-      add_ties_to_start();
-    else if (iteration > 1)
+    if (iteration == 1 || ties_changed)
     {
-      matrix = tied_body ? tied_matrix : base_matrix;
-      rhs = tied_body ? tied_rhs : base_rhs;
+      if (iteration > 1)
+        add_ties_to_start();
+      add_contact_terms();
     }
-    add_contact_terms();
+    else
+    {
+      rhs = tied_body ? tied_rhs : base_rhs;
+      update_contact_terms(tied_body ? tied_matrix : base_matrix);
+    }
     status.solve = solver.solve(matrix, rhs, solution, MatrixChange::unknown, matrix_mass_factor);
     ++status.n_open_close_iterations;
     ++timings.n_open_close_iterations;
