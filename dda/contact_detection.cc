@@ -211,38 +211,49 @@ void System::inherit_contact_states()
   const bool search = predecessors.size() != trial_contacts.size();
   if (search)
     predecessors.resize(trial_contacts.size());
-  parallel.for_chunks(trial_contacts.size(), 1024,
-                      [&](std::size_t begin, std::size_t end)
-                      {
-                        for (std::size_t k = begin; k < end; ++k)
-                        {
-                          if (search)
-                            predecessors[k] = find_predecessor(trial_contacts[k], none);
-                          const std::size_t p = predecessors[k];
-                          inherit_contact_state(trial_contacts[k],
-                                                p == none ? nullptr : &contacts[p], none);
-                        }
-                      });
+  parallel.for_chunks(
+      trial_contacts.size(), 1024,
+      [&](std::size_t begin, std::size_t end)
+      {
+        // Both lists are in key order: one search per chunk, then a walk.
+        auto at = contacts.begin();
+        if (search && begin < end)
+          at = std::lower_bound(contacts.begin(), contacts.end(), trial_contacts[begin].key(),
+                                [](const Contact& x, const auto& key) { return x.key() < key; });
+        for (std::size_t k = begin; k < end; ++k)
+        {
+          if (search)
+          {
+            const auto key = trial_contacts[k].key();
+            while (at != contacts.end() && at->key() < key)
+              ++at;
+            predecessors[k] = find_predecessor(trial_contacts[k], at, none);
+          }
+          const std::size_t p = predecessors[k];
+          inherit_contact_state(trial_contacts[k], p == none ? nullptr : &contacts[p], none);
+        }
+      });
   for (Contact& c : trial_contacts)
     if (c.id == none)
       c.id = next_contact_id++;
 }
 
-std::size_t System::find_predecessor(const Contact& c, std::size_t none) const
+std::size_t System::find_predecessor(const Contact& c, std::vector<Contact>::const_iterator at,
+                                     std::size_t none) const
 {
   // The same key; else a vertex that moved on to another edge of the same block inherits its
   // previous contact there (sliding past a corner): the last one not open.
-  const auto key_less = [](const Contact& x, const auto& key) { return x.key() < key; };
-  const auto same = std::lower_bound(contacts.begin(), contacts.end(), c.key(), key_less);
-  if (same != contacts.end() && same->key() == c.key())
-    return static_cast<std::size_t>(same - contacts.begin());
+  if (at != contacts.end() && at->key() == c.key())
+    return static_cast<std::size_t>(at - contacts.begin());
+  const auto same_vertex = [&](const Contact& x)
+  {
+    return x.vertex_block == c.vertex_block && x.vertex == c.vertex && x.edge_block == c.edge_block;
+  };
+  auto first = at;
+  while (first != contacts.begin() && same_vertex(*(first - 1)))
+    --first;
   std::size_t previous = none;
-  for (auto it = std::lower_bound(
-           contacts.begin(), contacts.end(),
-           std::make_tuple(c.vertex_block, c.vertex, c.edge_block, std::size_t{0}), key_less);
-       it != contacts.end() && it->vertex_block == c.vertex_block && it->vertex == c.vertex &&
-       it->edge_block == c.edge_block;
-       ++it)
+  for (auto it = first; it != contacts.end() && same_vertex(*it); ++it)
     if (it->forces.state != ContactState::open)
       previous = static_cast<std::size_t>(it - contacts.begin());
   return previous;

@@ -359,8 +359,10 @@ private:
   /// contact starts closed if its blocks touch, else open. The predecessors are searched for
   /// once per geometry_epoch (kept in `detected`); a retry only copies their states again.
   void inherit_contact_states();
-  /// Index in `contacts` of c's predecessor, or `none`.
-  std::size_t find_predecessor(const Contact& c, std::size_t none) const;
+  /// Index in `contacts` of c's predecessor, or `none`; `at` is the first accepted contact
+  /// whose key is not below c's.
+  std::size_t find_predecessor(const Contact& c, std::vector<Contact>::const_iterator at,
+                               std::size_t none) const;
   /// c's state from the accepted contact `previous` (or a new contact's first state and id
   /// `no_id` if `previous` is null), with a raised penalty.
   void inherit_contact_state(Contact& c, const Contact* previous, std::size_t no_id) const;
