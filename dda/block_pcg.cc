@@ -50,18 +50,27 @@ bool BlockJacobiPcg::set_preconditioner(const BlockSparseMatrix& a)
       });
   if (!positive)
     return false;
-  // Row index of the non-zero couplings: count, prefix sum, fill in coupling order.
+  // Row index of the non-zero couplings (those whose contacts are all open add nothing):
+  // count, prefix sum, fill in coupling order; kept while the couplings and which of them are
+  // zero stay the same (between most open-close iterations).
+  nonzero.resize(a.n_couplings());
+  parallel.for_chunks(a.n_couplings(), 4 * grain,
+                      [&](std::size_t begin, std::size_t end)
+                      {
+                        for (std::size_t k = begin; k < end; ++k)
+                          nonzero[k] = !a.upper(k).isZero(0.0);
+                      });
+  if (row_start.size() == n + 1 && nonzero == indexed_nonzero && a.couplings() == indexed_couplings)
+    return true;
+  indexed_nonzero = nonzero;
+  indexed_couplings = a.couplings();
   row_start.assign(n + 1, 0);
-  std::vector<char> nonzero(a.n_couplings());
   for (std::size_t k = 0; k < a.n_couplings(); ++k)
-  {
-    nonzero[k] = !a.upper(k).isZero(0.0);
     if (nonzero[k])
     {
       ++row_start[a.coupling(k).first + 1];
       ++row_start[a.coupling(k).second + 1];
     }
-  }
   for (std::size_t i = 0; i < n; ++i)
     row_start[i + 1] += row_start[i];
   row_entries.resize(row_start[n]);

@@ -82,8 +82,11 @@ private:
                      std::size_t begin, std::size_t end) const;
 
   Parallel parallel;
-  std::vector<Matrix6> inverses;      ///< of the diagonal blocks
-  std::vector<Matrix6> inverted;      ///< the diagonal blocks `inverses` were computed from
+  std::vector<Matrix6> inverses;     ///< of the diagonal blocks
+  std::vector<Matrix6> inverted;     ///< the diagonal blocks `inverses` were computed from
+  std::vector<char> nonzero;         ///< per coupling of the last matrix: not all zero
+  std::vector<char> indexed_nonzero; ///< and of the matrix row_entries index
+  std::vector<std::pair<std::size_t, std::size_t>> indexed_couplings; ///< its couplings
   std::vector<std::size_t> row_start; ///< per block row into row_entries, and the end
   std::vector<RowEntry> row_entries;  ///< by row, in ascending coupling order
   Eigen::VectorXd r, z, p, q;

@@ -139,18 +139,27 @@ System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t
                           add_pair_contacts(pairs[k].first, pairs[k].second, chunk);
                       });
   // Sorted by key (unique: each pair is listed once and its contacts differ in vertex or
-  // edge), through a list of keys that is cheaper to sort than the contacts.
-  using Key = decltype(std::declval<Contact>().key());
-  std::vector<std::pair<Key, const Contact*>> order;
+  // edge): counted into buckets by vertex block, then each bucket (a few contacts) by
+  // insertion, through pointers that are cheaper to move than the contacts.
+  std::vector<std::size_t> bucket(blocks.size() + 1, 0);
   for (std::size_t k = 0; k < n_chunks; ++k)
     for (const Contact& c : narrow_chunks[k].found)
-      order.emplace_back(c.key(), &c);
-  std::sort(order.begin(), order.end(),
-            [](const auto& x, const auto& y) { return x.first < y.first; });
+      ++bucket[c.vertex_block + 1];
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    bucket[i + 1] += bucket[i];
+  std::vector<const Contact*> order(bucket.back());
+  std::vector<std::size_t> next(bucket.begin(), bucket.end() - 1);
+  for (std::size_t k = 0; k < n_chunks; ++k)
+    for (const Contact& c : narrow_chunks[k].found)
+      order[next[c.vertex_block]++] = &c;
+  for (std::size_t i = 0; i < blocks.size(); ++i)
+    for (std::size_t k = bucket[i] + 1; k < bucket[i + 1]; ++k)
+      for (std::size_t m = k; m > bucket[i] && order[m]->key() < order[m - 1]->key(); --m)
+        std::swap(order[m], order[m - 1]);
   trial_contacts.clear();
   trial_contacts.reserve(order.size());
-  for (const auto& entry : order)
-    trial_contacts.push_back(*entry.second);
+  for (const Contact* c : order)
+    trial_contacts.push_back(*c);
 
   // The pairs with contacts: the chunks list them in the candidates' (lexicographic) order.
   std::vector<std::pair<std::size_t, std::size_t>> touching;

@@ -31,6 +31,11 @@ public:
   {
     return coupling_pairs[k];
   }
+  /// The couplings (i, j), i < j, in the order of their upper blocks.
+  const std::vector<std::pair<std::size_t, std::size_t>>& couplings() const
+  {
+    return coupling_pairs;
+  }
 
   void set_zero();
   Matrix6& diagonal(std::size_t i) { return diagonal_blocks[i]; }
