@@ -22,6 +22,16 @@ inline Matrix26 displacement_matrix(const Point& centroid, const Point& x)
   return t;
 }
 
+/// T(x) d without forming T [m]: the additions of displacement_matrix(centroid, x) * d in its
+/// order, its zero terms left out (the same bits; tests/dda/test_submatrices.cc).
+inline Vector2 displacement_at(const Point& centroid, const Point& x, const Vector6& d)
+{
+  const double dx = x.x() - centroid.x();
+  const double dy = x.y() - centroid.y();
+  return Vector2(((d[0] + (-dy) * d[2]) + dx * d[3]) + (0.5 * dy) * d[5],
+                 ((d[1] + dx * d[2]) + dy * d[4]) + (0.5 * dx) * d[5]);
+}
+
 /// Consistent mass matrix rho * integral of T^T T dA [kg, kg m, kg m^2], exact from the polygon's
 /// area and central second moments (first moments vanish about the centroid).
 Matrix6 mass_matrix(const PolygonMoments& moments, double density);

@@ -162,7 +162,7 @@ double System::largest_vertex_displacement(const Eigen::VectorXd& d) const
     const std::vector<Point>& v = small_displacement() ? b.initial_vertices : b.vertices;
     const Point& c = small_displacement() ? b.initial_centroid : b.moments.centroid;
     for (const Point& x : v)
-      largest = std::max(largest, (displacement_matrix(c, x) * di).squaredNorm());
+      largest = std::max(largest, displacement_at(c, x, di).squaredNorm());
   }
   return std::sqrt(largest);
 }

@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <random>
+
 using namespace ddafem::dda;
 
 TEST(Submatrices, RigidBodyModesProduceNoStrain)
@@ -33,6 +37,27 @@ TEST(Submatrices, StrainModesGiveUniformStrain)
   const Vector2 u = displacement_matrix(c, Point(2, 3)) * d;
   EXPECT_NEAR(u.x(), 1e-4 * 1 + 1.5e-4 * 2, 1e-18);
   EXPECT_NEAR(u.y(), -2e-4 * 2 + 1.5e-4 * 1, 1e-18);
+}
+
+TEST(Submatrices, DisplacementAtEqualsTTimesDBitForBit)
+{
+  // The step control compares the largest vertex displacement against g2 w0 and sets dt from
+  // it: the shortcut must give the product's bits, at every scale from 1e-20 to 1e5.
+  std::mt19937_64 random(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), exponent(-20.0, 5.0);
+  const auto value = [&] { return unit(random) * std::pow(10.0, exponent(random)); };
+  for (int n = 0; n < 200000; ++n)
+  {
+    const Point c(100.0 * unit(random), 100.0 * unit(random));
+    const Point x(c.x() + value(), c.y() + value());
+    Vector6 d;
+    for (int k = 0; k < 6; ++k)
+      d[k] = value();
+    const Vector2 product = displacement_matrix(c, x) * d;
+    const Vector2 shortcut = displacement_at(c, x, d);
+    ASSERT_EQ(std::memcmp(product.data(), shortcut.data(), sizeof(Vector2)), 0)
+        << "c = " << c.transpose() << ", x = " << x.transpose() << ", d = " << d.transpose();
+  }
 }
 
 TEST(Submatrices, RectangleMassMatrixClosedForm)
