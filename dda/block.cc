@@ -14,7 +14,7 @@ void Block::apply_increment(const Vector6& d, const Eigen::Matrix3d& elasticity,
 {
   const Point c = about_initial ? initial_centroid : moments.centroid;
   for (std::size_t k = 0; k < vertices.size(); ++k)
-    vertices[k] += displacement_matrix(c, about_initial ? initial_vertices[k] : vertices[k]) * d;
+    vertices[k] += displacement_at(c, about_initial ? initial_vertices[k] : vertices[k], d);
   if (about_initial)
     moments.centroid += d.head<2>(); // T about the centroid moves it by (u0, v0) exactly
   else

@@ -64,7 +64,12 @@ void System::move_material_points(const Eigen::VectorXd& d)
   // Material points move with their blocks (T of the configuration the step is linearised
   // about, i.e. before the update).
   const auto move = [&](MaterialPoint& p)
-  { p.position += point_matrix(p) * d.segment<6>(6 * p.block); };
+  {
+    const Block& b = blocks[p.block];
+    const Vector6 di = d.segment<6>(6 * p.block);
+    p.position += small_displacement() ? displacement_at(b.initial_centroid, p.initial, di)
+                                       : displacement_at(b.moments.centroid, p.position, di);
+  };
   for (AttachedLoad& l : loads)
     move(l.point);
   for (AttachedFixedPoint& f : fixed_points)
