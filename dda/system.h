@@ -489,6 +489,8 @@ private:
   const PolygonMoments& linearisation_moments(const Block& b) const;
   /// T at a material point, in the configuration the step is linearised about.
   Matrix26 point_matrix(const MaterialPoint& p) const;
+  /// point_matrix(p) d [m] without forming T (displacement_at: the same bits).
+  Vector2 point_displacement(const MaterialPoint& p, const Vector6& d) const;
   /// The step's right-hand side, and its matrix if `with_matrix`.
   void assemble(double dt, bool with_matrix);
   /// Each block's inertia c M and elasticity; its inertia force, stress and gravity [N, N m].

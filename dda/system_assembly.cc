@@ -178,4 +178,11 @@ Matrix26 System::point_matrix(const MaterialPoint& p) const
                               : displacement_matrix(b.moments.centroid, p.position);
 }
 
+Vector2 System::point_displacement(const MaterialPoint& p, const Vector6& d) const
+{
+  const Block& b = blocks[p.block];
+  return small_displacement() ? displacement_at(b.initial_centroid, p.initial, d)
+                              : displacement_at(b.moments.centroid, p.position, d);
+}
+
 } // namespace ddafem::dda

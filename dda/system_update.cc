@@ -26,7 +26,7 @@ void System::add_work_of_step(double dt, const Eigen::VectorXd& d)
   // Work of the loads (trapezoidal in time) and of gravity, on the displacement of the step.
   for (const AttachedLoad& l : loads)
   {
-    const Vector2 du = point_matrix(l.point) * d.segment<6>(6 * l.point.block);
+    const Vector2 du = point_displacement(l.point, d.segment<6>(6 * l.point.block));
     work_of_loads += 0.5 * (l.function.value(t0) + l.function.value(t1)) * l.force.dot(du);
   }
   for (std::size_t i = 0; i < blocks.size(); ++i)
@@ -39,20 +39,20 @@ void System::add_work_of_step(double dt, const Eigen::VectorXd& d)
   for (std::size_t k = 0; k < boundary_edges.size(); ++k)
   {
     const BoundaryEdge& e = boundary_edges[k];
-    const Vector2 du = point_matrix(e.midpoint) * d.segment<6>(6 * e.block);
+    const Vector2 du = point_displacement(e.midpoint, d.segment<6>(6 * e.block));
     work_of_boundaries += (boundary_steps[k].f - boundary_steps[k].k * du).dot(du);
     if (!is_static)
       work_of_loads += 0.5 * (input_force(e, t0) + input_force(e, t1)).dot(du);
   }
   if (!is_static)
     for (const Support& s : supports)
-      work_of_loads += s.load.dot(point_matrix(s.point) * d.segment<6>(6 * s.point.block));
+      work_of_loads += s.load.dot(point_displacement(s.point, d.segment<6>(6 * s.point.block)));
 
   // Work done by moving supports: -k (x - X)_mid . dX.
   for (const AttachedFixedPoint& f : fixed_points)
   {
     const Point x0 = f.point.position;
-    const Point x1 = x0 + point_matrix(f.point) * d.segment<6>(6 * f.point.block);
+    const Point x1 = x0 + point_displacement(f.point, d.segment<6>(6 * f.point.block));
     const Point target0 = f.target(t0), target1 = f.target(t1);
     const Vector2 stretch_mid = 0.5 * ((x0 - target0) + (x1 - target1));
     work_of_supports -= f.stiffness * stretch_mid.dot(target1 - target0);
@@ -64,12 +64,7 @@ void System::move_material_points(const Eigen::VectorXd& d)
   // Material points move with their blocks (T of the configuration the step is linearised
   // about, i.e. before the update).
   const auto move = [&](MaterialPoint& p)
-  {
-    const Block& b = blocks[p.block];
-    const Vector6 di = d.segment<6>(6 * p.block);
-    p.position += small_displacement() ? displacement_at(b.initial_centroid, p.initial, di)
-                                       : displacement_at(b.moments.centroid, p.position, di);
-  };
+  { p.position += point_displacement(p, d.segment<6>(6 * p.block)); };
   for (AttachedLoad& l : loads)
     move(l.point);
   for (AttachedFixedPoint& f : fixed_points)
