@@ -10,7 +10,7 @@ peak memory, with each `solver.method` (direct, block_pcg), and block_pcg on 1 a
 usage: /usr/bin/python3 bench/contact_bench.py [--build build] [--end-time 0.1] [--repeats 5]
                                               [--perf]
 
-The wall runs to a fixed simulated time (default 0.1 s: 2717 steps, about 5 minutes with `direct`
+The wall runs to a fixed simulated time (default 0.1 s: about 2,700 steps, 5 minutes with `direct`
 and under a minute with `block_pcg` on a quiet machine; the engine is deterministic, so the
 number of steps is fixed too). `direct` runs once; block_pcg on 1 and 2 threads runs `repeats`
 times each, alternately, and the run with the median time per step is reported. --perf also samples
