@@ -59,6 +59,37 @@ void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_
   inherit_contact_states();
 }
 
+void System::refresh_joint_lists()
+{
+  if (joint_lists.revision == joint_revision)
+    return;
+  joint_lists.revision = joint_revision;
+  joint_lists.bonded_pairs.clear();
+  joint_lists.joined.clear();
+  joint_lists.candidates.clear();
+  for (std::size_t k = 0; k < joints.size(); ++k)
+  {
+    const Joint& j = joints[k];
+    joint_lists.joined.emplace_back(j.block_a, j.block_b);
+    if (convex[j.block_a] && convex[j.block_b])
+      joint_lists.bonded_pairs.emplace_back(j.block_a, j.block_b);
+    const auto add = [&](std::size_t block, std::size_t edge, std::size_t other)
+    {
+      const std::size_t n = blocks[block].vertices.size();
+      for (const std::size_t v : {edge, (edge + 1) % n})
+        joint_lists.candidates.push_back({block, v, other, k});
+    };
+    add(j.block_a, j.edge_a, j.block_b);
+    add(j.block_b, j.edge_b, j.block_a);
+  }
+  std::sort(joint_lists.bonded_pairs.begin(), joint_lists.bonded_pairs.end());
+  std::sort(joint_lists.joined.begin(), joint_lists.joined.end());
+  std::stable_sort(
+      joint_lists.candidates.begin(), joint_lists.candidates.end(),
+      [](const auto& x, const auto& y)
+      { return std::tie(x.block, x.vertex, x.other) < std::tie(y.block, y.vertex, y.other); });
+}
+
 void System::mark_jointed_vertices()
 {
   // Vertices tied by an intact bonded joint to the other block do not make contacts there. In a
@@ -68,30 +99,30 @@ void System::mark_jointed_vertices()
   // contact it then makes came and went every other step (a 2-cycle that never reached
   // equilibrium). A dynamic stage follows the current configuration: a vertex that has left the
   // joint's end meets the other block through a contact.
-  jointed_vertices.clear();
-  const double tol = 1e-6 * w0;
-  for (const Joint& j : joints)
+  refresh_joint_lists();
+  const bool initial = mode == StageMode::static_equilibrium;
+  // Each joint's start p, unit tangent t and length along a's edge [m].
+  joint_frames.resize(joints.size());
+  for (std::size_t k = 0; k < joints.size(); ++k)
   {
-    const bool initial = mode == StageMode::static_equilibrium;
+    const Joint& j = joints[k];
     const Point& p = initial ? j.points[0].on_a.initial : j.points[0].on_a.position;
-    const Vector2 t = j.tangent(initial);
     const double length =
         ((initial ? j.points[1].on_a.initial : j.points[1].on_a.position) - p).norm();
-    const auto mark = [&](std::size_t block, std::size_t edge, std::size_t other)
-    {
-      const std::vector<Point>& v =
-          initial ? blocks[block].initial_vertices : blocks[block].vertices;
-      for (const std::size_t k : {edge, (edge + 1) % v.size()})
-      {
-        const double s = t.dot(v[k] - p);
-        if (s > -tol && s < length + tol)
-          jointed_vertices.emplace_back(block, k, other);
-      }
-    };
-    mark(j.block_a, j.edge_a, j.block_b);
-    mark(j.block_b, j.edge_b, j.block_a);
+    joint_frames[k] = {p, j.tangent(initial), length};
   }
-  std::sort(jointed_vertices.begin(), jointed_vertices.end());
+  // A vertex within tol of the joint's stretch along it is tied (the candidates are sorted).
+  jointed_vertices.clear();
+  const double tol = 1e-6 * w0;
+  for (const JointLists::Candidate& c : joint_lists.candidates)
+  {
+    const JointFrame& f = joint_frames[c.joint];
+    const std::vector<Point>& v =
+        initial ? blocks[c.block].initial_vertices : blocks[c.block].vertices;
+    const double s = f.tangent.dot(v[c.vertex] - f.start);
+    if (s > -tol && s < f.length + tol)
+      jointed_vertices.emplace_back(c.block, c.vertex, c.other);
+  }
 }
 
 bool System::jointed(std::size_t block, std::size_t vertex, std::size_t other) const
@@ -117,12 +148,7 @@ System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t
 {
   // Two convex blocks held by an intact joint touch only along it (their other vertices lie
   // more than d0 away, d0 being below a quarter of the shortest edge): no narrow phase.
-  bonded_pairs.clear();
-  for (const Joint& j : joints)
-    if (convex[j.block_a] && convex[j.block_b])
-      bonded_pairs.emplace_back(j.block_a, j.block_b);
-  std::sort(bonded_pairs.begin(), bonded_pairs.end());
-
+  // (joint_lists.bonded_pairs, refreshed by mark_jointed_vertices)
   // Each chunk of pairs lists its contacts apart; the lists are joined in chunk order, so the
   // result does not depend on the number of threads. A chunk is ~0.2 ms of work (a model of
   // fewer pairs stays on one thread: a parallel region costs tens of microseconds).
@@ -176,7 +202,8 @@ System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t
 
 void System::add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& chunk) const
 {
-  if (std::binary_search(bonded_pairs.begin(), bonded_pairs.end(), std::make_pair(a, b)))
+  if (std::binary_search(joint_lists.bonded_pairs.begin(), joint_lists.bonded_pairs.end(),
+                         std::make_pair(a, b)))
     return;
   find_vertex_edge_pairs(blocks[a].vertices, blocks[b].vertices, contact_search_distance,
                          angle_tolerance, chunk.work);
@@ -298,10 +325,7 @@ void System::inherit_contact_state(Contact& c, const Contact* previous, std::siz
 void System::set_contact_structure(std::vector<std::pair<std::size_t, std::size_t>> touching)
 {
   // The matrix couples joined blocks and blocks in contact (both lists sorted: merged).
-  std::vector<std::pair<std::size_t, std::size_t>> joined;
-  for (const Joint& j : joints)
-    joined.emplace_back(j.block_a, j.block_b);
-  std::sort(joined.begin(), joined.end());
+  const std::vector<std::pair<std::size_t, std::size_t>>& joined = joint_lists.joined;
   std::vector<std::pair<std::size_t, std::size_t>> couplings(joined.size() + touching.size());
   std::merge(joined.begin(), joined.end(), touching.begin(), touching.end(), couplings.begin());
   set_matrix_structure(std::move(couplings));
@@ -346,8 +370,11 @@ void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t
     coupling_pairs = std::move(couplings);
     matrix = BlockSparseMatrix(blocks.size(), coupling_pairs);
   }
+  else if (joint_couplings_revision == joint_revision)
+    return; // the joints' couplings are where they were
   for (Joint& j : joints)
     j.coupling = coupling_of(j.block_a, j.block_b);
+  joint_couplings_revision = joint_revision;
 }
 
 std::size_t System::coupling_of(std::size_t i, std::size_t j) const

@@ -315,6 +315,7 @@ void System::remove_block(std::size_t i)
   removed[i] = true;
   matrix_dt = 0.0;
   ++geometry_epoch;
+  ++joint_revision;
   joints.erase(std::remove_if(joints.begin(), joints.end(),
                               [&](const Joint& j) { return j.block_a == i || j.block_b == i; }),
                joints.end());

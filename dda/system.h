@@ -93,6 +93,15 @@ constexpr std::array<EnumName<StepOutcome>, 8> enum_names(StepOutcome)
 /// Whether a smaller dt can cure the outcome.
 bool can_retry_with_smaller_step(StepOutcome outcome);
 
+/// Where a step attempt is, for its messages: formatted ("at t = ... (dt = ...)") only when a
+/// message needs it, not in every attempt.
+struct StepLabel
+{
+  double time = 0.0; ///< the step's start [s]
+  double dt = 0.0;   ///< [s]
+  std::string text() const;
+};
+
 struct StepStatus
 {
   StepOutcome outcome = StepOutcome::success;
@@ -374,7 +383,7 @@ private:
   ContactLaw contact_law(const Contact& c) const;
   /// Phase 4: solves with the contacts in their trial states until no state changes.
   /// `new_matrix`: the matrix was assembled for this step (else base_matrix holds it).
-  StepStatus solve_with_open_close(const std::string& when, bool new_matrix);
+  StepStatus solve_with_open_close(const StepLabel& when, bool new_matrix);
   /// Trial contact k's springs K2 [N/m] and force on its vertex [N] (minus on its edge).
   void contact_spring(std::size_t k, Eigen::Matrix2d& k2, Vector2& force_on_vertex) const;
   /// Adds every closed trial contact's terms to the matrix and right-hand side (an attempt's
@@ -388,6 +397,8 @@ private:
   void index_contact_terms();
   /// The tied body's H and g on the blocks of the tie points (T at the step start).
   void add_tie_terms();
+  /// Y's columns of run r (add_tie_terms): H(:, points of r) T_r over the rows up to r's.
+  void add_tie_products(std::size_t r);
   /// The tie points' displacement increments T d (2m) of a solution.
   Eigen::VectorXd tie_increments(const Eigen::VectorXd& d) const;
   /// Sets each trial from the solution; returns the number of state changes that hold the
@@ -463,11 +474,11 @@ private:
   /// tied body).
   std::future<std::string> begin_tied_step(double dt);
   /// Phase 4: the solution, with the open-close iteration if there are contacts or ties.
-  StepStatus solve_step(const std::string& when, bool new_matrix);
+  StepStatus solve_step(const StepLabel& when, bool new_matrix);
   /// Step control on the solution: sets the status's largest vertex displacement and
   /// penetration, and its outcome if one exceeds its limit (g2 w0; penetration_limit, after
   /// raising the penalties of the contacts too deep).
-  void check_motion_limits(StepStatus& status, const std::string& when);
+  void check_motion_limits(StepStatus& status, const StepLabel& when);
   /// Phase 5: the tied body, blocks and contacts take the solution; time advances. A failure
   /// message of the tied body, empty if none (then nothing else is updated).
   std::string accept_step(double dt);
@@ -559,6 +570,10 @@ private:
   Eigen::MatrixXd tie_products;
   /// T of each run's points stacked (2 count x 6)
   std::vector<Eigen::Matrix<double, Eigen::Dynamic, 6>> tie_stacks;
+  /// X = T_a^T Y(points of a, columns of b) of add_tie_terms for each pair of runs a <= b, at
+  /// tie_pair_start[a] + b - a.
+  std::vector<Matrix6> tie_pair_terms;
+  std::vector<std::size_t> tie_pair_start;
   std::vector<Contact> contacts;       ///< of the last accepted step
   std::vector<Contact> trial_contacts; ///< of the step being tried
   std::vector<ContactFrame> frames;    ///< of trial_contacts
@@ -590,8 +605,36 @@ private:
   std::size_t broken_joint_count = 0;
   /// Where a bonded joint ties a vertex to the other block: (vertex block, vertex, other block).
   std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> jointed_vertices;
-  /// Pairs of convex blocks joined by an intact joint, sorted (no contacts between them).
-  std::vector<std::pair<std::size_t, std::size_t>> bonded_pairs;
+  /// Counts the changes of the intact joints (a joint broke, a block was removed).
+  std::uint64_t joint_revision = 0;
+  /// What contact detection needs of the intact joints, sorted once per joint_revision
+  /// (refresh_joint_lists) instead of in every step.
+  struct JointLists
+  {
+    std::uint64_t revision = std::numeric_limits<std::uint64_t>::max();
+    /// Pairs of convex blocks joined by an intact joint (no contacts between them).
+    std::vector<std::pair<std::size_t, std::size_t>> bonded_pairs;
+    /// (block_a, block_b) of every intact joint (the matrix couples them).
+    std::vector<std::pair<std::size_t, std::size_t>> joined;
+    /// The end vertices of each joint's edge on either block, which mark_jointed_vertices
+    /// tests, sorted by (block, vertex, other block): its list comes out sorted.
+    struct Candidate
+    {
+      std::size_t block = 0, vertex = 0, other = 0;
+      std::size_t joint = 0; ///< index into `joints`
+    };
+    std::vector<Candidate> candidates;
+  } joint_lists;
+  /// Rebuilds joint_lists if the joints changed since.
+  void refresh_joint_lists();
+  /// mark_jointed_vertices' scratch: each joint's start on a [m], unit tangent, length [m].
+  struct JointFrame
+  {
+    Point start = Point::Zero();
+    Vector2 tangent = Vector2::Zero();
+    double length = 0.0;
+  };
+  std::vector<JointFrame> joint_frames;
   std::vector<bool> convex;             ///< whether each block is convex (at t = 0)
   double w0 = 0.0;                      ///< half the model size [m]
   double step_displacement_limit = 0.0; ///< g2 w0 [m]
@@ -651,6 +694,11 @@ private:
   Eigen::VectorXd tied_rhs;
   double matrix_dt = 0.0;          ///< dt the matrix was assembled for (small-displacement reuse)
   double matrix_mass_factor = 0.0; ///< and its factor of M [1/s^2]
+  /// Each block's mass matrix M in the configuration the attempt is linearised about, from
+  /// its assembly (add_block_terms); the update at its end uses it again.
+  std::vector<Matrix6> step_masses;
+  /// joint_revision when the joints' couplings were last looked up (set_matrix_structure).
+  std::uint64_t joint_couplings_revision = std::numeric_limits<std::uint64_t>::max();
   Eigen::VectorXd rhs;
   Eigen::VectorXd solution;
   StepSolver solver;

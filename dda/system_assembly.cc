@@ -26,12 +26,13 @@ void System::add_block_terms(double dt, bool with_matrix)
   // Blocks: inertia c M and elasticity; the inertia force of the block's past (v0, a0, r0), the
   // accumulated stress and gravity on the right-hand side.
   const double mass_factor = step_integration.mass_factor(dt);
+  step_masses.resize(blocks.size());
   for (std::size_t i = 0; i < blocks.size(); ++i)
   {
     const Block& b = blocks[i];
     const PolygonMoments& g = linearisation_moments(b);
     const double density = block_density(b);
-    const Matrix6 m = mass_matrix(g, density);
+    const Matrix6& m = step_masses[i] = mass_matrix(g, density);
     if (with_matrix)
     {
       matrix.diagonal(i).noalias() += mass_factor * m;
@@ -98,7 +99,8 @@ void System::add_joint_terms(bool with_matrix)
   // preloads.
   for (const Joint& j : joints)
   {
-    const Vector2 n = j.normal(small_displacement()), tangent = j.tangent(small_displacement());
+    const Vector2 tangent = j.tangent(small_displacement());
+    const Vector2 n(tangent.y(), -tangent.x()); // j.normal()
     const Eigen::Matrix2d ks =
         joint_spring_matrix(model.joint_materials[j.joint_material], n, tangent);
     for (const JointPoint& p : j.points)

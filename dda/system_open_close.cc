@@ -22,7 +22,7 @@ ContactLaw System::contact_law(const Contact& c) const
   return law;
 }
 
-StepStatus System::solve_with_open_close(const std::string& when, bool new_matrix)
+StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
 {
   // The matrix without contact and tie terms: just assembled, or kept from the last assembly
   // (small-displacement analysis, same dt).
@@ -65,7 +65,7 @@ StepStatus System::solve_with_open_close(const std::string& when, bool new_matri
     if (!status.solve.success)
     {
       status.outcome = StepOutcome::solver_failure;
-      status.message = status.solve.message + " " + when;
+      status.message = status.solve.message + " " + when.text();
       return status;
     }
     std::size_t n_changes = update_trial_states(iteration, status.n_flips_ignored);
@@ -83,7 +83,7 @@ StepStatus System::solve_with_open_close(const std::string& when, bool new_matri
   }
   status.outcome = StepOutcome::not_converged;
   status.message = "the open-close iteration did not converge in " +
-                   std::to_string(max_iterations) + " iterations " + when;
+                   std::to_string(max_iterations) + " iterations " + when.text();
   return status;
 }
 
@@ -113,32 +113,41 @@ void System::add_tie_terms()
   // X = T_a^T Y(points of a, columns of b) (its transpose into the stored upper block when a's
   // block comes after b's; X + X^T on the diagonal for two runs on one block). H is symmetric, so
   // the columns of run b need only the rows of the runs up to b: half of H is read, in products
-  // of whole runs (three times faster than point by point on the default tunnel).
+  // of whole runs (three times faster than point by point on the default tunnel). Y's columns
+  // and the X are computed run by run on the threads, each alone, and added to the matrix in
+  // one order: the same bits on any number of threads.
   const std::size_t n_runs = tie_runs.size();
   tie_products.resize(2 * m, static_cast<Eigen::Index>(6 * n_runs));
-  for (std::size_t r = 0; r < n_runs; ++r)
-  {
-    const TieRun& run = tie_runs[r];
-    Eigen::Matrix<double, Eigen::Dynamic, 6>& t_r = tie_stacks[r];
-    t_r.resize(2 * run.count, 6);
-    for (Eigen::Index k = 0; k < run.count; ++k)
-      t_r.middleRows<2>(2 * k) = tie_matrices[static_cast<std::size_t>(run.first + k)];
-    const Eigen::Index rows = 2 * (run.first + run.count);
-    tie_products.block(0, static_cast<Eigen::Index>(6 * r), rows, 6).noalias() =
-        h.block(0, 2 * run.first, rows, 2 * run.count) * t_r;
-  }
+  parallel.for_chunks(n_runs, 1,
+                      [&](std::size_t begin, std::size_t end)
+                      {
+                        for (std::size_t r = begin; r < end; ++r)
+                          add_tie_products(r);
+                      });
+  tie_pair_start.resize(n_runs);
+  for (std::size_t a = 0, offset = 0; a < n_runs; offset += n_runs - a, ++a)
+    tie_pair_start[a] = offset;
+  tie_pair_terms.resize(n_runs * (n_runs + 1) / 2);
+  parallel.for_chunks(n_runs, 1,
+                      [&](std::size_t begin, std::size_t end)
+                      {
+                        for (std::size_t a = begin; a < end; ++a)
+                          for (std::size_t b = a; b < n_runs; ++b)
+                            tie_pair_terms[tie_pair_start[a] + b - a] =
+                                tie_stacks[a].transpose() *
+                                tie_products.block(2 * tie_runs[a].first,
+                                                   static_cast<Eigen::Index>(6 * b),
+                                                   2 * tie_runs[a].count, 6);
+                      });
   for (std::size_t a = 0; a < n_runs; ++a)
   {
     const TieRun& ra = tie_runs[a];
-    const Eigen::Matrix<double, Eigen::Dynamic, 6>& t_a = tie_stacks[a];
     rhs.segment<6>(static_cast<Eigen::Index>(6 * ra.block)).noalias() +=
-        t_a.transpose() * g.segment(2 * ra.first, 2 * ra.count);
+        tie_stacks[a].transpose() * g.segment(2 * ra.first, 2 * ra.count);
     for (std::size_t b = a; b < n_runs; ++b)
     {
       const std::size_t bb = tie_runs[b].block;
-      const Matrix6 x =
-          t_a.transpose() *
-          tie_products.block(2 * ra.first, static_cast<Eigen::Index>(6 * b), 2 * ra.count, 6);
+      const Matrix6& x = tie_pair_terms[tie_pair_start[a] + b - a];
       if (b == a)
         matrix.diagonal(ra.block) += x;
       else if (bb == ra.block)
@@ -150,6 +159,18 @@ void System::add_tie_terms()
     }
   }
   timings.tie_terms += seconds_since(start);
+}
+
+void System::add_tie_products(std::size_t r)
+{
+  const TieRun& run = tie_runs[r];
+  Eigen::Matrix<double, Eigen::Dynamic, 6>& t_r = tie_stacks[r];
+  t_r.resize(2 * run.count, 6);
+  for (Eigen::Index k = 0; k < run.count; ++k)
+    t_r.middleRows<2>(2 * k) = tie_matrices[static_cast<std::size_t>(run.first + k)];
+  const Eigen::Index rows = 2 * (run.first + run.count);
+  tie_products.block(0, static_cast<Eigen::Index>(6 * r), rows, 6).noalias() =
+      tied_body->stiffness().block(0, 2 * run.first, rows, 2 * run.count) * t_r;
 }
 
 Eigen::VectorXd System::tie_increments(const Eigen::VectorXd& d) const

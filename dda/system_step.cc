@@ -12,6 +12,11 @@
 
 namespace ddafem::dda
 {
+std::string StepLabel::text() const
+{
+  return "at t = " + format_time(time) + " (dt = " + format_time(dt) + ")";
+}
+
 StepStatus System::advance(double dt)
 {
   undo_friction_jumps(); // each attempt starts from the accepted state
@@ -20,8 +25,7 @@ StepStatus System::advance(double dt)
 
 StepStatus System::attempt_step(double dt)
 {
-  const std::string when =
-      "at t = " + format_time(current_time) + " (dt = " + format_time(dt) + ")";
+  const StepLabel when{current_time, dt};
   ++timings.n_attempts;
   if (mode == StageMode::static_equilibrium)
     set_at_rest();
@@ -35,7 +39,7 @@ StepStatus System::attempt_step(double dt)
   {
     const std::string failure = tied.get();
     if (!failure.empty())
-      return {StepOutcome::solver_failure, failure + " " + when, {}};
+      return {StepOutcome::solver_failure, failure + " " + when.text(), {}};
   }
   StepStatus status = solve_step(when, new_matrix); // 4. solve with the open-close iteration
   if (status.outcome != StepOutcome::success)
@@ -56,7 +60,7 @@ StepStatus System::attempt_step(double dt)
       status.reversal_fraction = scan.earliest;
       status.outcome = StepOutcome::slip_reversal;
       status.message = "a sliding contact reverses its slip " + format_time(scan.earliest * dt) +
-                       " after the step's start " + when;
+                       " after the step's start " + when.text();
       return status;
     }
     // A step at which friction turns around is redone with the integrator restarted at the
@@ -74,7 +78,7 @@ StepStatus System::attempt_step(double dt)
   // 5. Update the tied body, blocks and contacts.
   const std::string failure = accept_step(dt);
   if (!failure.empty())
-    return {StepOutcome::solver_failure, failure + " " + when, status.solve};
+    return {StepOutcome::solver_failure, failure + " " + when.text(), status.solve};
   const std::string broken = break_joints();
   if (!broken.empty())
     return {StepOutcome::joint_broken, broken, status.solve};
@@ -143,7 +147,7 @@ std::future<std::string> System::begin_tied_step(double dt)
                     });
 }
 
-StepStatus System::solve_step(const std::string& when, bool new_matrix)
+StepStatus System::solve_step(const StepLabel& when, bool new_matrix)
 {
   const auto start = Clock::now();
   StepStatus status;
@@ -155,7 +159,7 @@ StepStatus System::solve_step(const std::string& when, bool new_matrix)
     if (!status.solve.success)
     {
       status.outcome = StepOutcome::solver_failure;
-      status.message = status.solve.message + " " + when;
+      status.message = status.solve.message + " " + when.text();
     }
   }
   else
@@ -164,14 +168,14 @@ StepStatus System::solve_step(const std::string& when, bool new_matrix)
   return status;
 }
 
-void System::check_motion_limits(StepStatus& status, const std::string& when)
+void System::check_motion_limits(StepStatus& status, const StepLabel& when)
 {
   status.max_displacement = largest_vertex_displacement(solution);
   if (status.max_displacement > step_displacement_limit)
   {
     std::ostringstream m;
     m << "a vertex moves " << status.max_displacement << " m in one step, more than the "
-      << step_displacement_limit << " m allowed (g2 w0) " << when;
+      << step_displacement_limit << " m allowed (g2 w0) " << when.text();
     status.outcome = StepOutcome::displacement_too_large;
     status.message = m.str();
     return;
@@ -183,7 +187,7 @@ void System::check_motion_limits(StepStatus& status, const std::string& when)
   {
     std::ostringstream m;
     m << "a contact penetrates " << status.max_penetration << " m, deeper than the "
-      << penetration_limit << " m allowed " << when
+      << penetration_limit << " m allowed " << when.text()
       << " (a stiffer joint normal_stiffness or a smaller dt reduces it)";
     status.penalty_raised = raise_penalties();
     status.outcome = StepOutcome::penetration_too_large;

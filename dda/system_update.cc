@@ -93,7 +93,7 @@ void System::advance_block_states(double dt, const Eigen::VectorXd& d)
   {
     Block& b = blocks[i];
     const Vector6 di = d.segment<6>(6 * i);
-    const Matrix6 m = mass_matrix(linearisation_moments(b), block_density(b));
+    const Matrix6& m = step_masses[i]; // the attempt's assembly: the same configuration
     const KinematicState end = advance_state(step_integration, m, step_start(i, dt), di, dt);
     b.velocity = end.velocity;
     b.acceleration = composite_acceleration(i, m, end);
@@ -114,7 +114,8 @@ void System::update_joint_forces()
   for (Joint& j : joints)
   {
     const JointMaterial& jm = model.joint_materials[j.joint_material];
-    const Vector2 n = j.normal(small_displacement()), t = j.tangent(small_displacement());
+    const Vector2 t = j.tangent(small_displacement());
+    const Vector2 n(t.y(), -t.x()); // j.normal()
     for (JointPoint& p : j.points)
       update_joint_point_forces(p, jm, n, t);
   }
@@ -124,9 +125,10 @@ std::string System::break_joints()
 {
   std::string failure;
   std::vector<Joint> intact;
-  intact.reserve(joints.size());
-  for (const Joint& j : joints)
+  bool any_broken = false;
+  for (std::size_t k = 0; k < joints.size(); ++k)
   {
+    const Joint& j = joints[k];
     // Each end spring carries half of the joint's length.
     const ContactLaw law = joint_point_law(model.joint_materials[j.joint_material],
                                            tan_friction[j.joint_material], 0.5 * j.length);
@@ -135,9 +137,13 @@ std::string System::break_joints()
       broken = broken || exceeds_strength(law, -p.normal_force, p.shear_force);
     if (!broken)
     {
-      intact.push_back(j);
+      if (any_broken)
+        intact.push_back(j);
       continue;
     }
+    if (!any_broken) // the joints before this one are intact
+      intact.assign(joints.begin(), joints.begin() + static_cast<std::ptrdiff_t>(k));
+    any_broken = true;
     ++broken_joint_count;
     if (small_displacement() && failure.empty())
       failure = "bonded joint " + std::to_string(j.id) + " between blocks " +
@@ -146,7 +152,11 @@ std::string System::break_joints()
                 "; a broken joint becomes a frictional contact, which a small-displacement "
                 "analysis cannot follow: expected `analysis.geometry: updated`";
   }
-  joints.swap(intact);
+  if (any_broken)
+  {
+    joints.swap(intact);
+    ++joint_revision;
+  }
   ++geometry_epoch;
   return failure;
 }

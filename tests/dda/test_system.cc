@@ -14,6 +14,25 @@ using test_models::rho;
 using test_models::row_of_blocks;
 using test_models::young;
 
+namespace
+{
+/// A 1 m block ("top") on a 1 m block ("base") held by three fixed points, bonded by `joint`.
+ModelDescription block_on_fixed_base(const JointMaterial& joint)
+{
+  ModelDescription m;
+  m.materials.push_back({"rock", rho, young, nu});
+  m.joint_materials.push_back(joint);
+  m.default_joint_material = 0;
+  m.blocks.push_back(
+      {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0, Vector2::Zero(), Voigt::Zero(), "base", {}});
+  m.blocks.push_back(
+      {{{0, 1}, {1, 1}, {1, 2}, {0, 2}}, 0, Vector2::Zero(), Voigt::Zero(), "top", {}});
+  for (const Point& x : {Point(0.1, 0.1), Point(0.9, 0.1), Point(0.5, 0.9)})
+    m.fixed_points.push_back({x, 0.0, TimeFunction::constant(0), TimeFunction::constant(0), ""});
+  return m;
+}
+} // namespace
+
 TEST(System, FindsOneJointPerSharedEdge)
 {
   const System s(row_of_blocks(5, 1e12));
@@ -67,16 +86,7 @@ TEST(System, BondedJointCarriesShear)
   // Block 1 on top of a fixed block 0, pushed sideways by F at its top: the joint's two shear
   // springs (p_s = 0.4 p each) carry F, slip = F / (2 p_s) on top of the block's shear strain.
   const double p = 1e11, force = 1e5;
-  ModelDescription m;
-  m.materials.push_back({"rock", rho, young, nu});
-  m.joint_materials.push_back({"bond", p, 0.4, 30.0, 1e6, 1e6, true});
-  m.default_joint_material = 0;
-  m.blocks.push_back(
-      {{{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0, Vector2::Zero(), Voigt::Zero(), "base", {}});
-  m.blocks.push_back(
-      {{{0, 1}, {1, 1}, {1, 2}, {0, 2}}, 0, Vector2::Zero(), Voigt::Zero(), "top", {}});
-  for (const Point& x : {Point(0.1, 0.1), Point(0.9, 0.1), Point(0.5, 0.9)})
-    m.fixed_points.push_back({x, 0.0, TimeFunction::constant(0), TimeFunction::constant(0), ""});
+  ModelDescription m = block_on_fixed_base({"bond", p, 0.4, 30.0, 1e6, 1e6, true});
   m.point_loads.push_back({{0.5, 2.0}, {force, 0}, TimeFunction::constant(1.0), ""});
   m.time = {1e-3, 1.0, Integrator::dda};
   System s(m);
@@ -112,6 +122,35 @@ TEST(System, JointBreaksInTensionAndTheBlocksSeparate)
   // Free separation from the break (within the first steps): gap ~ 2 (F/m) t^2 / 2.
   EXPECT_NEAR(gap, 2e6 / 2650.0 * t * t, 0.05 * 2e6 / 2650.0 * t * t);
   EXPECT_EQ(s.contact_counts().lock + s.contact_counts().slide, 0u);
+}
+
+TEST(System, JointBrokenInShearLeavesContactsThatCarryTheBlock)
+{
+  // A 1 m block on a fixed one, bonded by a weak joint (cohesion and tensile strength 1 kPa,
+  // friction 30 deg), under gravity and pushed sideways by twice what friction holds: the joint
+  // breaks in the first step, and from then on the pair meets through frictional contacts
+  // that carry the block's weight while it slides at a = g tan(30 deg). (The joints' lists
+  // that contact detection keeps are redone when a joint breaks: without that the pair stays
+  // skipped as bonded and the block falls through the base.)
+  const double g = 9.81, tan_phi = std::tan(30.0 * M_PI / 180.0), weight = rho * g;
+  ModelDescription m = block_on_fixed_base({"bond", 1e11, 0.4, 30.0, 1e3, 1e3, true});
+  m.gravity = Vector2(0.0, -g);
+  m.point_loads.push_back(
+      {{0.5, 1.5}, {2.0 * tan_phi * weight, 0}, TimeFunction::constant(1.0), ""});
+  m.time = {1e-4, 1.0, Integrator::dda};
+  System s(m);
+  for (int k = 0; k < 500; ++k)
+  {
+    const StepStatus status = s.advance(1e-4);
+    ASSERT_EQ(status.outcome, StepOutcome::success) << "step " << k << ": " << status.message;
+  }
+  EXPECT_EQ(s.n_broken_joints(), 1u);
+  EXPECT_GT(s.contact_counts().slide, 0u);
+  // It rests on the base: it sinks no more than the contacts' penalty allows (W / p ~ 1e-7 m).
+  EXPECT_GT(s.get_blocks()[1].displacement().y(), -1e-4);
+  // It slides at g tan(phi) from the start: x = a t^2 / 2 (within 5 %: the first step's break).
+  const double t = s.time(), expected = 0.5 * g * tan_phi * t * t;
+  EXPECT_NEAR(s.get_blocks()[1].displacement().x(), expected, 0.05 * expected);
 }
 
 TEST(System, JointBreakingInASmallDisplacementAnalysisIsAFailure)

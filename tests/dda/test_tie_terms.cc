@@ -56,7 +56,7 @@ ModelDescription two_blocks()
 /// The blocks' velocities (6 each) after one step with the tie points in the order `order`
 /// (indices into the four points below), H and g permuted with them.
 Eigen::VectorXd step_with(const std::vector<int>& order, const Eigen::MatrixXd& h,
-                          const Eigen::VectorXd& g)
+                          const Eigen::VectorXd& g, unsigned threads = 1)
 {
   const std::vector<MaterialPoint> points = {{0, Point(0.0, 0.5), Point(0.0, 0.5)},
                                              {0, Point(0.5, 0.0), Point(0.5, 0.0)},
@@ -70,7 +70,8 @@ Eigen::VectorXd step_with(const std::vector<int>& order, const Eigen::MatrixXd& 
     for (int c = 0; c < 2; ++c)
       p.indices()[2 * order[i] + c] = static_cast<int>(2 * i) + c;
   }
-  const ModelDescription m = two_blocks();
+  ModelDescription m = two_blocks();
+  m.solver.threads = threads;
   System s(m);
   SpringBody body(p * h * p.transpose(), p * g);
   s.tie(body, ordered);
@@ -101,4 +102,17 @@ TEST(TieTerms, TheOrderOfTheTiePointsDoesNotChangeTheStep)
     EXPECT_LE((v - grouped).norm(), 1e-10 * grouped.norm())
         << "order " << order[0] << order[1] << order[2] << order[3];
   }
+}
+
+TEST(TieTerms, TwoThreadsGiveTheSameBits)
+{
+  // add_tie_terms computes H T and the blocks' terms run by run on the threads: four runs
+  // (interleaved points) on one and on two threads give the same step, bit for bit.
+  std::srand(11);
+  const Eigen::MatrixXd r = Eigen::MatrixXd::Random(8, 8);
+  const Eigen::MatrixXd h = 1e9 * (r * r.transpose() / 8.0 + Eigen::MatrixXd::Identity(8, 8));
+  const Eigen::VectorXd g = 1e6 * Eigen::VectorXd::Random(8);
+  const Eigen::VectorXd one = step_with({0, 2, 1, 3}, h, g, 1);
+  ASSERT_GT(one.norm(), 0.0);
+  EXPECT_TRUE(step_with({0, 2, 1, 3}, h, g, 2) == one);
 }
