@@ -147,8 +147,8 @@ std::vector<std::pair<std::size_t, std::size_t>>
 System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs)
 {
   // Two convex blocks held by an intact joint touch only along it (their other vertices lie
-  // more than d0 away, d0 being below a quarter of the shortest edge): no narrow phase.
-  // (joint_lists.bonded_pairs, refreshed by mark_jointed_vertices)
+  // more than d0 away, d0 being below a quarter of the shortest edge): no narrow phase for the
+  // pairs of joint_lists.bonded_pairs (add_pair_contacts; update_contacts refreshed the lists).
   // Each chunk of pairs lists its contacts apart; the lists are joined in chunk order, so the
   // result does not depend on the number of threads. A chunk is ~0.2 ms of work (a model of
   // fewer pairs stays on one thread: a parallel region costs tens of microseconds).
