@@ -13,8 +13,7 @@ Vector2 Joint::tangent(bool initial) const
 
 Vector2 Joint::normal(bool initial) const
 {
-  const Vector2 t = tangent(initial);
-  return Vector2(t.y(), -t.x());
+  return normal_of(tangent(initial));
 }
 
 Eigen::Matrix2d joint_spring_matrix(const JointMaterial& jm, const Vector2& n, const Vector2& t)

@@ -47,6 +47,8 @@ struct Joint
   Vector2 tangent(bool initial = false) const;
   /// Unit normal pointing out of block a, towards b: (t_y, -t_x).
   Vector2 normal(bool initial = false) const;
+  /// The unit normal of a unit tangent t: (t_y, -t_x) (normal() of a tangent already at hand).
+  static Vector2 normal_of(const Vector2& tangent) { return Vector2(tangent.y(), -tangent.x()); }
 };
 
 /// The springs of a bonded joint's end: p n n^T + p_s t t^T [N/m], with p the joint material's

@@ -398,7 +398,7 @@ private:
   /// The tied body's H and g on the blocks of the tie points (T at the step start).
   void add_tie_terms();
   /// Y's columns of run r (add_tie_terms): H(:, points of r) T_r over the rows up to r's.
-  void add_tie_products(std::size_t r);
+  void compute_tie_products(std::size_t r);
   /// The tie points' displacement increments T d (2m) of a solution.
   Eigen::VectorXd tie_increments(const Eigen::VectorXd& d) const;
   /// Sets each trial from the solution; returns the number of state changes that hold the

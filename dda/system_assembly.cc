@@ -100,7 +100,7 @@ void System::add_joint_terms(bool with_matrix)
   for (const Joint& j : joints)
   {
     const Vector2 tangent = j.tangent(small_displacement());
-    const Vector2 n(tangent.y(), -tangent.x()); // j.normal()
+    const Vector2 n = Joint::normal_of(tangent);
     const Eigen::Matrix2d ks =
         joint_spring_matrix(model.joint_materials[j.joint_material], n, tangent);
     for (const JointPoint& p : j.points)

@@ -122,7 +122,7 @@ void System::add_tie_terms()
                       [&](std::size_t begin, std::size_t end)
                       {
                         for (std::size_t r = begin; r < end; ++r)
-                          add_tie_products(r);
+                          compute_tie_products(r);
                       });
   tie_pair_start.resize(n_runs);
   for (std::size_t a = 0, offset = 0; a < n_runs; offset += n_runs - a, ++a)
@@ -161,7 +161,7 @@ void System::add_tie_terms()
   timings.tie_terms += seconds_since(start);
 }
 
-void System::add_tie_products(std::size_t r)
+void System::compute_tie_products(std::size_t r)
 {
   const TieRun& run = tie_runs[r];
   Eigen::Matrix<double, Eigen::Dynamic, 6>& t_r = tie_stacks[r];

@@ -115,7 +115,7 @@ void System::update_joint_forces()
   {
     const JointMaterial& jm = model.joint_materials[j.joint_material];
     const Vector2 t = j.tangent(small_displacement());
-    const Vector2 n(t.y(), -t.x()); // j.normal()
+    const Vector2 n = Joint::normal_of(t);
     for (JointPoint& p : j.points)
       update_joint_point_forces(p, jm, n, t);
   }
@@ -123,9 +123,10 @@ void System::update_joint_forces()
 
 std::string System::break_joints()
 {
+  // The intact joints move forward over the broken ones, in order (nothing moves while none
+  // broke).
   std::string failure;
-  std::vector<Joint> intact;
-  bool any_broken = false;
+  std::size_t n_intact = 0;
   for (std::size_t k = 0; k < joints.size(); ++k)
   {
     const Joint& j = joints[k];
@@ -137,13 +138,11 @@ std::string System::break_joints()
       broken = broken || exceeds_strength(law, -p.normal_force, p.shear_force);
     if (!broken)
     {
-      if (any_broken)
-        intact.push_back(j);
+      if (n_intact != k)
+        joints[n_intact] = joints[k];
+      ++n_intact;
       continue;
     }
-    if (!any_broken) // the joints before this one are intact
-      intact.assign(joints.begin(), joints.begin() + static_cast<std::ptrdiff_t>(k));
-    any_broken = true;
     ++broken_joint_count;
     if (small_displacement() && failure.empty())
       failure = "bonded joint " + std::to_string(j.id) + " between blocks " +
@@ -152,9 +151,9 @@ std::string System::break_joints()
                 "; a broken joint becomes a frictional contact, which a small-displacement "
                 "analysis cannot follow: expected `analysis.geometry: updated`";
   }
-  if (any_broken)
+  if (n_intact != joints.size())
   {
-    joints.swap(intact);
+    joints.resize(n_intact);
     ++joint_revision;
   }
   ++geometry_epoch;

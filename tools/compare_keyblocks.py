@@ -17,22 +17,25 @@ import json
 import os
 import sys
 
-import h5py
-import numpy as np
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import numpy as np  # noqa: E402
+from report import keyblock_histories, open_histories  # noqa: E402  (tools/ on the path first)
 
 
 def load(run):
+    """(summary, time [s], {block id: relative displacement (n, 2) [m]}) of a run."""
     try:
         with open(os.path.join(run, "summary.json")) as f:
             summary = json.load(f)
-        with h5py.File(os.path.join(run, "histories.h5"), "r") as h:
-            time = h["time"][()]
-            relative = {name: h["keyblocks"][name]["relative_displacement"][()]
-                        for name in h["keyblocks"]} if "keyblocks" in h else {}
-    except (OSError, KeyError, ValueError) as e:
-        print(f"{run}: cannot read its summary.json or histories.h5: {e}", file=sys.stderr)
+    except (OSError, ValueError) as e:
+        print(f"{run}: cannot read its summary.json: {e}", file=sys.stderr)
         sys.exit(2)
-    return summary, time, relative
+    path = os.path.join(run, "histories.h5")
+    if not os.path.isfile(path):
+        print(f"{run}: no histories.h5", file=sys.stderr)
+        sys.exit(2)
+    with open_histories(path) as h5:
+        return summary, h5["time"][()], keyblock_histories(h5, "relative_displacement")
 
 
 def main():
@@ -49,14 +52,14 @@ def main():
     print("| keyblock | peak A [mm] | peak B [mm] | final A [mm] | final B [mm] | "
           "largest difference [mm] |")
     print("|---|---:|---:|---:|---:|---:|")
-    for name in sorted(ra, key=lambda n: int(n.split("_")[-1])):
-        a, b = ra[name], rb[name]
+    for block in sorted(ra):
+        a, b = ra[block], rb[block]
         on_grid = [np.column_stack([np.interp(grid, t, r[:, k]) for k in range(2)])
                    for t, r in ((ta, a), (tb, b))]
         largest = np.max(np.linalg.norm(on_grid[0] - on_grid[1], axis=1))
         peak_a, peak_b = (np.max(np.linalg.norm(r, axis=1)) for r in (a, b))
         final_a, final_b = (np.linalg.norm(r[-1]) for r in (a, b))
-        print(f"| {name} | {1e3 * peak_a:.2f} | {1e3 * peak_b:.2f} | {1e3 * final_a:.2f} | "
+        print(f"| block_{block} | {1e3 * peak_a:.2f} | {1e3 * peak_b:.2f} | {1e3 * final_a:.2f} | "
               f"{1e3 * final_b:.2f} | {1e3 * largest:.2f} |")
     for label, s in (("A", sa), ("B", sb)):
         k = s.get("keyblocks", {})
