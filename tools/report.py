@@ -361,6 +361,24 @@ def simulated_of(summary):
     return "of %.4g s" % summary.get("end_time_s", 0.0)
 
 
+def solver_line(solver):
+    """The blocks' linear solver and what it did (summary.json's `solver`)."""
+    if not solver:
+        return "- linear solver: ?"
+    line = "- linear solver: %s, %s factorizations" % (solver.get("name", "?"),
+                                                     solver.get("factorizations", "?"))
+    if solver.get("pcg_solves"):
+        line += (", %d conjugate-gradient solves of %.1f iterations each, %d handed to the "
+                 "direct solver" % (solver["pcg_solves"],
+                                    solver["pcg_iterations"] / solver["pcg_solves"],
+                                    solver.get("pcg_fallbacks", 0)))
+    elif "solves" in solver:
+        line += ", %s solves" % solver["solves"]
+    elif "linear_iterations" in solver:
+        line += ", %s iterations" % solver["linear_iterations"]
+    return line
+
+
 def write_report(run_dir, summary, figures, path):
     status = summary.get("status", "?")
     lines = ["# Run report: %s" % summary.get("name", os.path.basename(run_dir)), "",
@@ -383,6 +401,7 @@ def write_report(run_dir, summary, figures, path):
                 summary.get("time_step", {}).get("flips_ignored", "?"),
                 summary.get("time_step", {}).get("slip_reversals", "?"),
                 summary.get("contacts", {}).get("open_close_iterations", "?")),
+             solver_line(summary.get("solver")),
              "- wall time: %.3g s, peak memory %.0f MB"
              % (summary.get("wall_time_s", 0.0), summary.get("peak_memory_mb", 0.0)), ""]
     lines += ["## Model", ""] + model_lines(summary) + [""]
