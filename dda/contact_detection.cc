@@ -53,7 +53,6 @@ void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_
 {
   mark_jointed_vertices();
   set_contact_structure(find_trial_contacts(pairs));
-  detected.contacts = trial_contacts;
   detected.predecessors.clear();
   detected.epoch = geometry_epoch;
   inherit_contact_states();
@@ -148,21 +147,39 @@ System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t
 {
   // Two convex blocks held by an intact joint touch only along it (their other vertices lie
   // more than d0 away, d0 being below a quarter of the shortest edge): no narrow phase for the
-  // pairs of joint_lists.bonded_pairs (add_pair_contacts; update_contacts refreshed the lists).
+  // pairs of joint_lists.bonded_pairs (update_contacts refreshed the lists), nor features for
+  // blocks in no other pair (a bonded model's step computes none).
   // Each chunk of pairs lists its contacts apart; the lists are joined in chunk order, so the
   // result does not depend on the number of threads. A chunk is ~0.2 ms of work (a model of
   // fewer pairs stays on one thread: a parallel region costs tens of microseconds).
+  narrow_pairs.clear();
+  needs_features.assign(blocks.size(), 0);
+  for (const auto& pair : pairs)
+    if (!std::binary_search(joint_lists.bonded_pairs.begin(), joint_lists.bonded_pairs.end(), pair))
+    {
+      narrow_pairs.push_back(pair);
+      needs_features[pair.first] = needs_features[pair.second] = 1;
+    }
+  block_features.resize(blocks.size());
+  parallel.for_chunks(blocks.size(), 128,
+                      [&](std::size_t begin, std::size_t end)
+                      {
+                        for (std::size_t k = begin; k < end; ++k)
+                          if (needs_features[k])
+                            compute_polygon_features(blocks[k].vertices, angle_tolerance,
+                                                     block_features[k]);
+                      });
   constexpr std::size_t grain = 256;
-  const std::size_t n_chunks = (pairs.size() + grain - 1) / grain;
+  const std::size_t n_chunks = (narrow_pairs.size() + grain - 1) / grain;
   if (narrow_chunks.size() < n_chunks)
     narrow_chunks.resize(n_chunks);
-  parallel.for_chunks(pairs.size(), grain,
+  parallel.for_chunks(narrow_pairs.size(), grain,
                       [&](std::size_t begin, std::size_t end)
                       {
                         NarrowPhaseChunk& chunk = narrow_chunks[begin / grain];
                         chunk.found.clear();
                         for (std::size_t k = begin; k < end; ++k)
-                          add_pair_contacts(pairs[k].first, pairs[k].second, chunk);
+                          add_pair_contacts(narrow_pairs[k].first, narrow_pairs[k].second, chunk);
                       });
   // Sorted by key (unique: each pair is listed once and its contacts differ in vertex or
   // edge): counted into buckets by vertex block, then each bucket (a few contacts) by
@@ -182,10 +199,14 @@ System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t
     for (std::size_t k = bucket[i] + 1; k < bucket[i + 1]; ++k)
       for (std::size_t m = k; m > bucket[i] && order[m]->key() < order[m - 1]->key(); --m)
         std::swap(order[m], order[m - 1]);
-  trial_contacts.clear();
-  trial_contacts.reserve(order.size());
-  for (const Contact* c : order)
-    trial_contacts.push_back(*c);
+  std::vector<Contact>& found = detected.contacts;
+  found.resize(order.size());
+  parallel.for_chunks(order.size(), 1024,
+                      [&](std::size_t begin, std::size_t end)
+                      {
+                        for (std::size_t k = begin; k < end; ++k)
+                          found[k] = *order[k];
+                      });
 
   // The pairs with contacts: the chunks list them in the candidates' (lexicographic) order.
   std::vector<std::pair<std::size_t, std::size_t>> touching;
@@ -202,11 +223,7 @@ System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t
 
 void System::add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& chunk) const
 {
-  if (std::binary_search(joint_lists.bonded_pairs.begin(), joint_lists.bonded_pairs.end(),
-                         std::make_pair(a, b)))
-    return;
-  find_vertex_edge_pairs(blocks[a].vertices, blocks[b].vertices, contact_search_distance,
-                         angle_tolerance, chunk.work);
+  find_vertex_edge_pairs(block_features[a], block_features[b], contact_search_distance, chunk.work);
   for (const VertexEdgePair& f : chunk.work.pairs)
   {
     Contact c;
@@ -240,24 +257,28 @@ void System::add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& c
 
 void System::inherit_contact_states()
 {
-  // Each contact finds its predecessor on the threads; the new ones take ids afterwards, in
+  // The trial contacts start as detected; each finds its predecessor on the threads (copied
+  // there too: the contact is at hand when it inherits); the new ones take ids afterwards, in
   // contact order, so the ids do not depend on the number of threads either.
   constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+  const std::vector<Contact>& found = detected.contacts;
   std::vector<std::size_t>& predecessors = detected.predecessors;
-  const bool search = predecessors.size() != trial_contacts.size();
+  const bool search = predecessors.size() != found.size();
   if (search)
-    predecessors.resize(trial_contacts.size());
+    predecessors.resize(found.size());
+  trial_contacts.resize(found.size());
   parallel.for_chunks(
-      trial_contacts.size(), 1024,
+      found.size(), 1024,
       [&](std::size_t begin, std::size_t end)
       {
         // Both lists are in key order: one search per chunk, then a walk.
         auto at = contacts.begin();
         if (search && begin < end)
-          at = std::lower_bound(contacts.begin(), contacts.end(), trial_contacts[begin].key(),
+          at = std::lower_bound(contacts.begin(), contacts.end(), found[begin].key(),
                                 [](const Contact& x, const auto& key) { return x.key() < key; });
         for (std::size_t k = begin; k < end; ++k)
         {
+          trial_contacts[k] = found[k];
           if (search)
           {
             const auto key = trial_contacts[k].key();
@@ -331,8 +352,8 @@ void System::set_contact_structure(std::vector<std::pair<std::size_t, std::size_
   set_matrix_structure(std::move(couplings));
 
   // Each contact's coupling and frame, in the configuration at the step start.
-  frames.resize(trial_contacts.size());
-  parallel.for_chunks(trial_contacts.size(), 1024,
+  frames.resize(detected.contacts.size());
+  parallel.for_chunks(detected.contacts.size(), 1024,
                       [&](std::size_t begin, std::size_t end)
                       {
                         for (std::size_t k = begin; k < end; ++k)
@@ -342,7 +363,7 @@ void System::set_contact_structure(std::vector<std::pair<std::size_t, std::size_
 
 void System::set_contact_frame(std::size_t k)
 {
-  Contact& c = trial_contacts[k];
+  Contact& c = detected.contacts[k];
   c.coupling = coupling_of(c.vertex_block, c.edge_block);
   const Block& vb = blocks[c.vertex_block];
   const Block& eb = blocks[c.edge_block];
@@ -369,6 +390,11 @@ void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t
   {
     coupling_pairs = std::move(couplings);
     matrix = BlockSparseMatrix(blocks.size(), coupling_pairs);
+    coupling_rows.assign(blocks.size() + 1, 0);
+    for (const auto& pair : coupling_pairs)
+      ++coupling_rows[pair.first + 1];
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+      coupling_rows[i + 1] += coupling_rows[i];
   }
   else if (joint_couplings_revision == joint_revision)
     return; // the joints' couplings are where they were
@@ -379,9 +405,13 @@ void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t
 
 std::size_t System::coupling_of(std::size_t i, std::size_t j) const
 {
+  // Within the couplings of the lower block (all of them lie in its row): the same index as a
+  // search of all couplings, at the cost of a few comparisons.
   const auto key = std::make_pair(std::min(i, j), std::max(i, j));
+  const auto row = coupling_pairs.begin();
   return static_cast<std::size_t>(
-      std::lower_bound(coupling_pairs.begin(), coupling_pairs.end(), key) - coupling_pairs.begin());
+      std::lower_bound(row + coupling_rows[key.first], row + coupling_rows[key.first + 1], key) -
+      row);
 }
 
 ContactCounts System::contact_counts() const

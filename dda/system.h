@@ -357,16 +357,18 @@ private:
   /// common third block (which keeps the two corners apart).
   bool held_by_common_block(std::size_t a, std::size_t va, std::size_t b, std::size_t vb) const;
   /// The narrow phase: the vertex-edge contacts of the pairs, sorted by key, into
-  /// trial_contacts (without state).
+  /// detected.contacts (without state; inherit_contact_states makes them the trial contacts).
   /// Returns the pairs with contacts, sorted (the matrix couples them).
   std::vector<std::pair<std::size_t, std::size_t>>
   find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
   struct NarrowPhaseChunk;
-  /// The contacts of candidate pair (a, b), a < b, appended to `chunk.found` (in key order).
+  /// The contacts of candidate pair (a, b), a < b, not held by an intact joint, appended to
+  /// `chunk.found` (in key order); block_features holds both blocks' features.
   void add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& chunk) const;
-  /// Id, state, forces and slip history of the previous step's contacts that persist; a new
-  /// contact starts closed if its blocks touch, else open. The predecessors are searched for
-  /// once per geometry_epoch (kept in `detected`); a retry only copies their states again.
+  /// trial_contacts: detected.contacts with the id, state, forces and slip history of the
+  /// previous step's contacts that persist; a new contact starts closed if its blocks touch,
+  /// else open. The predecessors are searched for once per geometry_epoch (kept in
+  /// `detected`); a retry only copies the contacts and their states again.
   void inherit_contact_states();
   /// Index in `contacts` of c's predecessor, or `none`; `at` is the first accepted contact
   /// whose key is not below c's.
@@ -585,6 +587,12 @@ private:
     NarrowPhaseWorkspace work;
   };
   std::vector<NarrowPhaseChunk> narrow_chunks;
+  /// find_trial_contacts' scratch: the candidate pairs that need the narrow phase (not held by
+  /// an intact joint), and the features of their blocks in the current configuration (a block
+  /// is in about six pairs: its vertex shapes, legs and edges are computed once for all).
+  std::vector<std::pair<std::size_t, std::size_t>> narrow_pairs;
+  std::vector<char> needs_features;
+  std::vector<PolygonFeatures> block_features;
   /// Counts the changes of what contact detection depends on (the blocks' geometry, removed
   /// blocks, joints, stage, ties, the accepted contacts): detection is redone only when it moved.
   std::uint64_t geometry_epoch = 0;
@@ -677,6 +685,9 @@ private:
   std::vector<FirstHalf> first_halves;
 
   std::vector<std::pair<std::size_t, std::size_t>> coupling_pairs; ///< the matrix's, sorted
+  /// Where each block's couplings (i, j), i the block, start in coupling_pairs; one past the
+  /// last block: their number.
+  std::vector<std::size_t> coupling_rows;
   BlockSparseMatrix matrix;
   BlockSparseMatrix base_matrix; ///< the step's matrix without contacts (when there are some)
   Eigen::VectorXd base_rhs;

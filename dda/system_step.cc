@@ -94,7 +94,6 @@ void System::detect_contacts()
   {
     // A retry from the same accepted state: the same contacts, frames and structure; only
     // their states are inherited again (penalties may have been raised).
-    trial_contacts = detected.contacts;
     inherit_contact_states();
     timings.narrow_phase += seconds_since(start);
     return;

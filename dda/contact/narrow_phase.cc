@@ -13,14 +13,6 @@ namespace ddafem::dda
 {
 namespace
 {
-/// Whether the interior angle at a vertex is below, about or above pi (within the tolerance).
-enum class VertexShape
-{
-  convex,
-  straight,
-  concave
-};
-
 double cross(const Vector2& u, const Vector2& v)
 {
   return u.x() * v.y() - u.y() * v.x();
@@ -36,16 +28,7 @@ std::size_t previous(std::size_t k, std::size_t n)
   return (k + n - 1) % n;
 }
 
-/// Edge k of a polygon: from its start, unit tangent t, length [m], outward unit normal n.
-struct Edge
-{
-  Point start;
-  Vector2 tangent;
-  double length;
-  Vector2 normal;
-};
-
-Edge edge_of(const std::vector<Point>& polygon, std::size_t k)
+PolygonEdge edge_of(const std::vector<Point>& polygon, std::size_t k)
 {
   const Vector2 along = polygon[next(k, polygon.size())] - polygon[k];
   const double length = along.norm();
@@ -71,21 +54,17 @@ VertexShape vertex_shape(const std::vector<Point>& polygon, std::size_t k, doubl
   return VertexShape::straight;
 }
 
-/// The two polygons, the shapes of their vertices (computed when first needed) and the
-/// tolerances of one search.
+/// The features of two polygons and the tolerances of one search.
 class PairSearch
 {
 public:
-  PairSearch(const std::vector<Point>& a, const std::vector<Point>& b, double search_distance,
-             double angle_tolerance_, NarrowPhaseWorkspace& work)
-      : polygons{&a, &b}, shapes(work.shapes), near(work.near), d0(search_distance),
-        angle_tolerance(angle_tolerance_), sin_tolerance(std::sin(angle_tolerance_))
+  PairSearch(const PolygonFeatures& a, const PolygonFeatures& b, double search_distance,
+             NarrowPhaseWorkspace& work)
+      : polygons{&a, &b}, near(work.near), d0(search_distance), reach(d0 * (1.0 + 1e-9)),
+        sin_tolerance(std::sin(a.angle_tolerance))
   {
     for (std::size_t s = 0; s < 2; ++s)
-    {
-      shapes[s].assign(polygons[s]->size(), unknown_shape);
       find_near_vertices(*polygons[s], *polygons[1 - s], near[s]);
-    }
   }
 
   /// Rules 3 and 4, in any order (the caller sorts). Only vertices near the other polygon's
@@ -99,12 +78,12 @@ public:
         if (shape(s, v) == VertexShape::convex)
           add_vertex_edge_pairs(s, v, pairs);
 
-    const std::vector<Point>& a = *polygons[0];
-    const std::vector<Point>& b = *polygons[1];
+    const std::vector<Point>& a = polygons[0]->vertices;
+    const std::vector<Point>& b = polygons[1]->vertices;
     for (const std::size_t i : near[0])
       for (const std::size_t j : near[1])
       {
-        if ((a[i] - b[j]).norm() > d0)
+        if (!near_box(a[i], b[j], b[j]) || (a[i] - b[j]).norm() > d0)
           continue;
         if (shape(0, i) == VertexShape::convex && shape(1, j) == VertexShape::convex)
           pairs.push_back(entrance_pair(i, j));
@@ -119,8 +98,8 @@ private:
   /// Vertex v of polygon s against edge e of the other polygon, with ratio and signed distance.
   VertexEdgePair pair_of(std::size_t s, std::size_t v, std::size_t e, ContactKind kind) const
   {
-    const Edge edge = edge_of(*polygons[1 - s], e);
-    const Vector2 from_start = (*polygons[s])[v] - edge.start;
+    const PolygonEdge& edge = polygons[1 - s]->edges[e];
+    const Vector2 from_start = polygons[s]->vertices[v] - edge.start;
     return {s,
             v,
             e,
@@ -133,8 +112,8 @@ private:
   /// angle tolerance).
   bool enters(std::size_t s, std::size_t v, std::size_t e) const
   {
-    const Vector2 n = edge_of(*polygons[1 - s], e).normal;
-    const std::array<Vector2, 2> legs = legs_at(*polygons[s], v);
+    const Vector2& n = polygons[1 - s]->edges[e].normal;
+    const std::array<Vector2, 2>& legs = polygons[s]->legs[v];
     return legs[0].dot(n) >= -sin_tolerance && legs[1].dot(n) >= -sin_tolerance;
   }
 
@@ -143,19 +122,19 @@ private:
   /// its distance to e's line is no penetration. Near such an end (a wedge of 28 deg) a vertex just
   /// beyond d0 from it would otherwise be taken as millimetres deep in a block it does not touch.
   /// `edge` is edge e of the other polygon (the caller has it).
-  bool beside_acute_end(const Point& p, std::size_t s, std::size_t e, const Edge& edge) const
+  bool beside_acute_end(const Point& p, std::size_t s, std::size_t e, const PolygonEdge& edge) const
   {
     if ((p - edge.start).dot(edge.normal) >= 0.0)
       return false;
     // The edge before e meets it at e's start, the edge after at its end; a concave end does
     // not bound the polygon by its other edge.
-    const std::vector<Point>& other = *polygons[1 - s];
-    const std::size_t n = other.size();
+    const PolygonFeatures& other = *polygons[1 - s];
+    const std::size_t n = other.vertices.size();
     for (const auto& [adjacent, shared] : {std::pair{previous(e, n), e}, {next(e, n), next(e, n)}})
     {
       if (shape(1 - s, shared) != VertexShape::convex)
         continue;
-      const Edge side = edge_of(other, adjacent);
+      const PolygonEdge& side = other.edges[adjacent];
       if ((p - side.start).dot(side.normal) > 0.0)
         return true;
     }
@@ -165,14 +144,16 @@ private:
   /// Rule 3: convex vertex v of polygon s near the inside of the other polygon's edges.
   void add_vertex_edge_pairs(std::size_t s, std::size_t v, std::vector<VertexEdgePair>& pairs) const
   {
-    const Point& p = (*polygons[s])[v];
-    const std::vector<Point>& other = *polygons[1 - s];
-    const std::array<Vector2, 2> legs = legs_at(*polygons[s], v);
+    const Point& p = polygons[s]->vertices[v];
+    const std::vector<Point>& other = polygons[1 - s]->vertices;
+    const std::array<Vector2, 2>& legs = polygons[s]->legs[v];
     for (std::size_t e = 0; e < other.size(); ++e)
     {
+      if (!near_box(p, other[e], other[next(e, other.size())]))
+        continue; // farther than d0 from the edge and its ends
       if ((p - other[e]).norm() <= d0 || (p - other[next(e, other.size())]).norm() <= d0)
         continue; // a vertex-vertex contact (rule 4)
-      const Edge edge = edge_of(other, e);
+      const PolygonEdge& edge = polygons[1 - s]->edges[e];
       const double along = std::clamp((p - edge.start).dot(edge.tangent), 0.0, edge.length);
       if ((p - (edge.start + along * edge.tangent)).norm() > d0 || !enters(s, v, e) ||
           beside_acute_end(p, s, e, edge))
@@ -188,7 +169,7 @@ private:
   void add_corner_pairs(std::size_t s, std::size_t v, std::size_t w,
                         std::vector<VertexEdgePair>& pairs) const
   {
-    const std::size_t n_other = polygons[1 - s]->size();
+    const std::size_t n_other = polygons[1 - s]->vertices.size();
     std::array<std::size_t, 2> edges{previous(w, n_other), w};
     std::sort(edges.begin(), edges.end());
     std::array<VertexEdgePair, 2> entered;
@@ -218,7 +199,7 @@ private:
     for (std::size_t s = 0; s < 2; ++s)
     {
       const std::size_t v = touching[s], w = touching[1 - s];
-      const std::size_t n_other = polygons[1 - s]->size();
+      const std::size_t n_other = polygons[1 - s]->vertices.size();
       std::array<std::size_t, 2> edges{previous(w, n_other), w};
       std::sort(edges.begin(), edges.end());
       for (const std::size_t e : edges)
@@ -242,47 +223,46 @@ private:
     return candidates[c];
   }
 
-  /// The shape of vertex k of polygon s.
-  VertexShape shape(std::size_t s, std::size_t k) const
+  /// Whether p lies within `reach` (d0 and a margin of 1e-9 d0 for rounding) of the box of q0
+  /// and q1 along both axes: if not, p is farther than d0 from the segment [q0, q1] and its ends
+  /// (a Euclidean distance is at least either axis' distance), so the exact tests that follow
+  /// would reject it; it saves their square roots for the edges far from p.
+  bool near_box(const Point& p, const Point& q0, const Point& q1) const
   {
-    if (shapes[s][k] == unknown_shape)
-      shapes[s][k] = static_cast<signed char>(vertex_shape(*polygons[s], k, angle_tolerance));
-    return static_cast<VertexShape>(shapes[s][k]);
+    return p.x() >= std::min(q0.x(), q1.x()) - reach && p.x() <= std::max(q0.x(), q1.x()) + reach &&
+           p.y() >= std::min(q0.y(), q1.y()) - reach && p.y() <= std::max(q0.y(), q1.y()) + reach;
   }
+
+  /// The shape of vertex k of polygon s.
+  VertexShape shape(std::size_t s, std::size_t k) const { return polygons[s]->shapes[k]; }
 
   /// The vertices of p within d0 of q's bounding box (a conservative margin of 1e-9 d0 covers
   /// rounding), in ascending order.
-  void find_near_vertices(const std::vector<Point>& p, const std::vector<Point>& q,
+  void find_near_vertices(const PolygonFeatures& p, const PolygonFeatures& q,
                           std::vector<std::size_t>& vertices) const
   {
-    Point lower = q.front(), upper = q.front();
-    for (const Point& x : q)
-    {
-      lower = lower.cwiseMin(x);
-      upper = upper.cwiseMax(x);
-    }
-    const double reach = d0 * (1.0 + 1e-9);
     vertices.clear();
-    for (std::size_t k = 0; k < p.size(); ++k)
-      if (p[k].x() >= lower.x() - reach && p[k].x() <= upper.x() + reach &&
-          p[k].y() >= lower.y() - reach && p[k].y() <= upper.y() + reach)
+    for (std::size_t k = 0; k < p.vertices.size(); ++k)
+    {
+      const Point& x = p.vertices[k];
+      if (x.x() >= q.lower.x() - reach && x.x() <= q.upper.x() + reach &&
+          x.y() >= q.lower.y() - reach && x.y() <= q.upper.y() + reach)
         vertices.push_back(k);
+    }
   }
 
-  static constexpr signed char unknown_shape = -1;
-  std::array<const std::vector<Point>*, 2> polygons;
-  std::array<std::vector<signed char>, 2>& shapes; ///< VertexShape, or unknown_shape
-  std::array<std::vector<std::size_t>, 2>& near;   ///< vertices near the other's box
-  double d0;                                       ///< search distance [m]
-  double angle_tolerance;                          ///< [rad]
-  double sin_tolerance;                            ///< sine of the angle tolerance [-]
+  std::array<const PolygonFeatures*, 2> polygons;
+  std::array<std::vector<std::size_t>, 2>& near; ///< vertices near the other's box
+  double d0;                                     ///< search distance [m]
+  double reach;                                  ///< d0 with a margin for rounding [m]
+  double sin_tolerance;                          ///< sine of the angle tolerance [-]
 };
 
-void check_polygon(const std::vector<Point>& polygon, const std::string& name)
+void check_polygon(const std::vector<Point>& polygon)
 {
   const double area = polygon.size() < 3 ? 0.0 : signed_area(polygon);
   if (!(area > 0.0))
-    throw std::invalid_argument("find_vertex_edge_pairs: polygon " + name + " has " +
+    throw std::invalid_argument("find_vertex_edge_pairs: a polygon has " +
                                 std::to_string(polygon.size()) + " vertices and signed area " +
                                 std::to_string(area) +
                                 " m^2, expected at least 3 vertices in anticlockwise order");
@@ -298,6 +278,30 @@ double interior_angle(const std::vector<Point>& polygon, std::size_t k)
   return M_PI - std::atan2(cross(incoming, outgoing), incoming.dot(outgoing));
 }
 
+void compute_polygon_features(const std::vector<Point>& polygon, double angle_tolerance,
+                              PolygonFeatures& features)
+{
+  check_polygon(polygon);
+  if (!(angle_tolerance >= 0.0 && angle_tolerance < M_PI / 2))
+    throw std::invalid_argument("find_vertex_edge_pairs: angle tolerance " +
+                                std::to_string(angle_tolerance) + " rad, expected in [0, pi/2)");
+  const std::size_t n = polygon.size();
+  features.vertices = polygon;
+  features.angle_tolerance = angle_tolerance;
+  features.shapes.resize(n);
+  features.legs.resize(n);
+  features.edges.resize(n);
+  features.lower = features.upper = polygon.front();
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    features.shapes[k] = vertex_shape(polygon, k, angle_tolerance);
+    features.legs[k] = legs_at(polygon, k);
+    features.edges[k] = edge_of(polygon, k);
+    features.lower = features.lower.cwiseMin(polygon[k]);
+    features.upper = features.upper.cwiseMax(polygon[k]);
+  }
+}
+
 std::vector<VertexEdgePair> find_vertex_edge_pairs(const std::vector<Point>& a,
                                                    const std::vector<Point>& b,
                                                    double search_distance, double angle_tolerance)
@@ -311,17 +315,24 @@ void find_vertex_edge_pairs(const std::vector<Point>& a, const std::vector<Point
                             double search_distance, double angle_tolerance,
                             NarrowPhaseWorkspace& work)
 {
-  check_polygon(a, "a");
-  check_polygon(b, "b");
+  compute_polygon_features(a, angle_tolerance, work.features[0]);
+  compute_polygon_features(b, angle_tolerance, work.features[1]);
+  find_vertex_edge_pairs(work.features[0], work.features[1], search_distance, work);
+}
+
+void find_vertex_edge_pairs(const PolygonFeatures& a, const PolygonFeatures& b,
+                            double search_distance, NarrowPhaseWorkspace& work)
+{
   if (!(search_distance > 0.0))
     throw std::invalid_argument("find_vertex_edge_pairs: search distance " +
                                 std::to_string(search_distance) + " m, expected > 0");
-  if (!(angle_tolerance >= 0.0 && angle_tolerance < M_PI / 2))
-    throw std::invalid_argument("find_vertex_edge_pairs: angle tolerance " +
-                                std::to_string(angle_tolerance) + " rad, expected in [0, pi/2)");
-
+  if (a.angle_tolerance != b.angle_tolerance)
+    throw std::invalid_argument("find_vertex_edge_pairs: the polygons' features were computed "
+                                "with angle tolerances " +
+                                std::to_string(a.angle_tolerance) + " and " +
+                                std::to_string(b.angle_tolerance) + " rad, expected the same");
   std::vector<VertexEdgePair>& pairs = work.pairs;
-  PairSearch(a, b, search_distance, angle_tolerance, work).find(pairs);
+  PairSearch(a, b, search_distance, work).find(pairs);
   // A stable sort by key (insertion: a pair of polygons has a few pairs), then one of each key.
   const auto key = [](const VertexEdgePair& p) {
     return std::array<std::size_t, 3>{p.vertex_polygon, p.vertex, p.edge};

@@ -71,12 +71,50 @@ std::vector<VertexEdgePair> find_vertex_edge_pairs(const std::vector<Point>& a,
                                                    const std::vector<Point>& b,
                                                    double search_distance, double angle_tolerance);
 
+/// Whether the interior angle at a vertex is below, about or above pi (within the angle
+/// tolerance).
+enum class VertexShape : signed char
+{
+  convex,
+  straight,
+  concave
+};
+
+/// Edge k of a polygon: from vertex k, unit tangent t, length [m], outward unit normal
+/// n = (t_y, -t_x).
+struct PolygonEdge
+{
+  Point start;
+  Vector2 tangent;
+  double length;
+  Vector2 normal;
+};
+
+/// What the search needs of one polygon, computed once per configuration: a block's features
+/// serve every pair it is in (a block of a wall is in about six), where the search would
+/// otherwise compute each vertex's shape, legs and edges again for each.
+struct PolygonFeatures
+{
+  std::vector<Point> vertices;
+  double angle_tolerance = 0.0;             ///< [rad] that decided the shapes
+  std::vector<VertexShape> shapes;          ///< per vertex
+  std::vector<std::array<Vector2, 2>> legs; ///< per vertex: unit legs to previous and next
+  std::vector<PolygonEdge> edges;           ///< per edge
+  Point lower = Point::Zero(), upper = Point::Zero(); ///< bounding box [m]
+};
+
+/// The features of `polygon` under `angle_tolerance` [rad], into `features` (its vectors reused).
+/// Throws std::invalid_argument for fewer than 3 vertices or non-positive signed area, or an
+/// angle tolerance outside [0, pi/2).
+void compute_polygon_features(const std::vector<Point>& polygon, double angle_tolerance,
+                              PolygonFeatures& features);
+
 /// Scratch of find_vertex_edge_pairs, kept between calls (one per thread) so that a search
 /// allocates nothing once the vectors have grown; `pairs` holds the last search's result.
 struct NarrowPhaseWorkspace
 {
-  std::array<std::vector<signed char>, 2> shapes; ///< per vertex of a and b: its shape, if known
-  std::array<std::vector<std::size_t>, 2> near;   ///< vertices near the other's bounding box
+  std::array<PolygonFeatures, 2> features;      ///< of a and b (the search on polygons)
+  std::array<std::vector<std::size_t>, 2> near; ///< vertices near the other's bounding box
   std::vector<VertexEdgePair> pairs;
 };
 
@@ -84,5 +122,11 @@ struct NarrowPhaseWorkspace
 void find_vertex_edge_pairs(const std::vector<Point>& a, const std::vector<Point>& b,
                             double search_distance, double angle_tolerance,
                             NarrowPhaseWorkspace& work);
+
+/// The same search on features computed beforehand (with the same angle tolerance, else
+/// std::invalid_argument), its result in `work.pairs`: the same bits as the search on the
+/// polygons.
+void find_vertex_edge_pairs(const PolygonFeatures& a, const PolygonFeatures& b,
+                            double search_distance, NarrowPhaseWorkspace& work);
 
 } // namespace ddafem::dda

@@ -276,3 +276,69 @@ TEST(NarrowPhase, RejectsBadInput)
   EXPECT_THROW(find_vertex_edge_pairs(square, square, 0.0, 0.01), std::invalid_argument);
   EXPECT_THROW(find_vertex_edge_pairs(square, square, 0.01, -0.01), std::invalid_argument);
 }
+
+TEST(NarrowPhase, FeaturesServeEveryPairOfABlock)
+{
+  // Each block's features are computed once per step and serve all its pairs: the pairs found
+  // from them are those of the search on the polygons, bit for bit, in any order of pairs.
+  const double d0 = 0.01, angle_tolerance = 0.01;
+  const std::vector<std::vector<Point>> polygons{
+      rectangle(0, 0, 1, 1),
+      {{1.005, 0.2}, {3.005, 0.2}, {3.005, 1.2}, {2.005, 1.2}, {2.005, 2.2}, {1.005, 2.2}},
+      {{0.3, 1.004}, {0.9, 1.004}, {0.6, 1.5}}};
+  std::vector<PolygonFeatures> features(polygons.size());
+  for (std::size_t k = 0; k < polygons.size(); ++k)
+    compute_polygon_features(polygons[k], angle_tolerance, features[k]);
+  NarrowPhaseWorkspace work;
+  std::size_t n_found = 0;
+  for (const auto& [i, j] : {std::pair{0, 1}, {0, 2}, {1, 2}, {1, 0}})
+  {
+    SCOPED_TRACE("polygons " + std::to_string(i) + " and " + std::to_string(j));
+    const std::vector<VertexEdgePair> expected =
+        find_vertex_edge_pairs(polygons[i], polygons[j], d0, angle_tolerance);
+    find_vertex_edge_pairs(features[i], features[j], d0, work);
+    ASSERT_EQ(work.pairs.size(), expected.size());
+    for (std::size_t k = 0; k < expected.size(); ++k)
+    {
+      EXPECT_EQ(work.pairs[k].vertex_polygon, expected[k].vertex_polygon);
+      EXPECT_EQ(work.pairs[k].vertex, expected[k].vertex);
+      EXPECT_EQ(work.pairs[k].edge, expected[k].edge);
+      EXPECT_EQ(work.pairs[k].ratio, expected[k].ratio);
+      EXPECT_EQ(work.pairs[k].distance, expected[k].distance);
+      EXPECT_EQ(work.pairs[k].kind, expected[k].kind);
+    }
+    n_found += expected.size();
+  }
+  EXPECT_GE(n_found, 4U); // the square meets the L-shape and the triangle on both sides
+
+  // The L-shape's features: one concave vertex, the outward normals, the box.
+  const PolygonFeatures& l = features[1];
+  for (std::size_t k = 0; k < 6; ++k)
+    EXPECT_EQ(l.shapes[k], k == 3 ? VertexShape::concave : VertexShape::convex) << k;
+  EXPECT_NEAR(l.edges[2].normal.y(), 1.0, tol);
+  EXPECT_NEAR(l.edges[3].normal.x(), 1.0, tol);
+  EXPECT_NEAR(l.edges[0].length, 2.0, tol);
+  EXPECT_NEAR(l.legs[0][1].x(), 1.0, tol);
+  EXPECT_EQ(l.lower, Point(1.005, 0.2));
+  EXPECT_EQ(l.upper, Point(3.005, 2.2));
+
+  // Features of another angle tolerance do not mix.
+  PolygonFeatures other;
+  compute_polygon_features(polygons[0], 0.02, other);
+  EXPECT_THROW(find_vertex_edge_pairs(other, features[1], d0, work), std::invalid_argument);
+  EXPECT_THROW(compute_polygon_features({{0, 0}, {1, 0}}, angle_tolerance, other),
+               std::invalid_argument);
+}
+
+TEST(NarrowPhase, PairsAtExactlyTheSearchDistance)
+{
+  // A triangle's apex exactly d0 = 0.25 m above the square's top edge (binary fractions: the
+  // distance is exact) pairs with it; one ulp less of d0 and it does not. The search skips edges
+  // whose box the vertex is beyond by more than d0 before it computes distances: that
+  // shortcut must not move the boundary.
+  const std::vector<Point> square = rectangle(0, 0, 1, 1);
+  const std::vector<Point> triangle{{0.5, 1.25}, {1.0, 2.0}, {0.0, 2.0}};
+  expect_pairs_both_ways(square, triangle, 0.25, 0.01,
+                         {{1, 0, 2, 0.5, 0.25, ContactKind::vertex_edge}});
+  EXPECT_TRUE(find_vertex_edge_pairs(square, triangle, std::nextafter(0.25, 0.0), 0.01).empty());
+}
