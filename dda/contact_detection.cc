@@ -15,21 +15,22 @@ namespace ddafem::dda
 {
 namespace
 {
-/// Length [m] over which the leg of `poly` at `vertex` that runs parallel to the edge [e0, e1]
-/// overlaps it, halved (each end of an edge-to-edge contact carries half); 0 if no leg is
-/// parallel within `angle_tolerance` [rad].
-double carried_length(const std::vector<Point>& poly, std::size_t vertex, const Point& e0,
-                      const Point& e1, double angle_tolerance)
+/// Length [m] over which the leg of `poly` at `vertex` that runs parallel to `edge` overlaps it,
+/// halved (each end of an edge-to-edge contact carries half); 0 if no leg is parallel within the
+/// angle tolerance (`sin_tolerance` its sine).
+double carried_length(const std::vector<Point>& poly, std::size_t vertex, const PolygonEdge& edge,
+                      double sin_tolerance)
 {
   const std::size_t n = poly.size();
   const Point& v = poly[vertex];
-  const double edge_length = (e1 - e0).norm();
-  const Vector2 t = (e1 - e0) / edge_length;
+  const Point& e0 = edge.start;
+  const double edge_length = edge.length;
+  const Vector2& t = edge.tangent;
   double best = 0.0;
   for (const Point& w : {poly[(vertex + 1) % n], poly[(vertex + n - 1) % n]})
   {
     const Vector2 leg = w - v;
-    if (std::abs(t.x() * leg.y() - t.y() * leg.x()) > std::sin(angle_tolerance) * leg.norm())
+    if (std::abs(t.x() * leg.y() - t.y() * leg.x()) > sin_tolerance * leg.norm())
       continue;
     const double s0 = t.dot(v - e0), s1 = t.dot(w - e0);
     const double overlap =
@@ -248,9 +249,8 @@ void System::add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& c
     c.ratio = f.ratio;
     c.gap = f.distance;
     c.joint_material = joint_material_at_edge(model, c.edge_block, c.edge, c.vertex_block);
-    const std::vector<Point>& ev = blocks[c.edge_block].vertices;
-    c.length = carried_length(blocks[c.vertex_block].vertices, c.vertex, ev[c.edge],
-                              ev[(c.edge + 1) % ev.size()], angle_tolerance);
+    c.length = carried_length(blocks[c.vertex_block].vertices, c.vertex,
+                              block_features[c.edge_block].edges[c.edge], sin_angle_tolerance);
     chunk.found.push_back(c);
   }
 }
@@ -370,8 +370,9 @@ void System::set_contact_frame(std::size_t k)
   const Point& e0 = eb.vertices[c.edge];
   const Point& e1 = eb.vertices[(c.edge + 1) % eb.vertices.size()];
   ContactFrame& f = frames[k];
-  f.tangent = (e1 - e0).normalized();
-  f.normal = Vector2(f.tangent.y(), -f.tangent.x());
+  const PolygonEdge& edge = block_features[c.edge_block].edges[c.edge]; // of this detection
+  f.tangent = edge.tangent;
+  f.normal = edge.normal;
   f.t_vertex = displacement_matrix(vb.moments.centroid, vb.vertices[c.vertex]);
   f.t_edge = displacement_matrix(eb.moments.centroid, e0 + c.ratio * (e1 - e0));
 }

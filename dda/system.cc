@@ -145,6 +145,7 @@ void System::set_contact_distances(double size)
       cs.search_distance > 0.0 ? cs.search_distance : 2.5 * step_displacement_limit;
   penetration_limit = cs.max_penetration > 0.0 ? cs.max_penetration : step_displacement_limit;
   angle_tolerance = cs.angle_tolerance_deg * M_PI / 180.0;
+  sin_angle_tolerance = std::sin(angle_tolerance);
 }
 
 void System::set_default_fixed_stiffness()

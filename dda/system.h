@@ -649,6 +649,7 @@ private:
   double contact_search_distance = 0.0; ///< d0 [m]
   double penetration_limit = 0.0;       ///< [m]
   double angle_tolerance = 0.0;         ///< [rad]
+  double sin_angle_tolerance = 0.0;     ///< its sine [-]
   double reversal_tolerance = 0.0;      ///< localize_slip_reversals [m]; 0: none
   bool contacts_enabled = true;         ///< false in a small-displacement analysis
   StageMode mode = StageMode::dynamic;
