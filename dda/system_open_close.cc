@@ -5,6 +5,7 @@
 #include "common/stopwatch.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace ddafem::dda
@@ -52,7 +53,7 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
     {
       if (iteration > 1)
         add_ties_to_start();
-      add_contact_terms();
+      add_contact_terms(tied_body ? tied_matrix : base_matrix);
     }
     else
     {
@@ -191,39 +192,53 @@ double System::negligible_contact_force() const
 
 std::size_t System::update_trial_states(unsigned iteration, std::size_t& n_ignored)
 {
+  // Each contact's trial on the threads (it depends on the contact alone); the changes are
+  // counted per chunk and added afterwards (integers: in any order the same).
   const double negligible = negligible_contact_force();
   const bool localising = localising_slip_reversals();
+  constexpr std::size_t grain = 1024;
+  std::vector<std::array<std::size_t, 2>> counts((trial_contacts.size() + grain - 1) / grain,
+                                                 {0, 0});
+  parallel.for_chunks(trial_contacts.size(), grain,
+                      [&](std::size_t begin, std::size_t end)
+                      {
+                        std::array<std::size_t, 2>& n = counts[begin / grain];
+                        for (std::size_t k = begin; k < end; ++k)
+                          update_trial_state(k, iteration, negligible, localising, n);
+                      });
   std::size_t n_changes = 0;
-  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
+  for (const std::array<std::size_t, 2>& n : counts)
   {
-    Contact& c = trial_contacts[k];
-    const ContactFrame& f = frames[k];
-    const Vector2 relative = f.t_vertex * solution.segment<6>(6 * c.vertex_block) -
-                             f.t_edge * solution.segment<6>(6 * c.edge_block);
-    c.end_gap = c.gap + f.normal.dot(relative);
-    c.step_slip = f.tangent.dot(relative);
-    const ContactForces law = evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip);
-    // With slip reversals localised, sliding that reverses between trials is taken as lock
-    // (only on a slide of at least 10 steps: slides_long_enough).
-    const ContactForces next = localising && slides_long_enough(c, matrix_dt)
-                                   ? iteration_trial(iteration, c.trial, law)
-                                   : law;
-    // A contact that ends the step within rounding of zero gap (1e-12 of the model size; its
-    // forces are then p x that, e.g. 0.5 N) is decided by rounding noise: it carries nothing
-    // in either state and may flip between iterations (the head joints of bricks falling
-    // together). Its change is taken but does not hold the iteration back.
-    // From the third iteration on, so does one that carries almost nothing before and after
-    // (contacts flipping between slide and lock under a kN where the rock carries MN).
-    if (state_changed(c.trial, next) && std::abs(c.end_gap) > 2e-12 * w0)
-    {
-      if (change_holds_iteration(iteration, c.trial, next, negligible))
-        ++n_changes;
-      else
-        ++n_ignored;
-    }
-    c.trial = next;
+    n_changes += n[0];
+    n_ignored += n[1];
   }
   return n_changes;
+}
+
+void System::update_trial_state(std::size_t k, unsigned iteration, double negligible,
+                                bool localising, std::array<std::size_t, 2>& n)
+{
+  Contact& c = trial_contacts[k];
+  const ContactFrame& f = frames[k];
+  const Vector2 relative = f.t_vertex * solution.segment<6>(6 * c.vertex_block) -
+                           f.t_edge * solution.segment<6>(6 * c.edge_block);
+  c.end_gap = c.gap + f.normal.dot(relative);
+  c.step_slip = f.tangent.dot(relative);
+  const ContactForces law = evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip);
+  // With slip reversals localised, sliding that reverses between trials is taken as lock
+  // (only on a slide of at least 10 steps: slides_long_enough).
+  const ContactForces next = localising && slides_long_enough(c, matrix_dt)
+                                 ? iteration_trial(iteration, c.trial, law)
+                                 : law;
+  // A contact that ends the step within rounding of zero gap (1e-12 of the model size; its
+  // forces are then p x that, e.g. 0.5 N) is decided by rounding noise: it carries nothing
+  // in either state and may flip between iterations (the head joints of bricks falling
+  // together). Its change is taken but does not hold the iteration back (n[1]; the others
+  // n[0]). From the third iteration on, so does one that carries almost nothing before and
+  // after (contacts flipping between slide and lock under a kN where the rock carries MN).
+  if (state_changed(c.trial, next) && std::abs(c.end_gap) > 2e-12 * w0)
+    ++n[change_holds_iteration(iteration, c.trial, next, negligible) ? 0 : 1];
+  c.trial = next;
 }
 
 bool System::raise_penalties()
