@@ -389,20 +389,13 @@ private:
   StepStatus solve_with_open_close(const StepLabel& when, bool new_matrix);
   /// Trial contact k's springs K2 [N/m] and force on its vertex [N] (minus on its edge).
   void contact_spring(std::size_t k, Eigen::Matrix2d& k2, Vector2& force_on_vertex) const;
-  /// Adds every closed trial contact's terms to the matrix, which holds `start`, and its
-  /// forces to the right-hand side (an attempt's first open-close iteration, or after the tie
-  /// terms changed).
-  void add_contact_terms(const BlockSparseMatrix& start);
+  /// Adds every closed trial contact's terms to the matrix and right-hand side (an attempt's
+  /// first open-close iteration, or after the tie terms changed).
+  void add_contact_terms();
   /// A later iteration: `matrix` holds `start` plus the terms of the states last added; the
   /// blocks of contacts that changed state are summed again from `start`, and the contacts'
   /// forces are added to `rhs` (which holds the start's).
   void update_contact_terms(const BlockSparseMatrix& start);
-  /// The blocks and couplings of contact_terms' changed lists summed from `start` with their
-  /// closed contacts' springs, and every closed contact's force added to `rhs` (on the
-  /// threads, the same bits on any number).
-  void sum_contact_terms(const BlockSparseMatrix& start);
-  void sum_block_terms(const BlockSparseMatrix& start, std::size_t i);
-  void sum_coupling_terms(const BlockSparseMatrix& start, std::size_t u);
   /// Per block and per coupling the trial contacts on it, once per attempt.
   void index_contact_terms();
   /// The tied body's H and g on the blocks of the tie points (T at the step start).
@@ -714,8 +707,6 @@ private:
     std::vector<std::size_t> block_start, block_contacts;       ///< CSR by block
     std::vector<std::size_t> coupling_start, coupling_contacts; ///< CSR by coupling
     std::vector<std::size_t> changed_blocks, changed_couplings; ///< scratch
-    std::vector<Eigen::Matrix2d> springs; ///< per closed contact: K2 [N/m] (contact_spring)
-    std::vector<Vector2> forces;          ///< per closed contact: force on its vertex [N]
   } contact_terms;
   Eigen::VectorXd tied_rhs;
   double matrix_dt = 0.0;          ///< dt the matrix was assembled for (small-displacement reuse)

@@ -53,7 +53,7 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
     {
       if (iteration > 1)
         add_ties_to_start();
-      add_contact_terms(tied_body ? tied_matrix : base_matrix);
+      add_contact_terms();
     }
     else
     {
