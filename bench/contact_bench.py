@@ -150,7 +150,21 @@ def main():
     parser.add_argument("--repeats", type=int, default=5,
                         help="runs of block_pcg on 1 and 2 threads each, alternately (medians)")
     parser.add_argument("--out", default=os.path.join(TOP, "docs", "performance"))
+    parser.add_argument("--previous", metavar="JSON",
+                        help="the run to compare with (default: OUT/contact_bench.json as it was "
+                             "before this run)")
+    parser.add_argument("--render-only", action="store_true",
+                        help="contact_bench.md again from OUT/contact_bench.json (and --previous)")
     args = parser.parse_args()
+    path = os.path.join(args.out, "contact_bench.json")
+    previous = previous_run(args.previous or path)
+    if args.render_only:
+        with open(path) as f:
+            result = json.load(f)
+        if args.previous:
+            result["previous"] = previous
+        write_result(args.out, result, None, None)
+        return
     ddafem = os.path.join(args.build, "ddafem")
     use_perf = args.perf and shutil.which("perf") is not None
 
@@ -205,14 +219,40 @@ def main():
         },
         "perf_hottest": [{"percent": p, "function": f, "method": METHODS[-1]}
                          for p, f in profile],
+        "perf": use_perf,
+        "previous": previous,
     }
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "contact_bench.json"), "w") as f:
+    write_result(args.out, result, steps_of, bar)
+
+
+def previous_run(path):
+    """What the next report compares with of an earlier run's JSON at PATH (None if none): its
+    per-step totals and narrow phase, and the bar's step (the machine's speed then)."""
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        old = json.load(f)
+    walls = old["wall"]["methods"]
+    return {"bar_ms_per_step": old["bar"]["ms_per_step"]["total"],
+            "total_ms_per_step": {k: w["ms_per_step"]["total"] for k, w in walls.items()},
+            "narrow_phase_ms_per_step": {k: w["ms_per_step"]["narrow_phase"]
+                                         for k, w in walls.items()},
+            "thread_speedup": old["thread_speedup"]}
+
+
+def write_result(out, result, steps_of, bar):
+    """contact_bench.json, .md and (with the runs' steps) .png into OUT."""
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "contact_bench.json"), "w") as f:
         json.dump(result, f, indent=2)
         f.write("\n")
-    write_figure(args.out, walls, steps_of, bar, bar_ms)
-    lines = report_lines(result, walls, bar_ms, profile, use_perf)
-    with open(os.path.join(args.out, "contact_bench.md"), "w") as f:
+    walls = result["wall"]["methods"]
+    bar_ms = result["bar"]["ms_per_step"]
+    if steps_of is not None:
+        write_figure(out, walls, steps_of, bar, bar_ms)
+    profile = [(p["percent"], p["function"]) for p in result["perf_hottest"]]
+    lines = report_lines(result, walls, bar_ms, profile, result.get("perf", bool(profile)))
+    with open(os.path.join(out, "contact_bench.md"), "w") as f:
         f.write("\n".join(lines))
     print("\n".join(lines))
 
@@ -247,6 +287,28 @@ def write_figure(out, walls, steps_of, bar, bar_ms):
     ax1.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "contact_bench.png"), dpi=110)
+
+
+def previous_lines(result, walls, bar_ms):
+    """This run against the previous one, the bar's step (an engine path without contacts) as
+    the machine's speed then and now."""
+    old = result.get("previous")
+    if not old:
+        return []
+    speed = bar_ms["total"] / old["bar_ms_per_step"]
+    g, g1 = walls["block_pcg"]["ms_per_step"], walls["block_pcg_1_thread"]["ms_per_step"]
+    return [
+        "Against the previous run of this benchmark (the JSON this run replaced): block_pcg on 2 "
+        f"threads {g['total']:.1f} against {old['total_ms_per_step']['block_pcg']:.1f} ms per "
+        f"step, on 1 thread {g1['total']:.1f} against "
+        f"{old['total_ms_per_step']['block_pcg_1_thread']:.1f}, the narrow phase on 2 threads "
+        f"{g['narrow_phase']:.2f} against {old['narrow_phase_ms_per_step']['block_pcg']:.2f}, "
+        f"2 threads against 1 {result['thread_speedup']:.2f} against "
+        f"{old['thread_speedup']:.2f} times. The bar's step took {bar_ms['total']:.3f} against "
+        f"{old['bar_ms_per_step']:.3f} ms, one run each, a rough gauge of the machine's speed: "
+        f"{speed:.2f} times " + ("slower" if speed >= 1 else "faster") + " than then (this "
+        "2-core machine runs some processes about a third slower than others, and the two "
+        "runs' wall columns cannot be compared closer than that).", ""]
 
 
 def report_lines(result, walls, bar_ms, profile, use_perf):
@@ -323,6 +385,7 @@ def report_lines(result, walls, bar_ms, profile, use_perf):
            f"**Not met yet: {g['ms_per_step']['total']:.0f} ms per step with block_pcg on 2 "
            f"threads, {g['ms_per_step']['total'] / TARGET_MS:.1f} times the target.**"),
         "",
+    ] + previous_lines(result, walls, bar_ms) + [
         "![time per step and dt](contact_bench.png)",
         "",
         "## Why",
@@ -339,8 +402,9 @@ def report_lines(result, walls, bar_ms, profile, use_perf):
         f"{g['pcg_iterations'] / max(g['pcg_solves'], 1):.0f} iterations per solve, no "
         f"factorization, {d['ms_per_step']['solve'] / max(g['ms_per_step']['solve'], 1e-9):.1f} "
         "times less solve time per step. What remains: the solve itself (CG's products and "
-        "preconditioner on the threads; on one, the contact springs of the blocks whose contacts "
-        "changed state and every contact's force, and the trial states), then the narrow phase "
+        "preconditioner on the threads, and the contacts' trial states; on one, the contact "
+        "springs of the blocks whose contacts changed state and every contact's force), then the "
+        "narrow phase "
         f"({g['ms_per_step']['narrow_phase']:.1f} ms per step on 2 threads; a step's first "
         "attempt finds the vertex-edge pairs of every candidate block pair and matches about "
         "12,000 contacts to the previous step's, its retries reuse that), then broad phase, "

@@ -719,7 +719,8 @@ private:
   Eigen::VectorXd rhs;
   Eigen::VectorXd solution;
   StepSolver solver;
-  /// Threads of contact detection (the solver has its own; results do not depend on either).
+  /// Threads of contact detection and of the contacts' trial states (the solver has its own;
+  /// results do not depend on either).
   Parallel parallel;
 
   double current_time = 0.0;
