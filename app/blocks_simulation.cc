@@ -52,6 +52,7 @@ public:
   std::size_t n_stages() const override { return plan.size(); }
   bool run_stage(std::size_t k, const std::function<void()>& report) override;
   void close_outputs() override;
+  void flush_outputs() override { outputs->flush(); }
   std::size_t n_steps() const override { return system.n_steps(); }
   double time() const override { return system.time(); }
   double end_time() const override { return scene.model.time.end_time; }

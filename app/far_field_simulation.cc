@@ -34,6 +34,7 @@ public:
       outputs->write_state(true);
     outputs->flush();
   }
+  void flush_outputs() override { outputs->flush(); }
   std::size_t n_steps() const override { return model.timings().n_steps; }
   double time() const override { return model.time(); }
   double end_time() const override { return description.end_time; }

@@ -8,17 +8,22 @@
 
 #include "common/stopwatch.h"
 
+#include <nlohmann/json.hpp>
+
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace ddafem
 {
 namespace
 {
-/// A run: set up, its stages in turn, the summary.
+/// A run: set up, its stages in turn, the summary. From the start to the end, summary.json says
+/// "running" with the time reached at the last flush of the histories (every
+/// output.flush_interval of wall time), so that a killed run is told from a finished one.
 class SceneRun
 {
 public:
@@ -31,19 +36,38 @@ public:
   int run()
   {
     setup();
-    for (std::size_t k = 0; k < simulation->n_stages(); ++k)
-      if (!simulation->run_stage(k, [this] { report_progress(); }))
-        break;
-    return write_summary();
+    try
+    {
+      open_outputs();
+      for (std::size_t k = 0; k < simulation->n_stages(); ++k)
+        if (!simulation->run_stage(k, [this] { after_step(); }))
+          break;
+      return write_summary();
+    }
+    catch (const std::exception& e)
+    {
+      write_error_summary(e.what());
+      throw;
+    }
   }
 
 private:
   void setup();
+  void open_outputs();
   int write_summary();
-  void report_progress(bool force = false)
+  /// summary.json of a run stopped by an error (an output that cannot be written): status
+  /// "error" and the message, if it can still be written; else the running one stays.
+  void write_error_summary(const std::string& message) const;
+  nlohmann::json summary_so_far(const std::string& status, double wall) const;
+  void after_step()
   {
-    progress->update(simulation->n_steps(), simulation->time(), seconds_since(wall_start), force);
+    const double wall = seconds_since(wall_start);
+    progress->update(simulation->n_steps(), simulation->time(), wall, false);
+    if (wall - last_flush >= scene.output.flush_interval)
+      flush(wall);
   }
+  /// Flushes the histories to disk, then says so in the running summary.json.
+  void flush(double wall);
 
   const Scene& scene;
   const RunOptions& options;
@@ -53,34 +77,80 @@ private:
   std::filesystem::path dir;
   std::vector<std::string> warnings;
   std::optional<run_support::Progress> progress;
+  double last_flush = 0.0; ///< wall time of the last flush [s]
 };
 
-/// Builds the models (input errors surface here, before anything is written), creates the
-/// output directory, collects the warnings (refusing unstable boundaries unless allowed) and
-/// opens the outputs.
+/// Builds the models and collects the warnings, refusing unstable boundaries unless allowed:
+/// input errors surface here, before anything is written.
 void SceneRun::setup()
 {
   simulation = scene.far_field && !scene.coupled() ? far_field_module().far_field_simulation(scene)
                                                    : make_blocks_simulation(scene);
+  warnings = simulation->collect_warnings(options.allow_unstable);
   dir = options.output_directory.empty() ? scene.output.directory : options.output_directory;
+}
+
+/// Creates the output directory, clears an earlier run's results from it and opens the
+/// outputs, with summary.json "running".
+void SceneRun::open_outputs()
+{
   run_support::create_output_directory(dir);
+  if (const std::size_t n = run_support::clear_earlier_results(dir); n > 0)
+    log << "cleared " << n << " files of an earlier run from " << dir.string() << "\n";
+  for (const std::string& w : warnings)
+    log << "warning: " << w << "\n";
   if (scene.tunnel)
     run_support::write_text_file(dir / "expanded_scene.yaml",
                                  "# The scene " + scene.file +
                                      " as its `tunnel` section expanded it (ddafem check prints "
                                      "why)\n" +
                                      scene.expanded_yaml + "\n");
-  warnings = simulation->collect_warnings(options.allow_unstable);
-  for (const std::string& w : warnings)
-    log << "warning: " << w << "\n";
   simulation->open_outputs(dir);
+  flush(seconds_since(wall_start));
   progress.emplace(!options.quiet && isatty(fileno(stderr)), simulation->end_time());
+}
+
+void SceneRun::flush(double wall)
+{
+  simulation->flush_outputs();
+  last_flush = wall;
+  run_support::write_text_file(dir / "summary.json",
+                               summary_so_far("running", wall).dump(2) + "\n");
+}
+
+nlohmann::json SceneRun::summary_so_far(const std::string& status, double wall) const
+{
+  return {{"scene", scene.file},
+          {"name", scene.name},
+          {"version", DDAFEM_VERSION},
+          {"status", status},
+          {"pid", static_cast<long>(getpid())},
+          {"time_reached_s", simulation->time()},
+          {"end_time_s", simulation->end_time()},
+          {"steps", simulation->n_steps()},
+          {"wall_time_s", wall},
+          {"histories_flushed_at_wall_time_s", last_flush},
+          {"flush_interval_s", scene.output.flush_interval}};
+}
+
+void SceneRun::write_error_summary(const std::string& message) const
+{
+  nlohmann::json summary = summary_so_far("error", seconds_since(wall_start));
+  summary["failure"] = message;
+  try
+  {
+    run_support::write_text_file(dir / "summary.json", summary.dump(2) + "\n");
+  }
+  catch (const std::exception&)
+  {
+    // The disk that failed the run fails this too: the running summary.json stays.
+  }
 }
 
 /// Ends the outputs, writes summary.json and the run's last lines on the log.
 int SceneRun::write_summary()
 {
-  report_progress(true);
+  progress->update(simulation->n_steps(), simulation->time(), seconds_since(wall_start), true);
   progress->finish();
   simulation->close_outputs();
   const double wall = seconds_since(wall_start);

@@ -2,6 +2,8 @@
 
 #include "app/run_support.h"
 
+#include "common/format.h"
+
 #include <algorithm>
 
 namespace ddafem
@@ -92,6 +94,22 @@ void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
 }
 } // namespace
 
+void mark_energy_source(nlohmann::json& summary, const dda::EnergyBalance& e)
+{
+  // A viscous boundary only takes energy out (its incident wave's input counts as a load): net
+  // work in of more than 1 % of what the loads, supports and ties put in makes it a source.
+  const double put_in =
+      e.initial + e.work_of_loads + e.work_of_supports + std::max(e.work_of_ties, 0.0);
+  if (!(e.work_of_boundaries > 0.01 * std::max(put_in, 0.0)))
+    return;
+  summary["status"] = "completed_energy_source";
+  summary["energy_source"] =
+      "the viscous boundaries fed " + format_significant(e.work_of_boundaries, 4) +
+      " J into the model, against " + format_significant(put_in, 4) +
+      " J put in by the loads, supports and ties: a boundary is an energy source at this dt "
+      "(`ddafem check` gives each boundary's limit); the results are not physical";
+}
+
 nlohmann::json summary_head(const Scene& scene, bool failed, const std::string& failure,
                             double time_reached, double end_time, std::size_t n_steps, double dt)
 {
@@ -151,6 +169,8 @@ nlohmann::json run_summary(const RunRecord& run)
   if (time.integrator == dda::Integrator::generalized_alpha)
     summary["spectral_radius"] = time.spectral_radius;
   add_blocks_summary(summary, system, run.outputs);
+  if (!run.stages.failed())
+    mark_energy_source(summary, system.energy());
   if (run.tied)
     run.tied->add_to_summary(summary);
   add_run_facts(summary, run.wall_time, run.warnings);

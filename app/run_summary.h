@@ -49,6 +49,12 @@ struct RunRecord
 
 nlohmann::json run_summary(const RunRecord& run);
 
+/// Makes a completed run's status "completed_energy_source", with the reason in
+/// `energy_source`, if its viscous boundaries fed energy in (net work above 1 % of what the
+/// loads, supports and ties put in): a boundary beyond its stability limit, run with
+/// --allow-unstable, whose growth stayed below the run's stop at 10 times the input.
+void mark_energy_source(nlohmann::json& summary, const dda::EnergyBalance& e);
+
 /// The fields every summary.json opens with: the scene, the program's version, the status (and
 /// the failure), the time reached and the end time [s], the steps and dt [s].
 nlohmann::json summary_head(const Scene& scene, bool failed, const std::string& failure,

@@ -2,10 +2,12 @@
 
 #include "common/format.h"
 #include "common/input_error.h"
+#include "common/vtk_collection.h"
 
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 
@@ -32,10 +34,38 @@ void create_output_directory(const std::filesystem::path& directory)
 
 void write_text_file(const std::filesystem::path& path, const std::string& text)
 {
-  std::ofstream f(path);
-  f << text;
-  if (!f)
-    throw std::runtime_error("cannot write " + path.string());
+  try
+  {
+    write_file_atomically(path, text);
+  }
+  catch (const std::runtime_error& e)
+  {
+    throw std::runtime_error(std::string(e.what()) + "; the previous " + path.filename().string() +
+                             ", if any, is kept");
+  }
+}
+
+std::size_t clear_earlier_results(const std::filesystem::path& dir)
+{
+  static const std::regex ours(
+      R"((summary\.json|histories\.h5|expanded_scene\.yaml|report\.md|report_[a-z_]+\.png|)"
+      R"((model|blocks|contacts|ties|far_field)\.pvd|(blocks|contacts|ties|far_field)_[0-9]+\.vtu)"
+      R"()(\.tmp)?)");
+  std::size_t n_removed = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+  {
+    if (!entry.is_regular_file() || !std::regex_match(entry.path().filename().string(), ours))
+      continue;
+    if (!std::filesystem::remove(entry.path(), ec) || ec)
+      throw std::runtime_error("cannot remove " + entry.path().string() +
+                               " of an earlier run: " + ec.message());
+    ++n_removed;
+  }
+  if (ec)
+    throw std::runtime_error("cannot list the output directory " + dir.string() + ": " +
+                             ec.message());
+  return n_removed;
 }
 
 bool snapshot_due(double time, double interval, double dt, double& next)
@@ -61,18 +91,15 @@ int finish_run(const std::filesystem::path& dir, const nlohmann::json& summary,
                const std::string& failure, const std::string& steps, double time, double wall,
                const std::string& view_file, std::ostream& log)
 {
-  {
-    std::ofstream f(dir / "summary.json");
-    f << summary.dump(2) << "\n";
-    if (!f)
-      throw std::runtime_error("cannot write " + (dir / "summary.json").string());
-  }
+  write_text_file(dir / "summary.json", summary.dump(2) + "\n");
   if (!failure.empty())
   {
     log << "error: numerical failure: " << failure << "\n"
         << "results up to t = " << time << " s are in " << dir.string() << "\n";
     return 1;
   }
+  if (summary.contains("energy_source"))
+    log << "warning: " << summary["energy_source"].get<std::string>() << "\n";
   log << "completed " << steps << " to t = " << time << " s in " << format_significant(wall, 3)
       << " s wall time\n"
       << "results: " << (dir / view_file).string() << " (ParaView), "

@@ -20,8 +20,17 @@ double peak_memory_mb();
 
 /// Creates the output directory (and parents); InputError naming it on failure.
 void create_output_directory(const std::filesystem::path& directory);
-/// Writes `text` to `path`; throws std::runtime_error if it cannot.
+/// Writes `text` to `path` through a temporary file (`path` + ".tmp") renamed into place: a
+/// reader, or a run killed meanwhile, finds the old file or the new one, never a part. Throws
+/// std::runtime_error naming the file if it cannot (a full disk), leaving the old file.
 void write_text_file(const std::filesystem::path& path, const std::string& text);
+
+/// Removes what an earlier run left in `dir`, by ddafem's own file names only (summary.json,
+/// histories.h5, the PVD collections and their numbered VTU files, expanded_scene.yaml, the
+/// report and its figures, temporary files of an interrupted write), so that no result of
+/// another run stays beside this one's. Returns how many files it removed; throws
+/// std::runtime_error naming a file it cannot remove.
+std::size_t clear_earlier_results(const std::filesystem::path& dir);
 
 /// Whether a snapshot is due at `time` with the given interval [s], advancing `next`;
 /// interval 0 writes only where the caller asks (first and last).

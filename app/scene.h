@@ -20,6 +20,9 @@ struct OutputSettings
   std::string directory = "results"; ///< relative to the working directory; `-o DIR` overrides
   double interval = 0.0; ///< simulated time between VTU snapshots [s]; 0: first and last only
   std::size_t history_every = 1; ///< steps between rows of the HDF5 histories, >= 1
+  /// Wall-clock time between flushes of histories.h5 and the running summary.json to disk [s];
+  /// a run killed at any moment keeps the rows up to its last flush. 0: after every step.
+  double flush_interval = 2.0;
   fem::VtuCompression vtu_compression = fem::VtuCompression::best_speed; ///< far-field VTU zlib
 };
 

@@ -753,6 +753,13 @@ Section output_section()
            .at_least(1)
            .meaning("time steps between rows of the monitor histories (a step of bathe is "
                     "its pair of half steps)"),
+       key("flush_interval", T::number)
+           .unit("s")
+           .default_yaml("2")
+           .at_least(0)
+           .meaning("wall-clock time between flushes of histories.h5 and of the running "
+                    "summary.json to disk: a run killed at any moment keeps every history row "
+                    "up to its last flush readable; 0: after every step"),
        key("vtu_compression", T::choice)
            .default_yaml("best_speed")
            .choices(names_of<fem::VtuCompression>())

@@ -43,6 +43,9 @@ public:
   virtual bool run_stage(std::size_t k, const std::function<void()>& report) = 0;
   /// Writes the state reached where it is not yet a snapshot and flushes the outputs.
   virtual void close_outputs() = 0;
+  /// Writes the buffered history rows and flushes histories.h5 to disk: a run killed after this
+  /// leaves every row so far readable.
+  virtual void flush_outputs() = 0;
 
   virtual std::size_t n_steps() const = 0; ///< steps taken so far
   virtual double time() const = 0;         ///< simulated time reached [s]

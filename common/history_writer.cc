@@ -1,8 +1,11 @@
 #include "common/history_writer.h"
 
 #include <hdf5.h>
+#include <sys/statvfs.h>
 
 #include <algorithm>
+#include <exception>
+#include <filesystem>
 #include <iostream>
 #include <stdexcept>
 #include <utility>
@@ -37,6 +40,8 @@ public:
 
   hid_t get() const { return id; }
   bool valid() const { return id >= 0; }
+  /// Forgets the identifier without closing it.
+  void release() { id = -1; }
 
   /// Closes the identifier; returns false if HDF5 reported a failure.
   bool reset()
@@ -105,9 +110,49 @@ struct HistoryWriter::Impl
   Handle time_dataset;
   std::vector<Handle> channel_datasets; ///< same order as `channels`
 
-  std::size_t n_rows_written = 0;           ///< rows already in the file
+  std::size_t n_rows_written = 0; ///< rows already in the file
+  /// A write or flush failed (a full disk): nothing more is written, the file keeps what its
+  /// last flush left.
+  bool failed = false;
   std::vector<double> time_buffer;          ///< buffered times [s]
   std::vector<std::vector<double>> buffers; ///< per channel: buffered rows, row-major
+
+  /// Stops before a write that might not fit: HDF5 goes on past a failed write and leaves a
+  /// file it cannot open again, so the free space of the file's disk (statvfs) is checked first
+  /// against what the next write can need at most: the buffered rows, a new chunk and a few
+  /// kB of metadata per dataset. On too little, the file keeps its last flush.
+  void require_space()
+  {
+    std::size_t needed = 8 * time_buffer.size() + chunk_bytes(1) + 4096;
+    for (std::size_t c = 0; c < channels.size(); ++c)
+      needed += 8 * buffers[c].size() + chunk_bytes(channels[c].n_components) + 4096;
+    const std::filesystem::path parent =
+        std::filesystem::absolute(std::filesystem::path(filename)).parent_path();
+    struct statvfs disk;
+    if (statvfs(parent.c_str(), &disk) != 0)
+      return; // not known: go on
+    const auto available = static_cast<std::size_t>(disk.f_bavail) * disk.f_frsize;
+    if (available >= needed)
+      return;
+    failed = true;
+    throw std::runtime_error("HDF5 history file '" + filename + "': its disk is full (" +
+                             std::to_string(available / 1024) + " kB free, up to " +
+                             std::to_string(needed / 1024 + 1) +
+                             " kB needed for the next rows); the file keeps the rows up to its "
+                             "last flush");
+  }
+
+  std::size_t chunk_bytes(std::size_t n_components) const
+  {
+    return 8 * n_components * std::clamp<std::size_t>(flush_every, 64, 8192);
+  }
+
+  void throw_if_failed() const
+  {
+    if (failed)
+      throw std::runtime_error("HDF5 history file '" + filename +
+                               "': an earlier write failed, no more rows are written");
+  }
 
   void check(herr_t status, const std::string& object, const std::string& action) const
   {
@@ -213,9 +258,13 @@ struct HistoryWriter::Impl
   {
     if (time_buffer.empty())
       return;
+    throw_if_failed();
+    require_space();
+    failed = true; // until every dataset has its rows
     write_rows(time_dataset, "time", 1, time_buffer);
     for (std::size_t c = 0; c < channels.size(); ++c)
       write_rows(channel_datasets[c], channels[c].path, channels[c].n_components, buffers[c]);
+    failed = false;
     n_rows_written += time_buffer.size();
     time_buffer.clear();
     for (auto& buffer : buffers)
@@ -241,6 +290,10 @@ HistoryWriter::HistoryWriter(const std::string& filename, std::vector<HistoryCha
     impl->n_values_per_row += channel.n_components;
   }
 
+  // A file whose close failed (a full disk) stays open inside HDF5, and HDF5's clean-up at exit
+  // would flush it again and crash (exit 139): the files are closed here, never at exit. Only
+  // the first call in a process takes effect (before HDF5 initialises); later ones fail harmlessly.
+  H5dont_atexit();
   // Errors are reported through exceptions; HDF5's own printing to stderr would duplicate them.
   if (H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) < 0)
     throw_hdf5_error(filename, "", "silence HDF5's error printing");
@@ -266,8 +319,15 @@ HistoryWriter::~HistoryWriter()
 {
   if (!impl)
     return;
-  // A destructor cannot throw: report the failure and go on closing. Call flush() before
-  // destruction to get write errors as exceptions.
+  // After a failed write (a full disk), or while an error unwinds the run, the file is let go
+  // as its last flush left it: closing would flush the metadata of rows that may not fit, and
+  // HDF5 goes on past a failed write and leaves a file it cannot open again. A destructor
+  // cannot throw: on the normal path it reports a failure to close and goes on.
+  if (impl->failed || std::uncaught_exceptions() > 0)
+  {
+    abandon();
+    return;
+  }
   try
   {
     impl->write_buffered_rows();
@@ -275,11 +335,24 @@ HistoryWriter::~HistoryWriter()
   catch (const std::exception& error)
   {
     std::cerr << "HistoryWriter: " << error.what() << ": last rows lost\n";
+    abandon();
+    return;
   }
   impl->time_dataset.reset();
   impl->channel_datasets.clear();
   if (!impl->file.reset())
     std::cerr << "HistoryWriter: cannot close HDF5 history file '" << impl->filename << "'\n";
+}
+
+void HistoryWriter::abandon() noexcept
+{
+  // The identifiers are dropped without closing them (HDF5 does not clean up at exit: see the
+  // constructor), so nothing more reaches the file; the process's exit closes its descriptor.
+  impl->time_dataset.release();
+  for (Handle& dataset : impl->channel_datasets)
+    dataset.release();
+  impl->file.release();
+  H5Eclear2(H5E_DEFAULT);
 }
 
 void HistoryWriter::append(double time, const std::vector<double>& values)
@@ -304,7 +377,13 @@ void HistoryWriter::append(double time, const std::vector<double>& values)
 void HistoryWriter::flush()
 {
   impl->write_buffered_rows();
-  impl->check(H5Fflush(impl->file.get(), H5F_SCOPE_GLOBAL), "", "flush the file to disk");
+  impl->throw_if_failed();
+  impl->require_space();
+  if (H5Fflush(impl->file.get(), H5F_SCOPE_GLOBAL) < 0)
+  {
+    impl->failed = true;
+    throw_hdf5_error(impl->filename, "", "flush the file to disk (is the disk full?)");
+  }
 }
 
 void HistoryWriter::set_attribute(const std::string& name, const std::string& value)

@@ -28,6 +28,12 @@ struct HistoryChannel
 /// std::invalid_argument. The destructor writes the last rows and cannot throw: it prints a
 /// failure to std::cerr, so call flush() at the end of a run to get errors as exceptions.
 /// The file is opened for writing (and locked by HDF5) until the writer is destroyed.
+///
+/// Crash safety: flush() leaves a file that HDF5 opens again, whatever happens afterwards
+/// (kill -9, a full disk). Before each write the free space of the file's disk is checked
+/// against what the write can need; on too little, or after any failed write, nothing more is
+/// written and the file keeps its last flush. A writer destroyed while an exception unwinds
+/// does not flush either (the run is failing; its disk may be full).
 class HistoryWriter
 {
 public:
@@ -50,6 +56,9 @@ public:
   std::size_t n_rows() const;
 
 private:
+  /// Lets the file go without flushing or closing it (after a failed write, or an error).
+  void abandon() noexcept;
+
   struct Impl;
   std::unique_ptr<Impl> impl;
 };

@@ -82,14 +82,16 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out)
-      throw std::runtime_error("cannot open '" + temporary.string() + "' for writing");
+      throw std::runtime_error("cannot write '" + path.string() + "': cannot open '" +
+                               temporary.string() + "' for writing");
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
     out.close();
     if (!out)
     {
       std::error_code ignored;
       fs::remove(temporary, ignored);
-      throw std::runtime_error("cannot write '" + temporary.string() + "'");
+      throw std::runtime_error("cannot write '" + path.string() + "' (through '" +
+                               temporary.string() + "'; is the disk full?)");
     }
   }
   std::error_code error;

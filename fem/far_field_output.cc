@@ -67,6 +67,37 @@ private:
   PlaneElasticity elasticity;
   std::function<std::array<double, 3>(double)> initial;
 };
+/// Writes `data_out` as VTU to `path` through a temporary file renamed into place (a run killed
+/// meanwhile leaves the old file or the new one); a failed write (a full disk) throws
+/// std::runtime_error naming the file and leaves no part behind.
+void write_vtu_atomically(const DataOut<2>& data_out, const std::filesystem::path& path)
+{
+  std::filesystem::path temporary = path;
+  temporary += ".tmp";
+  bool written = false;
+  try
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (out)
+      data_out.write_vtu(out);
+    out.close();
+    written = static_cast<bool>(out);
+  }
+  catch (const std::exception&)
+  {
+    written = false; // deal.II's ExcIO on a failed stream
+  }
+  std::error_code ec;
+  if (written)
+    std::filesystem::rename(temporary, path, ec);
+  if (!written || ec)
+  {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw std::runtime_error("cannot write " + path.string() +
+                             " (is the disk full or not writable?)");
+  }
+}
 } // namespace
 
 MonitorSample ElasticWaveModel::Impl::sample_monitor(const std::size_t monitor) const
@@ -124,11 +155,7 @@ std::string ElasticWaveModel::Impl::write_snapshot(const std::string& directory,
       : compression == VtuCompression::best_speed ? DataOutBase::VtkFlags::best_speed
                                                   : DataOutBase::VtkFlags::best_compression;
   data_out.set_flags(flags);
-  {
-    std::ofstream out(std::filesystem::path(directory) / name.str());
-    AssertThrow(out, ExcMessage("cannot write " + directory + "/" + name.str()));
-    data_out.write_vtu(out);
-  }
+  write_vtu_atomically(data_out, std::filesystem::path(directory) / name.str());
   snapshots.emplace_back(t, name.str());
   // Spelt as DataOutBase::write_pvd_record spells it: its comment, 12 digits, "ByteOrder".
   std::vector<CollectionDataSet> data_sets;

@@ -215,6 +215,39 @@ TEST(HistoryWriter, RowsAreOnDiskAfterFlushWhileTheWriterIsOpen)
   fs::remove(path);
 }
 
+// A run stopped by an error (its disk may be full) does not flush again while it unwinds: the
+// bytes on disk are the last flush's file, which HDF5 opens, with every dataset at its rows.
+TEST(HistoryWriter, AnErrorUnwindingLeavesTheLastFlush)
+{
+  const fs::path path = temporary_file(".h5");
+  const fs::path copy = temporary_file("_copy.h5");
+  try
+  {
+    HistoryWriter writer(path.string(), monitor_and_energy_channels(), 16);
+    for (std::size_t i = 0; i < 40; ++i)
+      writer.append(time_of_row(i), values_of_row(i));
+    writer.flush();
+    for (std::size_t i = 40; i < 100; ++i) // written in blocks of 16, never flushed
+      writer.append(time_of_row(i), values_of_row(i));
+    throw std::runtime_error("the run fails");
+  }
+  catch (const std::runtime_error&)
+  {
+  }
+  fs::copy_file(path, copy); // what a reader finds on disk
+  ReadOnlyFile file(copy);
+  ASSERT_GE(file.id, 0);
+  const auto time = read_dataset(file.id, "/time");
+  ASSERT_GE(time.size(), 40u);
+  EXPECT_EQ(dataset_shape(file.id, "/monitors/M1/stress"), std::vector<hsize_t>({time.size(), 3}));
+  const auto kinetic = read_dataset(file.id, "/energy/kinetic");
+  ASSERT_EQ(kinetic.size(), time.size());
+  EXPECT_EQ(kinetic[39], values_of_row(39)[5]);
+  EXPECT_EQ(time[39], time_of_row(39));
+  fs::remove(copy);
+  fs::remove(path);
+}
+
 TEST(HistoryWriter, EmptyRunLeavesEmptyDatasets)
 {
   const fs::path path = temporary_file(".h5");
