@@ -7,6 +7,7 @@
 #include "app/stage_records.h"
 
 #include "common/format.h"
+#include "common/resource_limits.h"
 
 #include "dda/system.h"
 #include "dda/time_step_advice.h"
@@ -142,10 +143,32 @@ void describe_stepping(const Scene& scene, const dda::System& system, std::ostre
 
 } // namespace
 
+namespace
+{
+/// The estimate that read_scene checked against the memory limit, for the model as read.
+std::string describe_resources(const Scene& scene)
+{
+  const double dofs = scene.far_field ? estimate_far_field_dofs(*scene.far_field) : 0.0;
+  const auto n_blocks = static_cast<double>(scene.model.blocks.size());
+  const double bytes =
+      MemoryModel::of_blocks(n_blocks) + (scene.far_field ? MemoryModel::of_far_field(dofs) : 0.0);
+  std::ostringstream out;
+  out << "resources: " << scene.model.blocks.size() << " blocks";
+  if (scene.far_field)
+    out << ", far field about " << format_number(std::round(dofs)) << " DOFs";
+  out << "; estimated peak memory " << format_bytes(bytes) << ", limit "
+      << (scene.limits.memory > 0.0
+              ? format_bytes(scene.limits.memory) + " (" + scene.limits.source + ")"
+              : std::string("none"))
+      << "\n";
+  return out.str();
+}
+} // namespace
+
 std::string check_scene(const Scene& scene)
 {
   if (scene.far_field && !scene.coupled())
-    return far_field_module().check_far_field(scene);
+    return far_field_module().check_far_field(scene) + describe_resources(scene);
   dda::System system(scene.model); // finds joints; throws InputError on engine-level issues
   const std::unique_ptr<TiedFarField> tied =
       scene.coupled() ? far_field_module().tie(scene, system) : nullptr;
@@ -165,6 +188,7 @@ std::string check_scene(const Scene& scene)
     tied->describe(out);
   for (const std::string& w : unstable_boundary_messages(system, scene.model.time.dt))
     out << "warning: " << w << " (`run` refuses it without --allow-unstable)\n";
+  out << describe_resources(scene);
   return out.str();
 }
 

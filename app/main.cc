@@ -24,6 +24,7 @@ struct CommandLine
 {
   std::string scene;
   std::vector<std::string> settings; ///< --set key=value, in the order given
+  std::string max_memory;            ///< --max-memory SIZE; empty: 90 % of what is available
   ddafem::RunOptions options;
 };
 
@@ -36,6 +37,11 @@ void add_scene_arguments(CLI::App& command, CommandLine& cl)
                   "override any scene key, e.g. --set time.dt=1e-4 (repeatable)")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
+  command
+      .add_option("--max-memory", cl.max_memory,
+                  "refuse a scene estimated to need more memory, e.g. 8G (default: 90 % of the "
+                  "memory available)")
+      ->type_name("SIZE");
 }
 
 /// Freed memory stays in the process's heap: glibc otherwise maps blocks above 128 KiB afresh
@@ -57,7 +63,10 @@ int check_or_run(const CommandLine& cl, bool run)
   std::vector<ddafem::Override> overrides;
   for (const std::string& s : cl.settings)
     overrides.push_back(ddafem::parse_override(s));
-  ddafem::Scene scene = ddafem::read_scene(cl.scene, overrides);
+  const ddafem::ResourceLimits limits = cl.max_memory.empty()
+                                            ? ddafem::ResourceLimits::of_this_machine()
+                                            : ddafem::ResourceLimits::given(cl.max_memory);
+  ddafem::Scene scene = ddafem::read_scene(cl.scene, overrides, limits);
   scene.model.solver.threads = cl.options.threads;
   try
   {

@@ -7,6 +7,7 @@
 #include "app/scene_text.h"
 #include "common/enum_names.h"
 #include "common/input_error.h"
+#include "common/resource_limits.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -65,6 +66,8 @@ struct Context
   const SceneSchema& schema;
   const Locator& locator;
   std::filesystem::path scene_directory;
+  /// The memory a scene may take: readers refuse one estimated beyond it before building it.
+  ResourceLimits limits;
 };
 
 // ---- Reading one map against its schema section ---------------------------------------------

@@ -69,7 +69,8 @@ Override parse_override(const std::string& argument)
   return {trim(argument.substr(0, equals)), argument.substr(equals + 1)};
 }
 
-Scene read_scene(const std::string& file, const std::vector<Override>& overrides)
+Scene read_scene(const std::string& file, const std::vector<Override>& overrides,
+                 const ResourceLimits& limits)
 {
   const SceneSchema schema;
   Locator locator(file);
@@ -78,12 +79,13 @@ Scene read_scene(const std::string& file, const std::vector<Override>& overrides
   {
     for (const Override& o : overrides)
       locator.add_override(apply_override(root, o));
-    const Context context{schema, locator, std::filesystem::path(file).parent_path()};
+    const Context context{schema, locator, std::filesystem::path(file).parent_path(), limits};
     std::optional<TunnelPlan> tunnel;
     if (root.IsMap() && child(root, "tunnel").IsDefined())
       tunnel = expand_tunnel(root, context);
     Scene scene = read_validated_scene(file, root, context);
     scene.tunnel = std::move(tunnel);
+    scene.limits = limits;
     if (scene.tunnel)
       scene.expanded_yaml = YAML::Dump(root);
     return scene;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "app/tunnel_scene.h"
+#include "common/resource_limits.h"
 #include "coupling/far_field_ties.h"
 #include "dda/model_description.h"
 #include "dda/rock_mass.h"
@@ -56,6 +57,7 @@ struct Scene
   std::optional<TunnelPlan> tunnel;
   std::string expanded_yaml;
   OutputSettings output;
+  ResourceLimits limits; ///< what it was read against (check prints the estimate)
 };
 
 /// One `--set path.to.key=value` override; list items are addressed by index (blocks.0.material).
@@ -72,7 +74,18 @@ Override parse_override(const std::string& argument);
 /// naming the file, line, key, value and what was expected (unknown keys, wrong types, values
 /// out of range, missing required keys, missing CSV files, unknown material names, polygons
 /// that are not simple, overlapping blocks, points outside every block, ...).
-Scene read_scene(const std::string& file, const std::vector<Override>& overrides = {});
+/// The far field's element size away from its hole [m]: `element_size`, or
+/// `points_per_wavelength` nodes per S wavelength at `max_frequency` (or the incident wave's);
+/// 0 for a mesh file.
+double far_field_element_size(const fem::FarFieldDescription& d);
+/// About how many DOFs the far field's generated mesh will have, before it is made: the
+/// rectangle and the ring graded from the hole (common/resource_limits.h); 0 for a mesh file.
+double estimate_far_field_dofs(const fem::FarFieldDescription& d);
+
+/// `limits`: a scene estimated to need more memory is refused (InputError naming the key that
+/// drives it and the largest value that fits) before its blocks or far field are built.
+Scene read_scene(const std::string& file, const std::vector<Override>& overrides = {},
+                 const ResourceLimits& limits = ResourceLimits::of_this_machine());
 
 /// Markdown reference of every scene key (type, unit, default, range, meaning), generated from
 /// the same schema the reader validates against, so that it cannot drift.

@@ -25,6 +25,17 @@ void read_block_grid(const MapReader& r, dda::BlockDescription block, dda::Model
   constexpr long long max_cells = 1000000;
   if (count[0] > max_cells || count[1] > max_cells || count[0] * count[1] > max_cells)
     throw grid.error("count", "expected at most " + std::to_string(max_cells) + " cells in all");
+  const double n_blocks = static_cast<double>(model.blocks.size() + count[0] * count[1]);
+  const ResourceLimits& limits = r.ctx().limits;
+  if (!limits.fits(MemoryModel::of_blocks(n_blocks)))
+  {
+    const double largest = (limits.memory - MemoryModel::base) / MemoryModel::per_block -
+                           static_cast<double>(model.blocks.size());
+    throw grid.error(
+        "count", format_number(static_cast<double>(count[0] * count[1])) + " blocks would need " +
+                     limits.too_much(MemoryModel::of_blocks(n_blocks)) + ": expected at most " +
+                     format_number(std::floor(std::max(largest, 0.0))) + " cells");
+  }
   for (long long iy = 0; iy < count[1]; ++iy)
     for (long long ix = 0; ix < count[0]; ++ix)
     {

@@ -262,6 +262,71 @@ void check_point_in_far_field(const MapReader& r, const std::string& key, const 
                  format_number(far_field.upper[1]) + "]");
 }
 
+namespace
+{
+/// Perimeter of the hole [m] (0 without one).
+double hole_perimeter(const fem::HoleDescription& h)
+{
+  switch (h.shape)
+  {
+  case fem::HoleShape::circle:
+    return 2.0 * M_PI * h.radius;
+  case fem::HoleShape::rectangle:
+    return 2.0 * ((h.upper[0] - h.lower[0]) + (h.upper[1] - h.lower[1]));
+  case fem::HoleShape::polygon:
+  {
+    double p = 0.0;
+    for (std::size_t k = 0; k < h.vertices.size(); ++k)
+    {
+      const auto& a = h.vertices[k];
+      const auto& b = h.vertices[(k + 1) % h.vertices.size()];
+      p += std::hypot(b[0] - a[0], b[1] - a[1]);
+    }
+    return p;
+  }
+  case fem::HoleShape::none:
+    break;
+  }
+  return 0.0;
+}
+
+/// Refuses a generated far field estimated beyond the memory limit before its mesh is made
+/// (estimate_far_field_dofs). The error names the key that drives the larger part, the
+/// rectangle or the ring graded from the hole, and the value at which the estimate fits.
+void require_far_field_fits(const MapReader& f, const fem::FarFieldDescription& d)
+{
+  const double dofs = estimate_far_field_dofs(d);
+  const double h = far_field_element_size(d);
+  const double h0 = d.hole.element_size;
+  const double area = (d.upper[0] - d.lower[0]) * (d.upper[1] - d.lower[1]);
+  const double ring_dofs = dofs - estimate_far_field_dofs(area, h, 0.0, 0.0, 1.0, d.degree);
+  const double frequency =
+      d.max_frequency > 0.0 ? d.max_frequency : d.incident.velocity.characteristic_frequency();
+  if (dofs == 0.0)
+    return;
+  const ResourceLimits& limits = f.ctx().limits;
+  if (limits.fits(MemoryModel::of_far_field(dofs)))
+    return;
+  const double dofs_fit =
+      std::max(limits.memory - MemoryModel::far_field_base, 0.0) / MemoryModel::per_far_field_dof;
+  const std::string need = "about " + format_number(std::round(dofs)) +
+                           " far-field DOFs would need " +
+                           limits.too_much(MemoryModel::of_far_field(dofs)) + ": expected ";
+  if (2.0 * ring_dofs > dofs)
+    throw f.section_reader("hole").error(
+        "element_size", need + "an element size at the hole of at least " +
+                            format_significant(h0 * dofs / std::max(dofs_fit, 1.0), 3) + " m");
+  const double scale = std::sqrt(dofs / std::max(dofs_fit, 1.0)); // DOFs ~ 1 / h^2
+  if (d.element_size > 0.0)
+    throw f.error("element_size",
+                  need + "an element size of at least " + format_significant(h * scale, 3) + " m");
+  throw f.error(d.max_frequency > 0.0 ? "max_frequency" : "incident",
+                need + "a highest frequency of at most " +
+                    format_significant(frequency / scale, 3) +
+                    " Hz (or fewer points_per_wavelength)");
+}
+} // namespace
+
 /// The `far_field` section (the plane mode, time step and integrator come from the scene).
 fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDescription& model,
                                         const std::vector<std::string>& material_names)
@@ -313,6 +378,7 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
     d.incident.type = inc.choice_of<WaveType>("type");
     d.incident.velocity = read_time_function(inc, "velocity");
   }
+  require_far_field_fits(f, d);
   return d;
 }
 
@@ -362,3 +428,29 @@ void complete_far_field(const MapReader& top, const std::vector<std::string>& jo
 }
 
 } // namespace ddafem::scene_reading
+
+namespace ddafem
+{
+double far_field_element_size(const fem::FarFieldDescription& d)
+{
+  if (!d.mesh_file.file.empty())
+    return 0.0;
+  if (d.element_size > 0.0)
+    return d.element_size;
+  const double frequency =
+      d.max_frequency > 0.0 ? d.max_frequency : d.incident.velocity.characteristic_frequency();
+  // points_per_wavelength counts nodes; an FE_Q(p) element spans p node intervals.
+  return s_wave_speed(d.youngs_modulus, d.poisson_ratio, d.density) /
+         (frequency * d.points_per_wavelength) * d.degree;
+}
+
+double estimate_far_field_dofs(const fem::FarFieldDescription& d)
+{
+  const double h = far_field_element_size(d);
+  if (!(h > 0.0))
+    return 0.0;
+  return estimate_far_field_dofs((d.upper[0] - d.lower[0]) * (d.upper[1] - d.lower[1]), h,
+                                 scene_reading::hole_perimeter(d.hole), d.hole.element_size,
+                                 d.hole.growth_ratio, d.degree);
+}
+} // namespace ddafem

@@ -145,6 +145,7 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
   t.rock_mass.chord_tolerance = r.number("chord_tolerance");
   t.rock_mass.seed = static_cast<std::uint64_t>(r.integer("seed"));
   read_tunnel_joints(r, root, t.rock_mass);
+  t.limits = context.limits;
   const double far = 1e12;
   t.rock_mass.openings.push_back(
       read_opening(r.section_reader("opening"),

@@ -218,6 +218,54 @@ struct BlockMeasures
   double vb1_limit = std::numeric_limits<double>::infinity();
 };
 
+/// Refuses a near field whose blocks are estimated beyond the memory limit, before they are
+/// generated: names the joint set of the smallest spacing and the spacing at which the estimate
+/// fits with every set's spacing scaled alike (blocks ~ 1 / spacing^2).
+void require_blocks_fit(const TunnelDescription& t, const dda::RockMassDescription& d)
+{
+  const double n_blocks = dda::estimate_block_count(d);
+  if (t.limits.fits(MemoryModel::of_blocks(n_blocks)) || d.joint_sets.empty())
+    return;
+  const double n_fit =
+      std::max((t.limits.memory - MemoryModel::base) / MemoryModel::per_block, 1.0);
+  std::size_t k = 0;
+  for (std::size_t s = 1; s < d.joint_sets.size(); ++s)
+    if (d.joint_sets[s].spacing < d.joint_sets[k].spacing)
+      k = s;
+  throw InputError("tunnel.joint_sets[" + std::to_string(k) +
+                   "].spacing = " + format_significant(d.joint_sets[k].spacing) + " m: about " +
+                   format_number(std::round(n_blocks)) + " near-field blocks would need " +
+                   t.limits.too_much(MemoryModel::of_blocks(n_blocks)) +
+                   ": expected a spacing of at least " +
+                   format_significant(d.joint_sets[k].spacing * std::sqrt(n_blocks / n_fit), 3) +
+                   " m (with the other sets' spacings scaled alike)");
+}
+
+/// Refuses a far field (with the near field's blocks) estimated beyond the memory limit before
+/// it is made: names tunnel.wave.max_frequency, which sets its element size, and the largest
+/// value that fits (DOFs ~ max_frequency^2).
+void require_far_field_fits(const TunnelDescription& t, const TunnelPlan& plan)
+{
+  const Point far = plan.far_upper - plan.far_lower, near = plan.near_upper - plan.near_lower;
+  const double dofs =
+      estimate_far_field_dofs(far.x() * far.y(), plan.far_element_size, 2.0 * (near.x() + near.y()),
+                              plan.near_element_size, t.growth_ratio, 2);
+  const double blocks = MemoryModel::per_block * static_cast<double>(plan.n_blocks);
+  const double bytes = MemoryModel::of_far_field(dofs) + blocks;
+  if (t.limits.fits(bytes))
+    return;
+  const double dofs_fit = std::max((t.limits.memory - MemoryModel::far_field_base - blocks) /
+                                       MemoryModel::per_far_field_dof,
+                                   1.0);
+  throw InputError("tunnel.wave.max_frequency = " + format_significant(t.max_frequency) +
+                   " Hz (2 x the wave's frequency unless given): about " +
+                   format_number(std::round(dofs)) + " far-field DOFs and " +
+                   std::to_string(plan.n_blocks) + " blocks would need " +
+                   t.limits.too_much(bytes) + ": expected a highest frequency of at most " +
+                   format_significant(t.max_frequency * std::sqrt(dofs_fit / dofs), 3) +
+                   " Hz (or fewer tunnel.points_per_wavelength)");
+}
+
 /// The near field's blocks, generated once to measure them: their number and size, the rock
 /// mass's modulus where the far field meets them and its wave speeds (plan.n_blocks,
 /// mean_block_size, rock_mass_modulus, vp, vs, wave_speed).
@@ -227,6 +275,7 @@ BlockMeasures plan_rock_mass(const TunnelDescription& t, TunnelPlan& plan)
   dda::RockMassDescription d = t.rock_mass;
   d.region = {plan.near_lower, Point(plan.near_upper.x(), plan.near_lower.y()), plan.near_upper,
               Point(plan.near_lower.x(), plan.near_upper.y())};
+  require_blocks_fit(t, d);
   const dda::RockMassResult blocks = dda::generate_blocks(d);
   plan.n_blocks = blocks.blocks.size();
   plan.mean_block_size = std::sqrt(blocks.statistics.mean_area);
@@ -410,6 +459,7 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
                   format_significant(plan.near_element_size) +
                   " m at the blocks (their mean size), growing by " +
                   format_significant(t.growth_ratio));
+    require_far_field_fits(t, plan);
   }
   else
     why.push_back("no far field: the blocks' outer edges carry " +

@@ -5,6 +5,7 @@
 // with its reason. app/tunnel_scene.h writes the plan into a scene's sections.
 #pragma once
 
+#include "common/resource_limits.h"
 #include "common/wave_type.h"
 #include "dda/model_description.h"
 #include "dda/rock_mass.h"
@@ -89,6 +90,9 @@ struct TunnelDescription
   double settle_rest_duration = 0.0; ///< [s]; 0: chosen
   double settle_max_duration = 0.0;  ///< [s]; 0: chosen
   bool settle_remove_fallen = true;  ///< SettleCriterion::remove_fallen
+  /// The memory the scene may take: plan_tunnel refuses a plan estimated beyond it (InputError)
+  /// before it generates the near field's blocks.
+  ResourceLimits limits;
 };
 
 /// A grid of equal rectangular blocks (a `blocks` entry with a `grid`).

@@ -261,4 +261,25 @@ RockMassResult generate_blocks(const RockMassDescription& d)
   return result;
 }
 
+double estimate_block_count(const RockMassDescription& d)
+{
+  const double area = std::abs(signed_area(d.region));
+  const auto persistence = [](const JointSet& set)
+  { return set.persistent() ? 1.0 : set.trace_length / (set.trace_length + set.bridge); };
+  double blocks = 1.0;
+  for (std::size_t i = 0; i < d.joint_sets.size(); ++i)
+  {
+    const JointSet& a = d.joint_sets[i];
+    // Traces across the region's width normal to the set (at most its extent).
+    blocks += extent(d.region) / a.spacing;
+    for (std::size_t j = i + 1; j < d.joint_sets.size(); ++j)
+    {
+      const JointSet& b = d.joint_sets[j];
+      const double crossing = std::abs(std::sin((a.dip - b.dip) * M_PI / 180.0));
+      blocks += area * crossing * persistence(a) * persistence(b) / (a.spacing * b.spacing);
+    }
+  }
+  return blocks;
+}
+
 } // namespace ddafem::dda

@@ -262,4 +262,12 @@ std::vector<Point> opening_polygon(const Opening& opening, double chord_toleranc
 /// block is dropped from that block only, as where a neighbour's vertex meets its edge.
 RockMassResult generate_blocks(const RockMassDescription& description);
 
+/// About how many blocks generate_blocks makes, without making them (to refuse a scene too large
+/// for memory before the arrangement is built): a line arrangement has about one face per
+/// crossing, and sets i and j cross A |sin(dip_i - dip_j)| k_i k_j / (s_i s_j) times in a region
+/// of area A (spacings s, persistences k = trace_length / (trace_length + bridge)); plus a face
+/// per trace and the region itself. Explicit joints and openings change it little. Within 1 %
+/// of the count generated for two persistent sets (tested).
+double estimate_block_count(const RockMassDescription& description);
+
 } // namespace ddafem::dda

@@ -120,13 +120,12 @@ def check_collection(run_dir, pvd):
 
 
 def check_summary(run_dir):
-    """(status, problems) of summary.json."""
+    """(summary.json's content, problems)."""
     try:
         with open(os.path.join(run_dir, "summary.json")) as f:
-            summary = json.load(f)
+            return json.load(f), []
     except (OSError, ValueError) as error:
-        return None, [f"summary.json: {error}"]
-    return summary.get("status"), []
+        return {}, [f"summary.json: {error}"]
 
 
 def crash_scene(ddafem, name, kills, rng, work):
@@ -134,15 +133,16 @@ def crash_scene(ddafem, name, kills, rng, work):
     full_dir = os.path.join(work, name + "_full")
     wall = run_to_end(ddafem, scene, full_dir)
     reference = read_histories(os.path.join(full_dir, "histories.h5"))
-    with open(os.path.join(full_dir, "summary.json")) as f:
-        flush_interval = json.load(f).get("flush_interval_s")
+    flush_interval = None  # the running summary.json's
     records = []
     for k in range(kills):
         moment = rng.uniform(0.3, max(0.35, 0.95 * wall))
         run_dir = os.path.join(work, f"{name}_kill{k}")
         killed = run_and_kill(ddafem, scene, run_dir, moment)
         if os.path.isdir(run_dir):
-            status, problems = check_summary(run_dir)
+            summary, problems = check_summary(run_dir)
+            status = summary.get("status")
+            flush_interval = summary.get("flush_interval_s", flush_interval)
             rows, reached, history_problems = check_histories(
                 os.path.join(run_dir, "histories.h5"), reference)
             problems += history_problems + check_collection(run_dir, pvd)
