@@ -16,6 +16,8 @@
 #include <limits>
 #include <map>
 #include <set>
+#include <sstream>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -500,12 +502,20 @@ void read_gmsh(const FarFieldDescription& d, Triangulation<2>& mesh)
   {
     grid_in.read_msh(in);
   }
-  catch (const std::exception& e)
+  catch (const ExceptionBase& e)
   {
+    // deal.II's own words only ("Additional information"), on one line: not its file, line and
+    // stack trace.
+    std::ostringstream info;
+    e.print_info(info);
+    std::string words;
+    std::istringstream in_words(info.str());
+    for (std::string word; in_words >> word;)
+      words += (words.empty() ? "" : " ") + word;
     throw InputError("far field: mesh.file = '" + file +
                      "': not a mesh deal.II reads (expected ASCII Gmsh msh 2 or 4 of "
                      "quadrilaterals): " +
-                     e.what());
+                     words);
   }
 
   std::map<unsigned int, BoundaryPart> part_of_tag;
