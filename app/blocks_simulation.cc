@@ -50,7 +50,7 @@ public:
     outputs.emplace(dir, scene.file, system, tied.get(), keyblocks, scene.output.vtu_compression);
   }
   std::size_t n_stages() const override { return plan.size(); }
-  bool run_stage(std::size_t k, const std::function<void()>& report) override;
+  bool run_stage(std::size_t k, const std::function<bool()>& report) override;
   void close_outputs() override;
   void flush_outputs() override { outputs->flush(); }
   std::size_t n_steps() const override { return system.n_steps(); }
@@ -64,8 +64,8 @@ public:
   RunEnd end() const override;
 
 private:
-  void run_static_stage(const dda::Stage& stage, const std::function<void()>& report);
-  void run_dynamic_stage(const dda::Stage& stage, const std::function<void()>& report);
+  void run_static_stage(const dda::Stage& stage, const std::function<bool()>& report);
+  void run_dynamic_stage(const dda::Stage& stage, const std::function<bool()>& report);
 
   const Scene& scene;
   const std::vector<dda::Stage> plan;
@@ -76,6 +76,7 @@ private:
   StageTotals stages;
   LastStep last_step;
   bool initial_written = false;
+  bool stopped = false; ///< a stage stopped at a budget (report returned false)
   std::optional<std::vector<dda::Vector2>> fall_reference; ///< per block [m]
 };
 
@@ -110,22 +111,23 @@ std::vector<std::string> BlocksSimulation::collect_warnings(bool allow_unstable)
   return found;
 }
 
-bool BlocksSimulation::run_stage(std::size_t k, const std::function<void()>& report)
+bool BlocksSimulation::run_stage(std::size_t k, const std::function<bool()>& report)
 {
   const dda::Stage& stage = plan[k];
   if (stage.mode == dda::StageMode::static_equilibrium)
     run_static_stage(stage, report);
   else
     run_dynamic_stage(stage, report);
-  return !stages.failed();
+  return !stages.failed() && !stopped;
 }
 
 void BlocksSimulation::run_static_stage(const dda::Stage& stage,
-                                        const std::function<void()>& report)
+                                        const std::function<bool()>& report)
 {
   const dda::StaticStageResult result =
       dda::run_static_stage(system, stage, scene.model.time, report);
   stages.add(result);
+  stopped = result.stopped;
   for (const dda::ReleasedBlock& r : result.released)
   {
     keyblocks.mark_released(r.block);
@@ -133,11 +135,12 @@ void BlocksSimulation::run_static_stage(const dda::Stage& stage,
       keyblocks.mark_removed(r.block);
   }
   stages.records.push_back(static_stage_record(stage, result, system, keyblocks));
-  stages.failure = static_stage_failure(stage, result, system);
+  if (!result.stopped)
+    stages.failure = static_stage_failure(stage, result, system);
 }
 
 void BlocksSimulation::run_dynamic_stage(const dda::Stage& stage,
-                                         const std::function<void()>& report)
+                                         const std::function<bool()>& report)
 {
   system.begin_stage(dda::StageMode::dynamic);
   if (!fall_reference)
@@ -167,9 +170,10 @@ void BlocksSimulation::run_dynamic_stage(const dda::Stage& stage,
         ++stage_steps;
         if (stage_steps % scene.output.history_every == 0 || last || snapshot)
           outputs->write_state(snapshot, last_step);
-        report();
+        return report();
       });
   stages.add(result);
+  stopped = result.stopped;
   for (const auto& [block, when] : result.removed)
     keyblocks.mark_removed(block);
   stages.records.push_back(dynamic_stage_record(stage, result, system, keyblocks));
@@ -179,7 +183,7 @@ void BlocksSimulation::run_dynamic_stage(const dda::Stage& stage,
 void BlocksSimulation::close_outputs()
 {
   // Keep the state reached readable (a static-only analysis writes its equilibrium here).
-  if (stages.failed() || !initial_written)
+  if (stages.failed() || stopped || !initial_written)
     outputs->write_state(true, last_step);
   outputs->flush();
 }

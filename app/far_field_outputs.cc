@@ -63,17 +63,23 @@ FarFieldOutputs::FarFieldOutputs(const std::filesystem::path& dir_, const std::s
 
 void FarFieldOutputs::write_state(bool snapshot)
 {
+  // A state already written (a run stopped right after a step it wrote) is not written again.
   const auto start = Clock::now();
-  std::vector<double> row;
-  append_far_field_monitors(row, model, n_monitors);
-  const fem::EnergyBalance e = model.energy();
-  row.insert(row.end(), {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots,
-                         e.work_of_rayleigh, e.dissipated});
-  history.append(model.time(), row);
-  if (snapshot)
+  if (last_row_time != model.time())
+  {
+    std::vector<double> row;
+    append_far_field_monitors(row, model, n_monitors);
+    const fem::EnergyBalance e = model.energy();
+    row.insert(row.end(), {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots,
+                           e.work_of_rayleigh, e.dissipated});
+    history.append(model.time(), row);
+    last_row_time = model.time();
+  }
+  if (snapshot && last_snapshot_time != model.time())
   {
     model.write_snapshot(dir.string(), "far_field", vtu_compression);
     ++n_written;
+    last_snapshot_time = model.time();
   }
   time_output += seconds_since(start);
 }

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,7 @@ private:
   HistoryWriter history;
   std::size_t n_written = 0;
   double time_output = 0.0;
+  std::optional<double> last_row_time, last_snapshot_time; ///< [s]
 };
 
 /// Everything summary.json says about a run of a far field alone that has ended.

@@ -27,10 +27,10 @@ public:
     outputs->write_state(true);
   }
   std::size_t n_stages() const override { return 1; }
-  bool run_stage(std::size_t k, const std::function<void()>& report) override;
+  bool run_stage(std::size_t k, const std::function<bool()>& report) override;
   void close_outputs() override
   {
-    if (failed())
+    if (failed() || stopped)
       outputs->write_state(true);
     outputs->flush();
   }
@@ -56,9 +56,10 @@ private:
   fem::ElasticWaveModel model;
   std::optional<FarFieldOutputs> outputs;
   fem::StepStatus failure; ///< outcome success unless a step failed
+  bool stopped = false;    ///< stopped at a budget (report returned false)
 };
 
-bool FarFieldSimulation::run_stage(std::size_t, const std::function<void()>& report)
+bool FarFieldSimulation::run_stage(std::size_t, const std::function<bool()>& report)
 {
   const double dt = description.dt;
   const auto n_steps = static_cast<std::size_t>(std::llround(description.end_time / dt));
@@ -76,7 +77,11 @@ bool FarFieldSimulation::run_stage(std::size_t, const std::function<void()>& rep
         run_support::snapshot_due(model.time(), scene.output.interval, dt, next_snapshot) || last;
     if (step % scene.output.history_every == 0 || snapshot)
       outputs->write_state(snapshot);
-    report();
+    if (!report())
+    {
+      stopped = !last;
+      return last;
+    }
   }
   return true;
 }

@@ -5,7 +5,8 @@
 //   ddafem scene-reference
 //
 // Exit codes: 0 success, 1 numerical failure (or an I/O failure while writing results),
-// 2 bad input (scene, command line, missing file).
+// 2 bad input (scene, command line, missing file, a scene too large for memory), 3 stopped at a
+// budget (--max-wall-time, --max-memory).
 #include "app/run.h"
 #include "app/scene.h"
 #include "common/input_error.h"
@@ -40,7 +41,7 @@ void add_scene_arguments(CLI::App& command, CommandLine& cl)
   command
       .add_option("--max-memory", cl.max_memory,
                   "refuse a scene estimated to need more memory, e.g. 8G (default: 90 % of the "
-                  "memory available)")
+                  "memory available); `run` also stops cleanly, exit code 3, if it uses more")
       ->type_name("SIZE");
 }
 
@@ -67,6 +68,9 @@ int check_or_run(const CommandLine& cl, bool run)
                                             ? ddafem::ResourceLimits::of_this_machine()
                                             : ddafem::ResourceLimits::given(cl.max_memory);
   ddafem::Scene scene = ddafem::read_scene(cl.scene, overrides, limits);
+  ddafem::RunOptions options = cl.options;
+  if (!cl.max_memory.empty())
+    options.max_memory = limits.memory; // also a budget while the run runs
   scene.model.solver.threads = cl.options.threads;
   try
   {
@@ -75,7 +79,7 @@ int check_or_run(const CommandLine& cl, bool run)
       std::cout << ddafem::check_scene(scene);
       return 0;
     }
-    return ddafem::run_scene(scene, cl.options, std::cout);
+    return ddafem::run_scene(scene, options, std::cout);
   }
   catch (const ddafem::InputError& e)
   {
@@ -89,7 +93,7 @@ int main(int argc, char** argv)
 {
   keep_freed_memory();
   CLI::App app("ddafem: jointed rock dynamics, DDA blocks with a deal.II far field.\n"
-               "Exit codes: 0 success, 1 numerical failure, 2 bad input.",
+               "Exit codes: 0 success, 1 numerical failure, 2 bad input, 3 stopped at a budget.",
                "ddafem");
   app.set_version_flag("--version", std::string("ddafem ") + DDAFEM_VERSION);
   app.require_subcommand(1);
@@ -107,6 +111,11 @@ int main(int argc, char** argv)
                   "(solver.method block_pcg; default 0: all cores); results do not depend on it")
       ->check(CLI::Range(0u, 1024u))
       ->type_name("N");
+  run->add_option("--max-wall-time", cl.options.max_wall_time,
+                  "stop cleanly after the step at which the run has taken this wall time, writing "
+                  "its state and summary.json (status stopped, exit code 3)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("SECONDS");
   run->add_flag("--allow-unstable", cl.options.allow_unstable,
                 "run although a boundary feeds energy in at this dt (it will fail)");
   CLI::App* reference =

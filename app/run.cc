@@ -6,6 +6,8 @@
 #include "app/run_support.h"
 #include "app/simulation.h"
 
+#include "common/format.h"
+#include "common/resource_limits.h"
 #include "common/stopwatch.h"
 
 #include <nlohmann/json.hpp>
@@ -40,7 +42,7 @@ public:
     {
       open_outputs();
       for (std::size_t k = 0; k < simulation->n_stages(); ++k)
-        if (!simulation->run_stage(k, [this] { after_step(); }))
+        if (!simulation->run_stage(k, [this] { return after_step(); }))
           break;
       return write_summary();
     }
@@ -59,13 +61,19 @@ private:
   /// "error" and the message, if it can still be written; else the running one stays.
   void write_error_summary(const std::string& message) const;
   nlohmann::json summary_so_far(const std::string& status, double wall) const;
-  void after_step()
+  /// Progress, flushes, and the budgets: false stops the run after this step.
+  bool after_step()
   {
     const double wall = seconds_since(wall_start);
     progress->update(simulation->n_steps(), simulation->time(), wall, false);
     if (wall - last_flush >= scene.output.flush_interval)
       flush(wall);
+    stop_reason = budget_exceeded(wall);
+    return stop_reason.empty();
   }
+  /// Why the run must stop now (empty: it goes on): --max-wall-time reached, or the resident
+  /// memory above --max-memory (read at most ten times a second).
+  std::string budget_exceeded(double wall);
   /// Flushes the histories to disk, then says so in the running summary.json.
   void flush(double wall);
 
@@ -77,8 +85,26 @@ private:
   std::filesystem::path dir;
   std::vector<std::string> warnings;
   std::optional<run_support::Progress> progress;
-  double last_flush = 0.0; ///< wall time of the last flush [s]
+  double last_flush = 0.0;        ///< wall time of the last flush [s]
+  double last_memory_check = 0.0; ///< wall time of the last look at the memory [s]
+  std::string stop_reason;        ///< why a budget stopped the run; empty if none did
 };
+
+std::string SceneRun::budget_exceeded(double wall)
+{
+  if (options.max_wall_time > 0.0 && wall >= options.max_wall_time)
+    return "the wall-time budget of " + format_significant(options.max_wall_time) +
+           " s (--max-wall-time) was reached";
+  if (options.max_memory > 0.0 && wall - last_memory_check >= 0.1)
+  {
+    last_memory_check = wall;
+    const double resident = run_support::resident_memory_bytes();
+    if (resident > options.max_memory)
+      return "the memory budget of " + format_bytes(options.max_memory) +
+             " (--max-memory) was exceeded: " + format_bytes(resident) + " resident";
+  }
+  return {};
+}
 
 /// Builds the models and collects the warnings, refusing unstable boundaries unless allowed:
 /// input errors surface here, before anything is written.
@@ -155,8 +181,14 @@ int SceneRun::write_summary()
   simulation->close_outputs();
   const double wall = seconds_since(wall_start);
   const RunEnd end = simulation->end();
-  return run_support::finish_run(dir, simulation->summary(warnings, wall), end.failure, end.steps,
-                                 end.time, wall, end.view_file, log);
+  nlohmann::json summary = simulation->summary(warnings, wall);
+  if (!stop_reason.empty())
+  {
+    summary["status"] = "stopped";
+    summary["stopped"] = stop_reason;
+  }
+  return run_support::finish_run(dir, summary, end.failure, end.steps, end.time, wall,
+                                 end.view_file, log);
 }
 } // namespace
 

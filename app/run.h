@@ -21,6 +21,12 @@ struct RunOptions
   /// Threads of the blocks' iterative solver (solver.method block_pcg); 0: all cores. The
   /// results do not depend on it.
   unsigned threads = 0;
+  /// Stop cleanly after the step at which the wall time reaches this [s] (exit code 3,
+  /// status "stopped"); 0: no budget.
+  double max_wall_time = 0.0;
+  /// Stop cleanly after a step at which the resident memory exceeds this [bytes] (--max-memory,
+  /// which also refuses a scene estimated beyond it); 0: no budget.
+  double max_memory = 0.0;
 };
 
 /// Runs a scene (blocks alone, tied to a far field, or a far field alone) and writes
@@ -28,7 +34,8 @@ struct RunOptions
 /// summary.json into the output directory. Returns the process exit code: 0 on success, 1 on a
 /// numerical failure (its reason and the time reached are printed to `log` and stored in
 /// summary.json; everything written so far stays readable). Bad input throws InputError before
-/// anything is written.
+/// anything is written. A run stopped at a budget (max_wall_time, max_memory) writes its state
+/// and summary.json with the status "stopped" and returns 3.
 int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log);
 
 } // namespace ddafem

@@ -90,14 +90,22 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir_, const std::string& sce
 
 void RunOutputs::write_state(bool snapshot, const LastStep& last)
 {
+  // A state already written (a run stopped right after a step it wrote) is not written again.
   const auto start = Clock::now();
-  std::vector<double> row = history_row(system, last);
-  if (tied)
-    tied->append_row(row);
-  keyblocks.append_row(system, row);
-  history.append(system.time(), row);
-  if (snapshot)
+  if (last_row_time != system.time())
+  {
+    std::vector<double> row = history_row(system, last);
+    if (tied)
+      tied->append_row(row);
+    keyblocks.append_row(system, row);
+    history.append(system.time(), row);
+    last_row_time = system.time();
+  }
+  if (snapshot && last_snapshot_time != system.time())
+  {
     write_snapshot();
+    last_snapshot_time = system.time();
+  }
   time_output += seconds_since(start);
 }
 

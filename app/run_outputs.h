@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -66,6 +67,7 @@ private:
   /// that ParaView opens the whole model from one file.
   std::vector<CollectionDataSet> model_data_sets;
   double time_output = 0.0, time_far_field = 0.0;
+  std::optional<double> last_row_time, last_snapshot_time; ///< [s]
 };
 
 } // namespace ddafem

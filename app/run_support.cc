@@ -23,6 +23,16 @@ double peak_memory_mb()
   return 0.0;
 }
 
+double resident_memory_bytes()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmRSS:", 0) == 0)
+      return std::stod(line.substr(6)) * 1024.0; // kB -> bytes
+  return 0.0;
+}
+
 void create_output_directory(const std::filesystem::path& directory)
 {
   std::error_code ec;
@@ -92,6 +102,12 @@ int finish_run(const std::filesystem::path& dir, const nlohmann::json& summary,
                const std::string& view_file, std::ostream& log)
 {
   write_text_file(dir / "summary.json", summary.dump(2) + "\n");
+  if (summary.value("status", "") == "stopped")
+  {
+    log << "stopped: " << summary["stopped"].get<std::string>() << " at t = " << time << " s\n"
+        << "results up to there are in " << dir.string() << "\n";
+    return 3;
+  }
   if (!failure.empty())
   {
     log << "error: numerical failure: " << failure << "\n"

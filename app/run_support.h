@@ -17,6 +17,9 @@ namespace ddafem::run_support
 /// ru_maxrss would include the image of a parent that forked us, e.g. a Python driver); 0 where
 /// /proc is not available.
 double peak_memory_mb();
+/// Resident memory of this process now [bytes]: VmRSS from /proc/self/status; 0 where /proc is
+/// not available.
+double resident_memory_bytes();
 
 /// Creates the output directory (and parents); InputError naming it on failure.
 void create_output_directory(const std::filesystem::path& directory);
@@ -43,7 +46,8 @@ void add_monitor_channels(std::vector<HistoryChannel>& channels, const std::stri
 
 /// Writes DIR/summary.json and reports the end of a run on `log`: on failure the reason and
 /// where the results so far are (returns exit code 1), else the step count, wall time and the
-/// result files with `view_file` (the PVD) first (returns 0).
+/// result files with `view_file` (the PVD) first (returns 0); a run stopped at a budget
+/// (status "stopped") returns 3.
 int finish_run(const std::filesystem::path& dir, const nlohmann::json& summary,
                const std::string& failure, const std::string& steps, double time, double wall,
                const std::string& view_file, std::ostream& log);

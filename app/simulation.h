@@ -39,8 +39,9 @@ public:
   virtual void open_outputs(const std::filesystem::path& dir) = 0;
 
   virtual std::size_t n_stages() const = 0;
-  /// Runs stage k, calling `report` as steps are taken; false if it failed (the run stops).
-  virtual bool run_stage(std::size_t k, const std::function<void()>& report) = 0;
+  /// Runs stage k, calling `report` after every step; false if it failed or `report` returned
+  /// false (a budget: the stage stops after that step), and the run stops.
+  virtual bool run_stage(std::size_t k, const std::function<bool()>& report) = 0;
   /// Writes the state reached where it is not yet a snapshot and flushes the outputs.
   virtual void close_outputs() = 0;
   /// Writes the buffered history rows and flushes histories.h5 to disk: a run killed after this

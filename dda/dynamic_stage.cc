@@ -131,8 +131,11 @@ DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const T
           result.removed.emplace_back(i, system.time());
         }
     }
-    if (after_step)
-      after_step(stepper, status, result.settled || at_end());
+    if (after_step && !after_step(stepper, status, result.settled || at_end()))
+    {
+      result.stopped = !result.settled && !at_end();
+      break;
+    }
     if (result.settled)
       break;
   }

@@ -71,11 +71,12 @@ struct DynamicStageResult
   /// settle with remove_fallen: the fallen blocks removed as debris and when [s].
   std::vector<std::pair<std::size_t, double>> removed;
   double moving_speed = 0.0; ///< settle: the fastest moving block's speed at the end [m/s]
+  bool stopped = false;      ///< after_step asked to stop before the stage's end
 };
 
 /// Called after every accepted step with the stepper, the step's status and whether it is the
-/// stage's last.
-using AfterDynamicStep = std::function<void(const TimeStepper&, const StepStatus&, bool)>;
+/// stage's last; returns false to stop the stage there (a wall-time or memory budget).
+using AfterDynamicStep = std::function<bool(const TimeStepper&, const StepStatus&, bool)>;
 
 /// Runs a dynamic stage of `system` (begin_stage(dynamic) first) with the scene's time control:
 /// to stage.end_time, or for a settle stage (stage.settle) until SettleDetector::observe says

@@ -46,7 +46,7 @@ std::vector<std::size_t> ReleaseDetector::observe(const System& system)
 }
 
 StaticStageResult run_static_stage(System& system, const Stage& stage, const TimeSettings& time,
-                                   const std::function<void()>& after_step,
+                                   const std::function<bool()>& after_step,
                                    ReleaseCriterion criterion)
 {
   system.begin_stage(StageMode::static_equilibrium);
@@ -69,8 +69,11 @@ StaticStageResult run_static_stage(System& system, const Stage& stage, const Tim
     result.smallest_dt = std::min(result.smallest_dt, stepper.last_dt());
     result.ratio = status.unbalanced_force_ratio;
     result.block = status.unbalanced_block;
-    if (after_step)
-      after_step();
+    if (after_step && !after_step())
+    {
+      result.stopped = true;
+      break;
+    }
     const std::vector<std::size_t> released = detector.observe(system);
     for (const std::size_t i : released)
     {

@@ -92,16 +92,18 @@ struct StaticStageResult
   std::size_t n_penalty_raises = 0;                 ///< TimeStepper::n_penalty_raises
   std::map<StepOutcome, std::size_t> cuts_by_cause; ///< TimeStepper::cuts_by_cause
   double smallest_dt = 0.0;                         ///< of the accepted pseudo steps [s]
+  bool stopped = false; ///< after_step asked to stop (a wall-time or memory budget)
 };
 
 /// Starts a static stage of `system` (System::begin_stage) and steps it with a pseudo time step
 /// of at most stage.dt, always adaptive (it has no physical meaning), until the ratio falls to
 /// stage.tolerance or stage.max_steps are taken. Blocks that meet `criterion` are released
 /// (System::hold_block or remove_block after stage.release) and no longer count. `after_step`,
-/// if given, runs after every accepted step (progress). The outcome is a status: nothing throws
-/// for a model that is not in equilibrium.
+/// if given, runs after every accepted step (progress) and returns false to stop the stage there
+/// (a budget: StaticStageResult::stopped). The outcome is a status: nothing throws for a model
+/// that is not in equilibrium.
 StaticStageResult run_static_stage(System& system, const Stage& stage, const TimeSettings& time,
-                                   const std::function<void()>& after_step = {},
+                                   const std::function<bool()>& after_step = {},
                                    ReleaseCriterion criterion = {});
 
 } // namespace ddafem::dda

@@ -191,15 +191,22 @@ TEST(DynamicStage, FallenBlockIsKeptWithoutRemoveFallen)
   EXPECT_EQ(s.energy().removed, 0.0);
 }
 
+/// A dynamic stage "shake" without settle, to 0.05 s.
+Stage shake_stage()
+{
+  Stage stage;
+  stage.name = "shake";
+  stage.end_time = 0.05;
+  return stage;
+}
+
 // A dynamic stage without settle runs to its end_time.
 TEST(DynamicStage, DynamicStageRunsToItsEnd)
 {
   const ModelDescription m = block_on_base({-0.5, 0.0});
   System s(m);
   s.begin_stage(StageMode::dynamic);
-  Stage stage;
-  stage.name = "shake";
-  stage.end_time = 0.05;
+  const Stage stage = shake_stage();
   std::size_t calls = 0;
   bool last_seen = false;
   const DynamicStageResult r =
@@ -208,6 +215,7 @@ TEST(DynamicStage, DynamicStageRunsToItsEnd)
                         {
                           ++calls;
                           last_seen = last;
+                          return true;
                         });
   EXPECT_NEAR(s.time(), 0.05, 1e-12);
   // The callback sees every step; n_steps counts the System's steps, two per step of the default
@@ -215,4 +223,23 @@ TEST(DynamicStage, DynamicStageRunsToItsEnd)
   EXPECT_EQ(2 * calls, r.n_steps);
   EXPECT_TRUE(last_seen);
   EXPECT_FALSE(r.settled);
+  EXPECT_FALSE(r.stopped);
+}
+
+TEST(DynamicStage, StopsWhereTheCallerAsks)
+{
+  // A budget: the callback returns false after the third step; the stage ends there, before its
+  // end time, as stopped (not failed).
+  const ModelDescription m = block_on_base({-0.5, 0.0});
+  System s(m);
+  s.begin_stage(StageMode::dynamic);
+  std::size_t calls = 0;
+  const DynamicStageResult r =
+      run_dynamic_stage(s, shake_stage(), m.time, no_displacement(s),
+                        [&](const TimeStepper&, const StepStatus&, bool) { return ++calls < 3; });
+  EXPECT_EQ(calls, 3u);
+  EXPECT_TRUE(r.stopped);
+  EXPECT_EQ(r.failure.outcome, StepOutcome::success);
+  EXPECT_LT(s.time(), 0.05);
+  EXPECT_EQ(2 * calls, r.n_steps);
 }
