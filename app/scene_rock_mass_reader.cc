@@ -117,30 +117,6 @@ std::optional<std::size_t> read_joint_material(const MapReader& r,
   return find_name(r, "joint_material", r.string("joint_material"), joint_names, "joint material");
 }
 
-/// Refuses a rock mass estimated beyond the memory limit (with the blocks before it) before
-/// its arrangement is built, naming the joint set of the smallest spacing and the spacing at
-/// which the estimate fits when every set's spacing is scaled alike (blocks ~ 1 / spacing^2).
-void require_rock_mass_fits(const MapReader& r, const dda::RockMassDescription& d,
-                            std::size_t n_other_blocks)
-{
-  const double n_blocks = dda::estimate_block_count(d) + static_cast<double>(n_other_blocks);
-  const ResourceLimits& limits = r.ctx().limits;
-  if (limits.fits(MemoryModel::of_blocks(n_blocks)) || d.joint_sets.empty())
-    return;
-  const double n_fit =
-      std::max((limits.memory - MemoryModel::base) / MemoryModel::per_block - n_other_blocks, 1.0);
-  std::size_t k = 0;
-  for (std::size_t s = 1; s < d.joint_sets.size(); ++s)
-    if (d.joint_sets[s].spacing < d.joint_sets[k].spacing)
-      k = s;
-  const double spacing = d.joint_sets[k].spacing * std::sqrt(n_blocks / n_fit);
-  throw r.section_list("joint_sets")[k].error(
-      "spacing", "about " + format_number(std::round(n_blocks)) + " blocks would need " +
-                     limits.too_much(MemoryModel::of_blocks(n_blocks)) +
-                     ": expected a spacing of at least " + format_significant(spacing, 3) +
-                     " m (with the other sets' spacings scaled alike)");
-}
-
 /// The `rock_mass` section: generates its blocks and appends them to the model.
 RockMassReport read_rock_mass(const MapReader& r, const SceneNames& names,
                               dda::ModelDescription& model, std::vector<BlockSource>& sources)
@@ -173,7 +149,8 @@ RockMassReport read_rock_mass(const MapReader& r, const SceneNames& names,
   d.slivers.min_inscribed_radius = r.number("min_inscribed_radius");
   d.slivers.action = r.choice_of<dda::SliverAction>("slivers");
 
-  require_rock_mass_fits(r, d, model.blocks.size());
+  if (const auto refusal = dda::refuse_beyond(d, model.blocks.size(), r.ctx().limits))
+    throw r.section_list("joint_sets")[refusal->joint_set].error("spacing", refusal->message);
   dda::RockMassResult result;
   try
   {

@@ -218,29 +218,6 @@ struct BlockMeasures
   double vb1_limit = std::numeric_limits<double>::infinity();
 };
 
-/// Refuses a near field whose blocks are estimated beyond the memory limit, before they are
-/// generated: names the joint set of the smallest spacing and the spacing at which the estimate
-/// fits with every set's spacing scaled alike (blocks ~ 1 / spacing^2).
-void require_blocks_fit(const TunnelDescription& t, const dda::RockMassDescription& d)
-{
-  const double n_blocks = dda::estimate_block_count(d);
-  if (t.limits.fits(MemoryModel::of_blocks(n_blocks)) || d.joint_sets.empty())
-    return;
-  const double n_fit =
-      std::max((t.limits.memory - MemoryModel::base) / MemoryModel::per_block, 1.0);
-  std::size_t k = 0;
-  for (std::size_t s = 1; s < d.joint_sets.size(); ++s)
-    if (d.joint_sets[s].spacing < d.joint_sets[k].spacing)
-      k = s;
-  throw InputError("tunnel.joint_sets[" + std::to_string(k) +
-                   "].spacing = " + format_significant(d.joint_sets[k].spacing) + " m: about " +
-                   format_number(std::round(n_blocks)) + " near-field blocks would need " +
-                   t.limits.too_much(MemoryModel::of_blocks(n_blocks)) +
-                   ": expected a spacing of at least " +
-                   format_significant(d.joint_sets[k].spacing * std::sqrt(n_blocks / n_fit), 3) +
-                   " m (with the other sets' spacings scaled alike)");
-}
-
 /// Refuses a far field (with the near field's blocks) estimated beyond the memory limit before
 /// it is made: names tunnel.wave.max_frequency, which sets its element size, and the largest
 /// value that fits (DOFs ~ max_frequency^2).
@@ -275,7 +252,10 @@ BlockMeasures plan_rock_mass(const TunnelDescription& t, TunnelPlan& plan)
   dda::RockMassDescription d = t.rock_mass;
   d.region = {plan.near_lower, Point(plan.near_upper.x(), plan.near_lower.y()), plan.near_upper,
               Point(plan.near_lower.x(), plan.near_upper.y())};
-  require_blocks_fit(t, d);
+  if (const auto refusal = dda::refuse_beyond(d, 0, t.limits))
+    throw InputError("tunnel.joint_sets[" + std::to_string(refusal->joint_set) +
+                     "].spacing = " + format_significant(d.joint_sets[refusal->joint_set].spacing) +
+                     " m, in the near field: " + refusal->message);
   const dda::RockMassResult blocks = dda::generate_blocks(d);
   plan.n_blocks = blocks.blocks.size();
   plan.mean_block_size = std::sqrt(blocks.statistics.mean_area);

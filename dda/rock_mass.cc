@@ -3,6 +3,7 @@
 // counted. The steps live in dda/rock_mass_*.cc (see dda/rock_mass_arrangement.h).
 #include "dda/rock_mass.h"
 
+#include "common/format.h"
 #include "common/input_error.h"
 #include "dda/geometry.h"
 #include "dda/rock_mass_arrangement.h"
@@ -280,6 +281,29 @@ double estimate_block_count(const RockMassDescription& d)
     }
   }
   return blocks;
+}
+
+std::optional<RockMassTooLarge> refuse_beyond(const RockMassDescription& d,
+                                              std::size_t n_other_blocks,
+                                              const ResourceLimits& limits)
+{
+  const double n_blocks = estimate_block_count(d) + static_cast<double>(n_other_blocks);
+  if (limits.fits(MemoryModel::of_blocks(n_blocks)) || d.joint_sets.empty())
+    return std::nullopt;
+  const double n_fit = std::max((limits.memory - MemoryModel::base) / MemoryModel::per_block -
+                                    static_cast<double>(n_other_blocks),
+                                1.0);
+  RockMassTooLarge refusal;
+  std::size_t& k = refusal.joint_set;
+  for (std::size_t s = 1; s < d.joint_sets.size(); ++s)
+    if (d.joint_sets[s].spacing < d.joint_sets[k].spacing)
+      k = s;
+  refusal.message = "about " + format_number(std::round(n_blocks)) + " blocks would need " +
+                    limits.too_much(MemoryModel::of_blocks(n_blocks)) +
+                    ": expected a spacing of at least " +
+                    format_significant(d.joint_sets[k].spacing * std::sqrt(n_blocks / n_fit), 3) +
+                    " m (with the other sets' spacings scaled alike)";
+  return refusal;
 }
 
 } // namespace ddafem::dda

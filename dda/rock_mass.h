@@ -22,6 +22,7 @@
 #pragma once
 
 #include "common/enum_names.h"
+#include "common/resource_limits.h"
 #include "dda/types.h"
 
 #include <array>
@@ -29,6 +30,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace ddafem::dda
@@ -269,5 +271,20 @@ RockMassResult generate_blocks(const RockMassDescription& description);
 /// per trace and the region itself. Explicit joints and openings change it little. Within 1 %
 /// of the count generated for two persistent sets (tested).
 double estimate_block_count(const RockMassDescription& description);
+
+/// A rock mass estimated to need more memory than `limits` allow (with `n_other_blocks` beside
+/// it): which joint set to space out (the closest) and the message, "about N blocks would need
+/// ...: expected a spacing of at least S m (with the other sets' spacings scaled alike)", from
+/// blocks ~ 1 / spacing^2.
+struct RockMassTooLarge
+{
+  std::size_t joint_set = 0;
+  std::string message;
+};
+/// The refusal of a rock mass beyond `limits`, before it is generated; none if it fits (or has
+/// no joint sets to space out).
+std::optional<RockMassTooLarge> refuse_beyond(const RockMassDescription& description,
+                                              std::size_t n_other_blocks,
+                                              const ResourceLimits& limits);
 
 } // namespace ddafem::dda
