@@ -141,10 +141,6 @@ void describe_stepping(const Scene& scene, const dda::System& system, std::ostre
       << format_significant(advice.dt_max, 3) << " s (" << time_step_reason(advice) << ")\n";
 }
 
-} // namespace
-
-namespace
-{
 /// The estimate that read_scene checked against the memory limit, for the model as read.
 std::string describe_resources(const Scene& scene)
 {

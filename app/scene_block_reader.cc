@@ -29,8 +29,8 @@ void read_block_grid(const MapReader& r, dda::BlockDescription block, dda::Model
   const ResourceLimits& limits = r.ctx().limits;
   if (!limits.fits(MemoryModel::of_blocks(n_blocks)))
   {
-    const double largest = (limits.memory - MemoryModel::base) / MemoryModel::per_block -
-                           static_cast<double>(model.blocks.size());
+    const double largest =
+        MemoryModel::blocks_within(limits.memory) - static_cast<double>(model.blocks.size());
     throw grid.error(
         "count", format_number(static_cast<double>(count[0] * count[1])) + " blocks would need " +
                      limits.too_much(MemoryModel::of_blocks(n_blocks)) + ": expected at most " +

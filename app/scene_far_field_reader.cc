@@ -296,19 +296,14 @@ double hole_perimeter(const fem::HoleDescription& h)
 void require_far_field_fits(const MapReader& f, const fem::FarFieldDescription& d)
 {
   const double dofs = estimate_far_field_dofs(d);
+  const ResourceLimits& limits = f.ctx().limits;
+  if (dofs == 0.0 || limits.fits(MemoryModel::of_far_field(dofs)))
+    return;
   const double h = far_field_element_size(d);
   const double h0 = d.hole.element_size;
   const double area = (d.upper[0] - d.lower[0]) * (d.upper[1] - d.lower[1]);
   const double ring_dofs = dofs - estimate_far_field_dofs(area, h, 0.0, 0.0, 1.0, d.degree);
-  const double frequency =
-      d.max_frequency > 0.0 ? d.max_frequency : d.incident.velocity.characteristic_frequency();
-  if (dofs == 0.0)
-    return;
-  const ResourceLimits& limits = f.ctx().limits;
-  if (limits.fits(MemoryModel::of_far_field(dofs)))
-    return;
-  const double dofs_fit =
-      std::max(limits.memory - MemoryModel::far_field_base, 0.0) / MemoryModel::per_far_field_dof;
+  const double dofs_fit = std::max(MemoryModel::far_field_dofs_within(limits.memory), 0.0);
   const std::string need = "about " + format_number(std::round(dofs)) +
                            " far-field DOFs would need " +
                            limits.too_much(MemoryModel::of_far_field(dofs)) + ": expected ";
@@ -320,6 +315,8 @@ void require_far_field_fits(const MapReader& f, const fem::FarFieldDescription& 
   if (d.element_size > 0.0)
     throw f.error("element_size",
                   need + "an element size of at least " + format_significant(h * scale, 3) + " m");
+  const double frequency =
+      d.max_frequency > 0.0 ? d.max_frequency : d.incident.velocity.characteristic_frequency();
   throw f.error(d.max_frequency > 0.0 ? "max_frequency" : "incident",
                 need + "a highest frequency of at most " +
                     format_significant(frequency / scale, 3) +

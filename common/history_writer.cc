@@ -142,9 +142,11 @@ struct HistoryWriter::Impl
                              "last flush");
   }
 
+  /// About flush_every rows per chunk, within [64, 8192] rows.
+  std::size_t rows_per_chunk() const { return std::clamp<std::size_t>(flush_every, 64, 8192); }
   std::size_t chunk_bytes(std::size_t n_components) const
   {
-    return 8 * n_components * std::clamp<std::size_t>(flush_every, 64, 8192);
+    return 8 * n_components * rows_per_chunk();
   }
 
   void throw_if_failed() const
@@ -198,8 +200,7 @@ struct HistoryWriter::Impl
                         const std::string& description) const
   {
     const int rank = n_components == 1 ? 1 : 2;
-    // About flush_every rows per chunk, within [64, 8192] rows.
-    const hsize_t chunk_rows = std::clamp<hsize_t>(flush_every, 64, 8192);
+    const hsize_t chunk_rows = rows_per_chunk();
     const hsize_t initial_dims[2] = {0, n_components};
     const hsize_t max_dims[2] = {H5S_UNLIMITED, n_components};
     const hsize_t chunk_dims[2] = {chunk_rows, n_components};

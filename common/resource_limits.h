@@ -21,6 +21,12 @@ struct MemoryModel
   static constexpr double per_far_field_dof = 4e3; ///< [bytes per DOF]
   static double of_blocks(double n_blocks) { return base + per_block * n_blocks; }
   static double of_far_field(double n_dofs) { return far_field_base + per_far_field_dof * n_dofs; }
+  /// The inverses: how many blocks, far-field DOFs, `bytes` hold (negative below the base).
+  static double blocks_within(double bytes) { return (bytes - base) / per_block; }
+  static double far_field_dofs_within(double bytes)
+  {
+    return (bytes - far_field_base) / per_far_field_dof;
+  }
 };
 
 /// The memory a scene may need at most [bytes], and where that limit comes from.

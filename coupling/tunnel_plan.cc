@@ -231,9 +231,8 @@ void require_far_field_fits(const TunnelDescription& t, const TunnelPlan& plan)
   const double bytes = MemoryModel::of_far_field(dofs) + blocks;
   if (t.limits.fits(bytes))
     return;
-  const double dofs_fit = std::max((t.limits.memory - MemoryModel::far_field_base - blocks) /
-                                       MemoryModel::per_far_field_dof,
-                                   1.0);
+  const double dofs_fit =
+      std::max(MemoryModel::far_field_dofs_within(t.limits.memory - blocks), 1.0);
   throw InputError("tunnel.wave.max_frequency = " + format_significant(t.max_frequency) +
                    " Hz (2 x the wave's frequency unless given): about " +
                    format_number(std::round(dofs)) + " far-field DOFs and " +

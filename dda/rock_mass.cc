@@ -290,9 +290,8 @@ std::optional<RockMassTooLarge> refuse_beyond(const RockMassDescription& d,
   const double n_blocks = estimate_block_count(d) + static_cast<double>(n_other_blocks);
   if (limits.fits(MemoryModel::of_blocks(n_blocks)) || d.joint_sets.empty())
     return std::nullopt;
-  const double n_fit = std::max((limits.memory - MemoryModel::base) / MemoryModel::per_block -
-                                    static_cast<double>(n_other_blocks),
-                                1.0);
+  const double n_fit = std::max(
+      MemoryModel::blocks_within(limits.memory) - static_cast<double>(n_other_blocks), 1.0);
   RockMassTooLarge refusal;
   std::size_t& k = refusal.joint_set;
   for (std::size_t s = 1; s < d.joint_sets.size(); ++s)
