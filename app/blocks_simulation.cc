@@ -1,6 +1,7 @@
 // A run of blocks, alone or tied to a far field, behind the driver's Simulation interface: the
 // scene's stages (or one dynamic stage to the end time), each static or dynamic, with the
 // keyblocks followed and the outputs written as the steps go.
+#include "app/checkpoint_types.h"
 #include "app/far_field_module.h"
 #include "app/keyblocks.h"
 #include "app/run_outputs.h"
@@ -10,6 +11,7 @@
 #include "app/simulation.h"
 #include "app/stage_records.h"
 
+#include "common/checkpoint_archive.h"
 #include "common/format.h"
 #include "common/input_error.h"
 #include "dda/dynamic_stage.h"
@@ -19,6 +21,7 @@
 #include "dda/time_stepper.h"
 
 #include <optional>
+#include <sstream>
 
 namespace ddafem
 {
@@ -53,6 +56,9 @@ public:
   bool run_stage(std::size_t k, const std::function<bool()>& report) override;
   void close_outputs() override;
   void flush_outputs() override { outputs->flush(); }
+  bool can_checkpoint() const override { return stage_run.has_value(); }
+  void save_checkpoint(CheckpointOut& archive) const override;
+  std::size_t resume(CheckpointIn& archive, const std::filesystem::path& dir) override;
   std::size_t n_steps() const override { return system.n_steps(); }
   double time() const override { return system.time(); }
   double end_time() const override { return scene.model.time.end_time; }
@@ -66,6 +72,14 @@ public:
 private:
   void run_static_stage(const dda::Stage& stage, const std::function<bool()>& report);
   void run_dynamic_stage(const dda::Stage& stage, const std::function<bool()>& report);
+  /// The dynamic stage's start, unless it resumes from a checkpoint.
+  void begin_dynamic_stage();
+  /// After each accepted step of a dynamic stage: its outputs, then `report`.
+  bool after_dynamic_step(const dda::TimeStepper& stepper, const dda::StepStatus& status, bool last,
+                          const std::function<bool()>& report);
+  /// save_checkpoint and resume: the run's own state around the System's and the stage's.
+  template <class Archive>
+  void transfer_run_state(Archive& archive);
 
   const Scene& scene;
   const std::vector<dda::Stage> plan;
@@ -78,6 +92,14 @@ private:
   bool initial_written = false;
   bool stopped = false; ///< a stage stopped at a budget (report returned false)
   std::optional<std::vector<dda::Vector2>> fall_reference; ///< per block [m]
+  std::optional<dda::DynamicStageRun> stage_run;           ///< the dynamic stage running, if any
+  std::size_t current_stage = 0;
+  /// Steps of the running dynamic stage as the user sets dt: with bathe one step is two System
+  /// half steps.
+  std::size_t stage_steps = 0;
+  double next_snapshot = 0.0; ///< [s]
+  /// A resumed run: the checkpoint's state of the dynamic stage to continue (empty otherwise).
+  std::string resumed_stage;
 };
 
 BlocksSimulation::BlocksSimulation(const Scene& scene_)
@@ -113,6 +135,7 @@ std::vector<std::string> BlocksSimulation::collect_warnings(bool allow_unstable)
 
 bool BlocksSimulation::run_stage(std::size_t k, const std::function<bool()>& report)
 {
+  current_stage = k;
   const dda::Stage& stage = plan[k];
   if (stage.mode == dda::StageMode::static_equilibrium)
     run_static_stage(stage, report);
@@ -139,8 +162,7 @@ void BlocksSimulation::run_static_stage(const dda::Stage& stage,
     stages.failure = static_stage_failure(stage, result, system);
 }
 
-void BlocksSimulation::run_dynamic_stage(const dda::Stage& stage,
-                                         const std::function<bool()>& report)
+void BlocksSimulation::begin_dynamic_stage()
 {
   system.begin_stage(dda::StageMode::dynamic);
   if (!fall_reference)
@@ -155,29 +177,84 @@ void BlocksSimulation::run_dynamic_stage(const dda::Stage& stage,
     outputs->write_state(true, last_step);
     initial_written = true;
   }
+  stage_steps = 0;
+  next_snapshot = system.time() + scene.output.interval;
+}
+
+bool BlocksSimulation::after_dynamic_step(const dda::TimeStepper& stepper,
+                                          const dda::StepStatus& status, bool last,
+                                          const std::function<bool()>& report)
+{
   const dda::TimeSettings& time = scene.model.time;
-  // Steps of this stage as the user sets dt: with bathe one step is two System half steps.
-  std::size_t stage_steps = 0;
-  double next_snapshot = system.time() + scene.output.interval;
-  const dda::DynamicStageResult result = dda::run_dynamic_stage(
-      system, stage, time, *fall_reference,
-      [&](const dda::TimeStepper& stepper, const dda::StepStatus& status, bool last)
-      {
-        last_step = {stepper.last_dt(), status.n_open_close_iterations, stepper.n_last_step_cuts()};
-        const bool snapshot = run_support::snapshot_due(system.time(), scene.output.interval,
-                                                        time.dt, next_snapshot) ||
-                              last;
-        ++stage_steps;
-        if (stage_steps % scene.output.history_every == 0 || last || snapshot)
-          outputs->write_state(snapshot, last_step);
-        return report();
-      });
+  last_step = {stepper.last_dt(), status.n_open_close_iterations, stepper.n_last_step_cuts()};
+  const bool snapshot =
+      run_support::snapshot_due(system.time(), scene.output.interval, time.dt, next_snapshot) ||
+      last;
+  ++stage_steps;
+  if (stage_steps % scene.output.history_every == 0 || last || snapshot)
+    outputs->write_state(snapshot, last_step);
+  return report();
+}
+
+void BlocksSimulation::run_dynamic_stage(const dda::Stage& stage,
+                                         const std::function<bool()>& report)
+{
+  if (resumed_stage.empty())
+    begin_dynamic_stage();
+  stage_run.emplace(system, stage, scene.model.time, *fall_reference);
+  if (!resumed_stage.empty())
+  {
+    std::istringstream text(resumed_stage);
+    CheckpointIn archive(text);
+    stage_run->load(archive);
+    resumed_stage.clear();
+  }
+  const dda::DynamicStageResult result =
+      stage_run->run([&](const dda::TimeStepper& stepper, const dda::StepStatus& status, bool last)
+                     { return after_dynamic_step(stepper, status, last, report); });
+  stage_run.reset();
   stages.add(result);
   stopped = result.stopped;
   for (const auto& [block, when] : result.removed)
     keyblocks.mark_removed(block);
   stages.records.push_back(dynamic_stage_record(stage, result, system, keyblocks));
   stages.failure = result.failure;
+}
+
+template <class Archive>
+void BlocksSimulation::transfer_run_state(Archive& a)
+{
+  transfer_object(a, system);
+  if (tied)
+    transfer_object(a, *tied);
+  transfer_object(a, keyblocks);
+  transfer_stage_totals(a, stages);
+  transfer_all(a, last_step.dt, last_step.n_open_close_iterations, last_step.n_cuts,
+               initial_written);
+  transfer_optional(a, fall_reference);
+  transfer_all(a, current_stage, stage_steps, next_snapshot);
+}
+
+void BlocksSimulation::save_checkpoint(CheckpointOut& archive) const
+{
+  transfer_marker(archive, "blocks simulation");
+  std::ostringstream text;
+  {
+    CheckpointOut stage_archive(text);
+    stage_run->save(stage_archive);
+  }
+  archive << text.str();
+  const_cast<BlocksSimulation*>(this)->transfer_run_state(archive);
+  outputs->save(archive);
+}
+
+std::size_t BlocksSimulation::resume(CheckpointIn& archive, const std::filesystem::path& dir)
+{
+  transfer_marker(archive, "blocks simulation");
+  archive >> resumed_stage;
+  transfer_run_state(archive);
+  outputs.emplace(dir, system, tied.get(), keyblocks, scene.output.vtu_compression, archive);
+  return current_stage;
 }
 
 void BlocksSimulation::close_outputs()

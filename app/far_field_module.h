@@ -8,6 +8,7 @@
 #include "app/scene.h"
 #include "app/simulation.h"
 
+#include "common/checkpoint_fwd.h"
 #include "common/history_writer.h"
 #include "dda/system.h"
 #include "dda/vtu_writer.h"
@@ -45,6 +46,9 @@ public:
   virtual void add_to_summary(nlohmann::json& summary) const = 0;
   /// `check`'s lines on the far field and the interface.
   virtual void describe(std::ostream& out) const = 0;
+  /// Checkpoints: the far field's and the ties' state between two steps.
+  virtual void save(CheckpointOut& archive) const = 0;
+  virtual void load(CheckpointIn& archive) = 0;
 };
 
 /// What the module offers.

@@ -1,5 +1,6 @@
 // A far field alone (module side): its outputs (histories.h5 and far_field.pvd), its
 // summary.json and its `check`.
+#include "app/checkpoint_types.h"
 #include "app/far_field_parts.h"
 #include "app/run_summary.h"
 #include "app/run_support.h"
@@ -59,6 +60,27 @@ FarFieldOutputs::FarFieldOutputs(const std::filesystem::path& dir_, const std::s
 {
   history.set_attribute("scene", scene_file);
   history.set_attribute("version", DDAFEM_VERSION);
+}
+
+FarFieldOutputs::FarFieldOutputs(const std::filesystem::path& dir_, fem::ElasticWaveModel& model_,
+                                 const fem::FarFieldDescription& description,
+                                 fem::VtuCompression vtu_compression_, CheckpointIn& a)
+    : dir(dir_), model(model_), n_monitors(description.monitors.size()),
+      vtu_compression(vtu_compression_),
+      history((dir / "histories.h5").string(), far_field_channels(description),
+              HistoryWriter::Reopen{load_history_rows(a, "far-field outputs")})
+{
+  a >> n_written >> time_output;
+  transfer_optional(a, last_row_time);
+  transfer_optional(a, last_snapshot_time);
+}
+
+void FarFieldOutputs::save(CheckpointOut& a) const
+{
+  save_history_rows(a, "far-field outputs", history.n_rows());
+  a << n_written << time_output;
+  transfer_optional(a, const_cast<std::optional<double>&>(last_row_time));
+  transfer_optional(a, const_cast<std::optional<double>&>(last_snapshot_time));
 }
 
 void FarFieldOutputs::write_state(bool snapshot)

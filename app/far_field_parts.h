@@ -43,6 +43,13 @@ public:
   FarFieldOutputs(const std::filesystem::path& dir, const std::string& scene_file,
                   fem::ElasticWaveModel& model, const fem::FarFieldDescription& description,
                   fem::VtuCompression vtu_compression);
+  /// Reopens the outputs of a run resumed from a checkpoint (save): histories.h5 cut back to
+  /// the rows it had then.
+  FarFieldOutputs(const std::filesystem::path& dir, fem::ElasticWaveModel& model,
+                  const fem::FarFieldDescription& description, fem::VtuCompression vtu_compression,
+                  CheckpointIn& archive);
+  /// Checkpoints: after flush(), the rows and snapshots written so far.
+  void save(CheckpointOut& archive) const;
 
   /// A history row of the state now, and with `snapshot` far_field_NNNNN.vtu and far_field.pvd.
   void write_state(bool snapshot);

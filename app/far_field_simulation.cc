@@ -2,6 +2,7 @@
 // Simulation interface: one stage of the scene's steps of dt to its end time.
 #include "app/far_field_parts.h"
 #include "app/run_support.h"
+#include "common/checkpoint_archive.h"
 
 #include <cmath>
 #include <optional>
@@ -35,6 +36,23 @@ public:
     outputs->flush();
   }
   void flush_outputs() override { outputs->flush(); }
+  bool can_checkpoint() const override { return running; }
+  void save_checkpoint(CheckpointOut& archive) const override
+  {
+    transfer_marker(archive, "far-field simulation");
+    archive << step << next_snapshot;
+    model.save(archive);
+    outputs->save(archive);
+  }
+  std::size_t resume(CheckpointIn& archive, const std::filesystem::path& dir) override
+  {
+    transfer_marker(archive, "far-field simulation");
+    archive >> step >> next_snapshot;
+    model.load(archive);
+    outputs.emplace(dir, model, description, scene.output.vtu_compression, archive);
+    resumed = true;
+    return 0;
+  }
   std::size_t n_steps() const override { return model.timings().n_steps; }
   double time() const override { return model.time(); }
   double end_time() const override { return description.end_time; }
@@ -55,23 +73,34 @@ private:
   const fem::FarFieldDescription& description;
   fem::ElasticWaveModel model;
   std::optional<FarFieldOutputs> outputs;
-  fem::StepStatus failure; ///< outcome success unless a step failed
-  bool stopped = false;    ///< stopped at a budget (report returned false)
+  fem::StepStatus failure;    ///< outcome success unless a step failed
+  bool stopped = false;       ///< stopped at a budget (report returned false)
+  bool running = false;       ///< between two steps of run_stage
+  bool resumed = false;       ///< run_stage goes on from a checkpoint's step
+  std::size_t step = 0;       ///< steps taken
+  double next_snapshot = 0.0; ///< [s]
 };
 
 bool FarFieldSimulation::run_stage(std::size_t, const std::function<bool()>& report)
 {
   const double dt = description.dt;
   const auto n_steps = static_cast<std::size_t>(std::llround(description.end_time / dt));
-  double next_snapshot = scene.output.interval;
-  for (std::size_t step = 1; step <= n_steps; ++step)
+  if (!resumed)
+  {
+    step = 0;
+    next_snapshot = scene.output.interval;
+  }
+  running = true;
+  while (step < n_steps)
   {
     const fem::StepStatus status = model.advance(dt);
     if (status.outcome != fem::StepOutcome::success)
     {
       failure = status;
+      running = false;
       return false;
     }
+    ++step;
     const bool last = step == n_steps;
     const bool snapshot =
         run_support::snapshot_due(model.time(), scene.output.interval, dt, next_snapshot) || last;
@@ -80,9 +109,11 @@ bool FarFieldSimulation::run_stage(std::size_t, const std::function<bool()>& rep
     if (!report())
     {
       stopped = !last;
+      running = false;
       return last;
     }
   }
+  running = false;
   return true;
 }
 } // namespace

@@ -2,6 +2,7 @@
 // dda::find_keyblocks) moved during the run and whether they detached or fell.
 #pragma once
 
+#include "common/checkpoint_fwd.h"
 #include "common/history_writer.h"
 #include "dda/keyblocks.h"
 #include "dda/model_description.h"
@@ -59,6 +60,10 @@ public:
   /// The `keyblocks` section of summary.json from the last row and the system's final state
   /// (null for a model without openings); see docs/outputs.md.
   nlohmann::json summary(const dda::System& system) const;
+
+  /// Checkpoints (app/checkpoint.cc): the tracks, references and marks so far.
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
 
 private:
   /// What a keyblock did over the rows so far.

@@ -2,11 +2,13 @@
 //
 //   ddafem check SCENE [--set key=value]...
 //   ddafem run SCENE [-o DIR] [--quiet] [--allow-unstable] [--set key=value]...
+//   ddafem resume DIR [--quiet] [--max-wall-time S] [--max-memory SIZE]
 //   ddafem scene-reference
 //
 // Exit codes: 0 success, 1 numerical failure (or an I/O failure while writing results),
 // 2 bad input (scene, command line, missing file, a scene too large for memory), 3 stopped at a
 // budget (--max-wall-time, --max-memory).
+#include "app/checkpoint.h"
 #include "app/run.h"
 #include "app/scene.h"
 #include "common/input_error.h"
@@ -26,6 +28,7 @@ struct CommandLine
   std::string scene;
   std::vector<std::string> settings; ///< --set key=value, in the order given
   std::string max_memory;            ///< --max-memory SIZE; empty: 90 % of what is available
+  std::string directory;             ///< resume: the output directory of the run
   ddafem::RunOptions options;
 };
 
@@ -58,20 +61,31 @@ void keep_freed_memory()
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
 }
 
-/// Reads the scene and checks or runs it; returns the exit code.
-int check_or_run(const CommandLine& cl, bool run)
+/// Reads a scene with its --set overrides against the memory limit (--max-memory), and the run's
+/// options with the settings kept for checkpoints.
+ddafem::Scene read_scene_for(const CommandLine& cl, const std::string& file,
+                             const std::vector<std::string>& settings, ddafem::RunOptions& options)
 {
   std::vector<ddafem::Override> overrides;
-  for (const std::string& s : cl.settings)
+  for (const std::string& s : settings)
     overrides.push_back(ddafem::parse_override(s));
   const ddafem::ResourceLimits limits = cl.max_memory.empty()
                                             ? ddafem::ResourceLimits::of_this_machine()
                                             : ddafem::ResourceLimits::given(cl.max_memory);
-  ddafem::Scene scene = ddafem::read_scene(cl.scene, overrides, limits);
-  ddafem::RunOptions options = cl.options;
+  ddafem::Scene scene = ddafem::read_scene(file, overrides, limits);
+  options = cl.options;
+  options.settings = settings;
   if (!cl.max_memory.empty())
     options.max_memory = limits.memory; // also a budget while the run runs
   scene.model.solver.threads = cl.options.threads;
+  return scene;
+}
+
+/// Reads the scene and checks or runs it; returns the exit code.
+int check_or_run(const CommandLine& cl, bool run)
+{
+  ddafem::RunOptions options;
+  const ddafem::Scene scene = read_scene_for(cl, cl.scene, cl.settings, options);
   try
   {
     if (!run)
@@ -86,6 +100,40 @@ int check_or_run(const CommandLine& cl, bool run)
     // Problems only the engine sees (e.g. blocks sharing an edge without a joint material).
     throw ddafem::InputError(scene.file + ": " + e.what());
   }
+}
+
+/// Continues the run whose checkpoint is in cl.directory; returns the exit code.
+int resume(const CommandLine& cl)
+{
+  ddafem::CheckpointReader checkpoint(cl.directory);
+  const ddafem::CheckpointHeader& header = checkpoint.header();
+  if (ddafem::read_scene_text(header.scene_file) != header.scene_text)
+    throw ddafem::InputError(header.scene_file + ": changed or missing since the run in " +
+                             cl.directory +
+                             " started: expected the scene it ran (or run it again)");
+  ddafem::RunOptions options;
+  const ddafem::Scene scene = read_scene_for(cl, header.scene_file, header.settings, options);
+  options.output_directory = cl.directory;
+  options.allow_unstable = header.allow_unstable;
+  return ddafem::run_scene(scene, options, std::cout, &checkpoint);
+}
+
+/// The options of a run that `run` and `resume` share.
+void add_run_options(CLI::App& command, CommandLine& cl)
+{
+  command.add_flag("-q,--quiet", cl.options.quiet, "no progress line");
+  command
+      .add_option("--threads", cl.options.threads,
+                  "threads of contact detection and of the blocks' iterative solver "
+                  "(solver.method block_pcg; default 0: all cores); results do not depend on it")
+      ->check(CLI::Range(0u, 1024u))
+      ->type_name("N");
+  command
+      .add_option("--max-wall-time", cl.options.max_wall_time,
+                  "stop cleanly after the step at which the run has taken this wall time, writing "
+                  "its state, a checkpoint and summary.json (status stopped, exit code 3)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("SECONDS");
 }
 } // namespace
 
@@ -105,27 +153,28 @@ int main(int argc, char** argv)
   run->add_option("-o,--output", cl.options.output_directory,
                   "output directory (default: the scene's output.directory)")
       ->type_name("DIR");
-  run->add_flag("-q,--quiet", cl.options.quiet, "no progress line");
-  run->add_option("--threads", cl.options.threads,
-                  "threads of contact detection and of the blocks' iterative solver "
-                  "(solver.method block_pcg; default 0: all cores); results do not depend on it")
-      ->check(CLI::Range(0u, 1024u))
-      ->type_name("N");
-  run->add_option("--max-wall-time", cl.options.max_wall_time,
-                  "stop cleanly after the step at which the run has taken this wall time, writing "
-                  "its state and summary.json (status stopped, exit code 3)")
-      ->check(CLI::PositiveNumber)
-      ->type_name("SECONDS");
+  add_run_options(*run, cl);
   run->add_flag("--allow-unstable", cl.options.allow_unstable,
                 "run although a boundary feeds energy in at this dt (it will fail)");
+  CLI::App* resume_command = app.add_subcommand(
+      "resume", "continue a killed or stopped run from the checkpoint in its DIR");
+  resume_command->add_option("DIR", cl.directory, "the run's output directory")->required();
+  add_run_options(*resume_command, cl);
+  resume_command
+      ->add_option("--max-memory", cl.max_memory,
+                   "stop cleanly, exit code 3, if the run uses more memory than this, e.g. 8G")
+      ->type_name("SIZE");
   CLI::App* reference =
       app.add_subcommand("scene-reference", "print the scene key reference (Markdown)");
   const auto is_command = [&](const std::string& word)
-  { return word == check->get_name() || word == run->get_name() || word == reference->get_name(); };
+  {
+    return word == check->get_name() || word == run->get_name() ||
+           word == resume_command->get_name() || word == reference->get_name();
+  };
   if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1]))
   {
     std::cerr << "error: unknown command '" << argv[1]
-              << "': expected check, run or scene-reference (ddafem --help)\n";
+              << "': expected check, run, resume or scene-reference (ddafem --help)\n";
     return 2;
   }
   try
@@ -146,6 +195,8 @@ int main(int argc, char** argv)
       std::cout << ddafem::scene_reference_markdown();
       return 0;
     }
+    if (resume_command->parsed())
+      return resume(cl);
     return check_or_run(cl, run->parsed());
   }
   catch (const ddafem::InputError& e)

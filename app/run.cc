@@ -2,14 +2,17 @@
 // field, a far field alone), each a Simulation (app/simulation.h).
 #include "app/run.h"
 
+#include "app/checkpoint.h"
 #include "app/far_field_module.h"
 #include "app/run_support.h"
 #include "app/simulation.h"
 
 #include "common/format.h"
+#include "common/input_error.h"
 #include "common/resource_limits.h"
 #include "common/stopwatch.h"
 
+#include <boost/archive/archive_exception.hpp>
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
@@ -29,8 +32,9 @@ namespace
 class SceneRun
 {
 public:
-  SceneRun(const Scene& scene_, const RunOptions& options_, std::ostream& log_)
-      : scene(scene_), options(options_), log(log_)
+  SceneRun(const Scene& scene_, const RunOptions& options_, std::ostream& log_,
+           CheckpointReader* resume_from_)
+      : scene(scene_), options(options_), log(log_), resume_from(resume_from_)
   {
   }
 
@@ -40,8 +44,8 @@ public:
     setup();
     try
     {
-      open_outputs();
-      for (std::size_t k = 0; k < simulation->n_stages(); ++k)
+      const std::size_t first_stage = resume_from ? open_resumed_outputs() : open_outputs();
+      for (std::size_t k = first_stage; k < simulation->n_stages(); ++k)
         if (!simulation->run_stage(k, [this] { return after_step(); }))
           break;
       return write_summary();
@@ -55,7 +59,12 @@ public:
 
 private:
   void setup();
-  void open_outputs();
+  /// Returns the stage to start with: the first.
+  std::size_t open_outputs();
+  /// Restores the checkpoint and reopens its outputs; returns the stage to go on with.
+  std::size_t open_resumed_outputs();
+  /// The header of this run's checkpoints.
+  CheckpointHeader checkpoint_header() const;
   int write_summary();
   /// summary.json of a run stopped by an error (an output that cannot be written): status
   /// "error" and the message, if it can still be written; else the running one stays.
@@ -69,6 +78,18 @@ private:
     if (wall - last_flush >= scene.output.flush_interval)
       flush(wall);
     stop_reason = budget_exceeded(wall);
+    const double every = scene.output.checkpoint_every;
+    if (every > 0.0 && simulation->can_checkpoint() &&
+        (wall - last_checkpoint >= every || !stop_reason.empty()))
+    {
+      // The histories in the file must hold every row the checkpoint counts.
+      flush(wall);
+      const auto start = Clock::now();
+      checkpoint_bytes = write_checkpoint(dir, header, *simulation);
+      checkpoint_seconds += seconds_since(start);
+      ++n_checkpoints;
+      last_checkpoint = wall;
+    }
     return stop_reason.empty();
   }
   /// Why the run must stop now (empty: it goes on): --max-wall-time reached, or the resident
@@ -80,14 +101,21 @@ private:
   const Scene& scene;
   const RunOptions& options;
   std::ostream& log;
+  CheckpointReader* resume_from; ///< null: a new run
+  CheckpointHeader header;
   const Clock::time_point wall_start = Clock::now();
   std::unique_ptr<Simulation> simulation;
   std::filesystem::path dir;
   std::vector<std::string> warnings;
   std::optional<run_support::Progress> progress;
-  double last_flush = 0.0;        ///< wall time of the last flush [s]
-  double last_memory_check = 0.0; ///< wall time of the last look at the memory [s]
-  std::string stop_reason;        ///< why a budget stopped the run; empty if none did
+  double last_flush = 0.0;          ///< wall time of the last flush [s]
+  double last_checkpoint = 0.0;     ///< wall time of the last checkpoint [s]
+  std::size_t n_checkpoints = 0;    ///< written by this process
+  double checkpoint_seconds = 0.0;  ///< spent writing them [s]
+  std::size_t checkpoint_bytes = 0; ///< size of the last
+  std::optional<double> resumed_at; ///< a resumed run: the checkpoint's time [s]
+  double last_memory_check = 0.0;   ///< wall time of the last look at the memory [s]
+  std::string stop_reason;          ///< why a budget stopped the run; empty if none did
 };
 
 std::string SceneRun::budget_exceeded(double wall)
@@ -114,11 +142,25 @@ void SceneRun::setup()
                                                    : make_blocks_simulation(scene);
   warnings = simulation->collect_warnings(options.allow_unstable);
   dir = options.output_directory.empty() ? scene.output.directory : options.output_directory;
+  header = checkpoint_header();
+}
+
+CheckpointHeader SceneRun::checkpoint_header() const
+{
+  if (resume_from)
+    return resume_from->header();
+  CheckpointHeader h;
+  h.version = DDAFEM_VERSION;
+  h.scene_file = std::filesystem::absolute(scene.file).string();
+  h.scene_text = read_scene_text(scene.file);
+  h.settings = options.settings;
+  h.allow_unstable = options.allow_unstable;
+  return h;
 }
 
 /// Creates the output directory, clears an earlier run's results from it and opens the
 /// outputs, with summary.json "running".
-void SceneRun::open_outputs()
+std::size_t SceneRun::open_outputs()
 {
   run_support::create_output_directory(dir);
   if (const std::size_t n = run_support::clear_earlier_results(dir); n > 0)
@@ -134,6 +176,33 @@ void SceneRun::open_outputs()
   simulation->open_outputs(dir);
   flush(seconds_since(wall_start));
   progress.emplace(!options.quiet && isatty(fileno(stderr)), simulation->end_time());
+  return 0;
+}
+
+std::size_t SceneRun::open_resumed_outputs()
+{
+  for (const std::string& w : warnings)
+    log << "warning: " << w << "\n";
+  std::size_t stage = 0;
+  try
+  {
+    stage = simulation->resume(resume_from->archive(), dir);
+  }
+  catch (const boost::archive::archive_exception& e)
+  {
+    throw InputError(resume_from->file().string() + ": cannot be restored (" + e.what() +
+                     "): expected a checkpoint of this scene; run it again");
+  }
+  catch (const std::runtime_error& e)
+  {
+    throw InputError(resume_from->file().string() + ": cannot be restored: " + e.what());
+  }
+  resumed_at = simulation->time();
+  log << "resumed " << dir.string() << " at t = " << format_significant(simulation->time())
+      << " s, step " << simulation->n_steps() << "\n";
+  flush(seconds_since(wall_start));
+  progress.emplace(!options.quiet && isatty(fileno(stderr)), simulation->end_time());
+  return stage;
 }
 
 void SceneRun::flush(double wall)
@@ -187,14 +256,26 @@ int SceneRun::write_summary()
     summary["status"] = "stopped";
     summary["stopped"] = stop_reason;
   }
+  summary["checkpoints"] = {{"every_s", scene.output.checkpoint_every},
+                            {"written", n_checkpoints},
+                            {"seconds", checkpoint_seconds},
+                            {"last_bytes", checkpoint_bytes},
+                            {"resumed_at_s", resumed_at ? nlohmann::json(*resumed_at) : nullptr}};
+  if (stop_reason.empty())
+  {
+    // An ended run (completed or failed) has nothing to resume: its checkpoint goes.
+    std::error_code ignored;
+    std::filesystem::remove(checkpoint_path(dir), ignored);
+  }
   return run_support::finish_run(dir, summary, end.failure, end.steps, end.time, wall,
                                  end.view_file, log);
 }
 } // namespace
 
-int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log)
+int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log,
+              CheckpointReader* resume_from)
 {
-  SceneRun run(scene, options, log);
+  SceneRun run(scene, options, log, resume_from);
   return run.run();
 }
 

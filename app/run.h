@@ -5,6 +5,7 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace ddafem
 {
@@ -27,7 +28,12 @@ struct RunOptions
   /// Stop cleanly after a step at which the resident memory exceeds this [bytes] (--max-memory,
   /// which also refuses a scene estimated beyond it); 0: no budget.
   double max_memory = 0.0;
+  /// The --set overrides as given, kept in checkpoints so that `resume` reads the scene the
+  /// same way.
+  std::vector<std::string> settings;
 };
+
+class CheckpointReader;
 
 /// Runs a scene (blocks alone, tied to a far field, or a far field alone) and writes
 /// histories.h5, the snapshots (model.pvd, or far_field.pvd for a far field alone, + .vtu) and
@@ -36,6 +42,12 @@ struct RunOptions
 /// summary.json; everything written so far stays readable). Bad input throws InputError before
 /// anything is written. A run stopped at a budget (max_wall_time, max_memory) writes its state
 /// and summary.json with the status "stopped" and returns 3.
-int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log);
+/// Every output.checkpoint_every of wall time, and when a budget stops it, the run writes a
+/// checkpoint (app/checkpoint.h) between two steps of a dynamic stage. With `resume_from` (a
+/// checkpoint of this scene in the output directory) the run continues from it instead of
+/// starting: its outputs are reopened as they were then, and it goes on as the run that wrote it
+/// would have, bit for bit.
+int run_scene(const Scene& scene, const RunOptions& options, std::ostream& log,
+              CheckpointReader* resume_from = nullptr);
 
 } // namespace ddafem

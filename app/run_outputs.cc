@@ -1,5 +1,6 @@
 #include "app/run_outputs.h"
 
+#include "app/checkpoint_types.h"
 #include "app/run_support.h"
 
 #include "common/stopwatch.h"
@@ -42,6 +43,7 @@ std::vector<HistoryChannel> all_channels(const dda::ModelDescription& model,
   keyblocks.add_channels(channels);
   return channels;
 }
+
 } // namespace
 
 std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
@@ -125,9 +127,44 @@ void RunOutputs::write_snapshot()
   }
   for (std::size_t part = 0; part < files.size(); ++part)
     model_data_sets.push_back({system.time(), static_cast<unsigned>(part), files[part]});
+  write_model_pvd();
+}
+
+void RunOutputs::write_model_pvd() const
+{
   CollectionStyle style;
   style.time_precision = 17;
   write_collection(dir / "model.pvd", model_data_sets, style);
+}
+
+void RunOutputs::save(CheckpointOut& a) const
+{
+  save_history_rows(a, "outputs", history.n_rows());
+  blocks_vtu.save(a);
+  contacts_vtu.save(a);
+  ties_vtu.save(a);
+  a << model_data_sets << time_output << time_far_field;
+  transfer_optional(a, const_cast<std::optional<double>&>(last_row_time));
+  transfer_optional(a, const_cast<std::optional<double>&>(last_snapshot_time));
+}
+
+RunOutputs::RunOutputs(const std::filesystem::path& dir_, const dda::System& system_,
+                       TiedFarField* tied_, KeyblockRecorder& keyblocks_,
+                       fem::VtuCompression vtu_compression_, CheckpointIn& a)
+    : dir(dir_), system(system_), tied(tied_), keyblocks(keyblocks_),
+      vtu_compression(vtu_compression_),
+      history((dir / "histories.h5").string(), all_channels(system.get_model(), tied, keyblocks),
+              HistoryWriter::Reopen{load_history_rows(a, "outputs")}),
+      blocks_vtu(dir.string(), "blocks"), contacts_vtu(dir.string(), "contacts"),
+      ties_vtu(dir.string(), "ties")
+{
+  blocks_vtu.load(a);
+  contacts_vtu.load(a);
+  ties_vtu.load(a);
+  a >> model_data_sets >> time_output >> time_far_field;
+  transfer_optional(a, last_row_time);
+  transfer_optional(a, last_snapshot_time);
+  write_model_pvd();
 }
 
 } // namespace ddafem

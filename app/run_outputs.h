@@ -7,6 +7,7 @@
 #include "app/far_field_module.h"
 #include "app/keyblocks.h"
 
+#include "common/checkpoint_fwd.h"
 #include "common/history_writer.h"
 #include "common/vtk_collection.h"
 #include "dda/system.h"
@@ -43,6 +44,13 @@ public:
   RunOutputs(const std::filesystem::path& dir, const std::string& scene_file,
              const dda::System& system, TiedFarField* tied, KeyblockRecorder& keyblocks,
              fem::VtuCompression vtu_compression);
+  /// Reopens the outputs of a run resumed from a checkpoint (save): histories.h5 cut back to
+  /// the rows it had then, the snapshot series to the snapshots it had.
+  RunOutputs(const std::filesystem::path& dir, const dda::System& system, TiedFarField* tied,
+             KeyblockRecorder& keyblocks, fem::VtuCompression vtu_compression,
+             CheckpointIn& archive);
+  /// Checkpoints: after flush(), the rows and snapshots written so far.
+  void save(CheckpointOut& archive) const;
 
   /// A history row of the state now, and with `snapshot` the VTU files and model.pvd.
   void write_state(bool snapshot, const LastStep& last);
@@ -55,6 +63,7 @@ public:
 private:
   /// Writes the snapshot's parts and rewrites model.pvd.
   void write_snapshot();
+  void write_model_pvd() const;
 
   std::filesystem::path dir;
   const dda::System& system;

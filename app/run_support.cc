@@ -58,7 +58,8 @@ void write_text_file(const std::filesystem::path& path, const std::string& text)
 std::size_t clear_earlier_results(const std::filesystem::path& dir)
 {
   static const std::regex ours(
-      R"((summary\.json|histories\.h5|expanded_scene\.yaml|report\.md|report_[a-z_]+\.png|)"
+      R"((summary\.json|histories\.h5|checkpoint\.bin|expanded_scene\.yaml|report\.md|)"
+      R"(report_[a-z_]+\.png|)"
       R"((model|blocks|contacts|ties|far_field)\.pvd|(blocks|contacts|ties|far_field)_[0-9]+\.vtu)"
       R"()(\.tmp)?)");
   std::size_t n_removed = 0;

@@ -374,6 +374,7 @@ OutputSettings read_output(const MapReader& top)
   settings.interval = output.number("interval");
   settings.history_every = static_cast<std::size_t>(output.integer("history_every"));
   settings.flush_interval = output.number("flush_interval");
+  settings.checkpoint_every = output.number("checkpoint_every");
   settings.vtu_compression = output.choice_of<fem::VtuCompression>("vtu_compression");
   return settings;
 }

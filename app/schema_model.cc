@@ -760,6 +760,14 @@ Section output_section()
            .meaning("wall-clock time between flushes of histories.h5 and of the running "
                     "summary.json to disk: a run killed at any moment keeps every history row "
                     "up to its last flush readable; 0: after every step"),
+       key("checkpoint_every", T::number)
+           .unit("s")
+           .default_yaml("60")
+           .at_least(0)
+           .meaning("wall-clock time between checkpoints (checkpoint.bin) from which `ddafem "
+                    "resume DIR` continues a killed or stopped run, its histories bit for bit "
+                    "those of an uninterrupted run; written between two steps of a dynamic "
+                    "stage, and when a budget stops the run; 0: none"),
        key("vtu_compression", T::choice)
            .default_yaml("best_speed")
            .choices(names_of<fem::VtuCompression>())

@@ -5,6 +5,8 @@
 
 #include "app/scene.h"
 
+#include "common/checkpoint_fwd.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
@@ -47,6 +49,17 @@ public:
   /// Writes the buffered history rows and flushes histories.h5 to disk: a run killed after this
   /// leaves every row so far readable.
   virtual void flush_outputs() = 0;
+
+  /// Checkpoints (app/checkpoint.h). Whether one can be taken now: between two steps of a
+  /// dynamic stage (static stages are not checkpointed: a run resumes at most from the start of
+  /// the dynamic stage after them).
+  virtual bool can_checkpoint() const = 0;
+  /// Stores the run's whole state (when can_checkpoint(), after flush_outputs()).
+  virtual void save_checkpoint(CheckpointOut& archive) const = 0;
+  /// Restores a checkpoint into a simulation built from the same scene, in place of
+  /// open_outputs: the outputs in `dir` are reopened as they were at the checkpoint. Returns the
+  /// stage to go on with: its run_stage continues it from the step saved.
+  virtual std::size_t resume(CheckpointIn& archive, const std::filesystem::path& dir) = 0;
 
   virtual std::size_t n_steps() const = 0; ///< steps taken so far
   virtual double time() const = 0;         ///< simulated time reached [s]

@@ -53,6 +53,16 @@ public:
     describe_far_field(out);
     describe_interface(out);
   }
+  void save(CheckpointOut& archive) const override
+  {
+    far_field.save(archive);
+    ties.save(archive);
+  }
+  void load(CheckpointIn& archive) override
+  {
+    far_field.load(archive);
+    ties.load(archive);
+  }
 
 private:
   std::optional<coupling::InterfaceImpedance> impedance() const

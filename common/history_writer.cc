@@ -229,6 +229,57 @@ struct HistoryWriter::Impl
     return dataset;
   }
 
+  /// The channels and buffers, and HDF5's error handling (both constructors).
+  void set_channels(const std::string& name, std::vector<HistoryChannel> new_channels,
+                    std::size_t rows_per_flush)
+  {
+    if (rows_per_flush == 0)
+      throw std::invalid_argument("HistoryWriter '" + name + "': flush_every must be >= 1");
+    filename = name;
+    flush_every = rows_per_flush;
+    channels = std::move(new_channels);
+    for (auto& channel : channels)
+    {
+      channel.path = normalized_path(channel.path);
+      if (channel.path.empty() || channel.n_components == 0)
+        throw std::invalid_argument("HistoryWriter '" + filename + "': channel '" + channel.path +
+                                    "' needs a non-empty path and n_components >= 1");
+      n_values_per_row += channel.n_components;
+    }
+    // A file whose close failed (a full disk) stays open inside HDF5, and HDF5's clean-up at
+    // exit would flush it again and crash (exit 139): the files are closed here, never at exit.
+    // Only the first call in a process takes effect (before HDF5 initialises); later ones fail
+    // harmlessly.
+    H5dont_atexit();
+    // Errors are reported through exceptions; HDF5's own printing to stderr would duplicate
+    // them.
+    if (H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) < 0)
+      throw_hdf5_error(filename, "", "silence HDF5's error printing");
+    time_buffer.reserve(flush_every);
+    buffers.resize(channels.size());
+    for (std::size_t c = 0; c < channels.size(); ++c)
+      buffers[c].reserve(flush_every * channels[c].n_components);
+  }
+
+  /// Opens an existing dataset of a resumed file and cuts it back to `rows` rows.
+  Handle cut_dataset(const std::string& path, std::size_t n_components, std::size_t rows) const
+  {
+    Handle dataset(H5Dopen2(file.get(), path.c_str(), H5P_DEFAULT), H5Dclose);
+    if (!dataset.valid())
+      throw_hdf5_error(filename, path, "open the dataset to resume it");
+    Handle space(H5Dget_space(dataset.get()), H5Sclose);
+    hsize_t dims[2] = {0, 0};
+    if (!space.valid() || H5Sget_simple_extent_dims(space.get(), dims, nullptr) < 0)
+      throw_hdf5_error(filename, path, "read the dataset's size");
+    if (dims[0] < rows)
+      throw std::runtime_error("HDF5 history file '" + filename + "', dataset '" + path +
+                               "': " + std::to_string(dims[0]) + " rows, the checkpoint needs " +
+                               std::to_string(rows));
+    const hsize_t cut[2] = {rows, n_components};
+    check(H5Dset_extent(dataset.get(), cut), path, "cut the dataset back to the checkpoint");
+    return dataset;
+  }
+
   /// Writes rows [n_rows_written, n_rows_written + n_new) of one dataset from `data`
   /// (row-major, n_new x n_components). Idempotent: a failed write can be retried.
   void write_rows(const Handle& dataset, const std::string& path, std::size_t n_components,
@@ -277,43 +328,31 @@ HistoryWriter::HistoryWriter(const std::string& filename, std::vector<HistoryCha
                              std::size_t flush_every)
     : impl(std::make_unique<Impl>())
 {
-  if (flush_every == 0)
-    throw std::invalid_argument("HistoryWriter '" + filename + "': flush_every must be >= 1");
-  impl->filename = filename;
-  impl->flush_every = flush_every;
-  impl->channels = std::move(channels);
-  for (auto& channel : impl->channels)
-  {
-    channel.path = normalized_path(channel.path);
-    if (channel.path.empty() || channel.n_components == 0)
-      throw std::invalid_argument("HistoryWriter '" + filename + "': channel '" + channel.path +
-                                  "' needs a non-empty path and n_components >= 1");
-    impl->n_values_per_row += channel.n_components;
-  }
-
-  // A file whose close failed (a full disk) stays open inside HDF5, and HDF5's clean-up at exit
-  // would flush it again and crash (exit 139): the files are closed here, never at exit. Only
-  // the first call in a process takes effect (before HDF5 initialises); later ones fail harmlessly.
-  H5dont_atexit();
-  // Errors are reported through exceptions; HDF5's own printing to stderr would duplicate them.
-  if (H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) < 0)
-    throw_hdf5_error(filename, "", "silence HDF5's error printing");
-
+  impl->set_channels(filename, std::move(channels), flush_every);
   impl->file =
       Handle(H5Fcreate(filename.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
   if (!impl->file.valid())
     throw_hdf5_error(filename, "", "create the file");
 
   impl->time_dataset = impl->create_dataset("time", 1, "s", "simulated time");
-  impl->time_buffer.reserve(flush_every);
-  impl->buffers.resize(impl->channels.size());
-  for (std::size_t c = 0; c < impl->channels.size(); ++c)
-  {
-    const HistoryChannel& channel = impl->channels[c];
+  for (const HistoryChannel& channel : impl->channels)
     impl->channel_datasets.push_back(impl->create_dataset(channel.path, channel.n_components,
                                                           channel.unit, channel.description));
-    impl->buffers[c].reserve(flush_every * channel.n_components);
-  }
+}
+
+HistoryWriter::HistoryWriter(const std::string& filename, std::vector<HistoryChannel> channels,
+                             Reopen reopen, std::size_t flush_every)
+    : impl(std::make_unique<Impl>())
+{
+  impl->set_channels(filename, std::move(channels), flush_every);
+  impl->file = Handle(H5Fopen(filename.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+  if (!impl->file.valid())
+    throw_hdf5_error(filename, "", "open the file to resume it");
+  impl->time_dataset = impl->cut_dataset("time", 1, reopen.rows);
+  for (const HistoryChannel& channel : impl->channels)
+    impl->channel_datasets.push_back(
+        impl->cut_dataset(channel.path, channel.n_components, reopen.rows));
+  impl->n_rows_written = reopen.rows;
 }
 
 HistoryWriter::~HistoryWriter()

@@ -39,6 +39,15 @@ class HistoryWriter
 public:
   HistoryWriter(const std::string& filename, std::vector<HistoryChannel> channels,
                 std::size_t flush_every = 256);
+  /// Reopens a file such a writer wrote, with the same channels (a resumed run): every dataset
+  /// is cut back to its first `rows` rows, and appends go on after them. Throws
+  /// std::runtime_error naming the file and dataset if one is missing or shorter.
+  struct Reopen
+  {
+    std::size_t rows = 0;
+  };
+  HistoryWriter(const std::string& filename, std::vector<HistoryChannel> channels, Reopen reopen,
+                std::size_t flush_every = 256);
   ~HistoryWriter();
   HistoryWriter(const HistoryWriter&) = delete;
   HistoryWriter& operator=(const HistoryWriter&) = delete;

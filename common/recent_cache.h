@@ -45,6 +45,13 @@ public:
   const Key& front_key() const { return entries.front().first; }
   Value& front() const { return *entries.front().second; }
   void clear() { entries.clear(); }
+  /// Calls visit(key, value) for each entry, the most recently used first (checkpoints).
+  template <typename Visit>
+  void for_each(Visit visit) const
+  {
+    for (const Entry& e : entries)
+      visit(e.first, *e.second);
+  }
 
 private:
   using Entry = std::pair<Key, std::unique_ptr<Value>>;

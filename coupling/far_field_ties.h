@@ -2,6 +2,7 @@
 // one implicit system per step, the far field condensed onto the tie points.
 #pragma once
 
+#include "common/checkpoint_fwd.h"
 #include "common/recent_cache.h"
 #include "dda/contact/contact_law.h"
 #include "dda/system.h"
@@ -111,6 +112,11 @@ public:
   double part_length() const { return length_of_part; } ///< [m]
   const std::vector<Tie>& get_ties() const { return ties; }
   TieCounts counts() const;
+
+  /// Checkpoints (coupling/ties_checkpoint.cc), between two steps; the far field is saved on
+  /// its own.
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
   /// Work of the ties on the far field since t = 0 [J] (the energy that crossed into it).
   double work_on_far_field() const;
   /// Work of the preloads on the blocks [J] (part of work_on_blocks): a dead load standing for
@@ -152,6 +158,9 @@ private:
   Eigen::VectorXd bonded_springs(const Eigen::VectorXd& x) const;
   /// w = R w0 + M (K' z + F0).
   Eigen::VectorXd far_field_displacements(const Eigen::VectorXd& z) const;
+
+  template <class Archive>
+  void transfer_state(Archive& archive);
 
   fem::ElasticWaveModel& far_field;
   std::vector<Tie> ties;

@@ -97,21 +97,38 @@ std::vector<std::size_t> SettleDetector::out_of_place(const System& system) cons
   return ids;
 }
 
-DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const TimeSettings& time,
-                                     const std::vector<Vector2>& fall_reference,
-                                     const AfterDynamicStep& after_step)
+DynamicStageRun::DynamicStageRun(System& system_, const Stage& stage_, const TimeSettings& time_,
+                                 const std::vector<Vector2>& fall_reference)
+    : system(system_), stage(stage_), time(time_), first_step(system_.n_steps()),
+      stepper(system_, time_)
 {
-  DynamicStageResult result;
   result.end_time = stage.settle ? system.time() + stage.settle->max_duration : stage.end_time;
   result.smallest_dt = time.dt;
-  const std::size_t first_step = system.n_steps();
-  TimeStepper stepper(system, time);
-  std::optional<SettleDetector> detector;
   if (stage.settle)
     detector.emplace(system, *stage.settle, fall_reference);
+}
+
+bool DynamicStageRun::at_end() const
+{
   // Within round-off of the end (1e-9 dt) counts as there.
-  const auto at_end = [&] { return system.time() >= result.end_time - 1e-9 * time.dt; };
-  while (!at_end())
+  return system.time() >= result.end_time - 1e-9 * time.dt;
+}
+
+void DynamicStageRun::observe_settling()
+{
+  result.settled = detector->observe(system, stepper.last_dt());
+  if (stage.settle->remove_fallen)
+    for (const std::size_t i : detector->out_of_place(system))
+    {
+      system.remove_block(i);
+      result.removed.emplace_back(i, system.time());
+    }
+}
+
+DynamicStageResult DynamicStageRun::run(const AfterDynamicStep& after_step)
+{
+  // (A run loaded from a checkpoint taken after the settling step has settled already.)
+  while (!result.settled && !at_end())
   {
     const StepStatus status = stepper.step(result.end_time - system.time());
     if (status.outcome != StepOutcome::success)
@@ -122,15 +139,7 @@ DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const T
     result.n_flips_ignored += status.n_flips_ignored;
     result.smallest_dt = std::min(result.smallest_dt, stepper.last_dt());
     if (detector)
-    {
-      result.settled = detector->observe(system, stepper.last_dt());
-      if (stage.settle->remove_fallen)
-        for (const std::size_t i : detector->out_of_place(system))
-        {
-          system.remove_block(i);
-          result.removed.emplace_back(i, system.time());
-        }
-    }
+      observe_settling();
     if (after_step && !after_step(stepper, status, result.settled || at_end()))
     {
       result.stopped = !result.settled && !at_end();
@@ -152,6 +161,13 @@ DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const T
     result.moving_speed = detector->largest_moving_speed();
   }
   return result;
+}
+
+DynamicStageResult run_dynamic_stage(System& system, const Stage& stage, const TimeSettings& time,
+                                     const std::vector<Vector2>& fall_reference,
+                                     const AfterDynamicStep& after_step)
+{
+  return DynamicStageRun(system, stage, time, fall_reference).run(after_step);
 }
 
 } // namespace ddafem::dda

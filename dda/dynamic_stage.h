@@ -2,6 +2,7 @@
 // until every block is at rest or has fallen, so that "fell" in the results means fell.
 #pragma once
 
+#include "common/checkpoint_fwd.h"
 #include "dda/model_description.h"
 #include "dda/system.h"
 #include "dda/time_stepper.h"
@@ -9,6 +10,7 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -44,6 +46,10 @@ public:
   /// The largest block_speed of the blocks neither at rest nor fallen [m/s] (0 if none).
   double largest_moving_speed() const { return moving_speed; }
 
+  /// Checkpoints (dda/stage_checkpoint.cc): the blocks' time at rest and falls.
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
+
 private:
   SettleCriterion criterion;
   std::vector<Vector2> reference;
@@ -77,6 +83,36 @@ struct DynamicStageResult
 /// Called after every accepted step with the stepper, the step's status and whether it is the
 /// stage's last; returns false to stop the stage there (a wall-time or memory budget).
 using AfterDynamicStep = std::function<bool(const TimeStepper&, const StepStatus&, bool)>;
+
+/// A dynamic stage in progress: its time stepper, settle detector and result so far, which a
+/// checkpoint keeps between two steps (save, and load into a run of the same stage, System and
+/// settings) so that it goes on as the saved one would have.
+class DynamicStageRun
+{
+public:
+  /// See run_dynamic_stage; starts at the System's time.
+  DynamicStageRun(System& system, const Stage& stage, const TimeSettings& time,
+                  const std::vector<Vector2>& fall_reference);
+
+  /// Steps to the stage's end (run_dynamic_stage), or until `after_step` returns false.
+  DynamicStageResult run(const AfterDynamicStep& after_step = {});
+
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
+
+private:
+  bool at_end() const;
+  /// The settle detector's verdict after an accepted step, and the removal of fallen debris.
+  void observe_settling();
+
+  System& system;
+  const Stage& stage;
+  TimeSettings time;
+  DynamicStageResult result;
+  std::size_t first_step = 0; ///< System::n_steps() at the stage's start
+  TimeStepper stepper;
+  std::optional<SettleDetector> detector;
+};
 
 /// Runs a dynamic stage of `system` (begin_stage(dynamic) first) with the scene's time control:
 /// to stage.end_time, or for a settle stage (stage.settle) until SettleDetector::observe says

@@ -2,6 +2,7 @@
 // solvers whose factorization is reused across steps.
 #pragma once
 
+#include "common/checkpoint_fwd.h"
 #include "common/recent_cache.h"
 #include "dda/model_description.h"
 #include "dda/types.h"
@@ -53,6 +54,13 @@ public:
   bool same_structure(const BlockSparseMatrix& other) const;
   /// Whether every entry equals the other matrix's (same structure assumed).
   bool same_values(const BlockSparseMatrix& other) const;
+
+  /// Checkpoints: the structure and the blocks' values.
+  template <class Archive>
+  void serialize(Archive& archive, const unsigned int /*version*/)
+  {
+    transfer_all(archive, coupling_pairs, diagonal_blocks, upper_blocks);
+  }
 
 private:
   std::vector<std::pair<std::size_t, std::size_t>> coupling_pairs;
@@ -126,6 +134,11 @@ public:
   std::size_t n_factorizations() const { return factorization_count; }
   std::size_t n_solves() const { return solve_count; }
   std::size_t n_refinements() const { return refinement_count; }
+
+  /// Checkpoints (dda/solver_checkpoint.cc): the counters and the matrix of each kept
+  /// factorization, most recent first; `load` analyses and factorizes them again.
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
 
 private:
   /// One key's factors and the matrix they belong to (none until the first factorization).

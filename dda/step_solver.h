@@ -2,6 +2,7 @@
 // or block-Jacobi conjugate gradients falling back to it (SolverSettings::method).
 #pragma once
 
+#include "common/checkpoint_fwd.h"
 #include "dda/block_pcg.h"
 #include "dda/linear_solver.h"
 #include "dda/model_description.h"
@@ -42,6 +43,11 @@ public:
 
   /// Solves of a key given to the direct solver after one of its CG solves failed.
   static constexpr std::size_t direct_run = 100;
+
+  /// Checkpoints (dda/solver_checkpoint.cc): the counters and the kept factors' matrices, which
+  /// `load` factorizes again (the same bits: a refinement with them gives what it would have).
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
 
 private:
   SolveStatus solve_by_pcg(const BlockSparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,

@@ -4,6 +4,7 @@
 // step_scheme.cc, system_update.cc, system_energy.cc.
 #pragma once
 
+#include "common/checkpoint_fwd.h"
 #include "common/parallel.h"
 #include "dda/block.h"
 #include "dda/contact/contact.h"
@@ -267,6 +268,13 @@ public:
   double support_stiffness() const { return support_normal_stiffness; }
   std::size_t n_supports() const { return supports.size(); }
 
+  /// Checkpoints (dda/system_checkpoint.cc): stores everything later steps read; `load` into a
+  /// System built from the same model restores it, so that it steps on bit for bit as the saved
+  /// one would. Between accepted steps only. Loading throws std::runtime_error for a checkpoint
+  /// of another model.
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
+
   std::vector<BlockSnapshot> snapshot() const;
   /// The contacts of the last accepted step and the end springs of the intact bonded joints.
   std::vector<ContactSnapshot> contact_snapshot() const;
@@ -274,6 +282,12 @@ public:
   EnergyBalance energy() const;
 
 private:
+  /// save and load: one function for both (Boost.Serialization's `&` stores or restores).
+  template <class Archive>
+  void transfer_state(Archive& archive);
+  template <class Archive>
+  void transfer_contacts(Archive& archive);
+
   struct AttachedLoad
   {
     MaterialPoint point;

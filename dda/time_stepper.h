@@ -1,6 +1,7 @@
 // Time-step control of a DDA System: cut dt on a failed step, grow it back after successes.
 #pragma once
 
+#include "common/checkpoint_fwd.h"
 #include "dda/model_description.h"
 #include "dda/system.h"
 
@@ -53,6 +54,10 @@ public:
   std::size_t n_penalty_raises() const { return penalty_raise_count; }
   /// Steps shortened to end at a sliding contact's slip reversal
   std::size_t n_reversals() const { return reversal_count; }
+
+  /// Checkpoints (dda/stage_checkpoint.cc): the dt to try, the counters and a broken pair.
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
 
 private:
   System& system;

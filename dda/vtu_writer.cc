@@ -1,5 +1,6 @@
 #include "dda/vtu_writer.h"
 
+#include "common/checkpoint_archive.h"
 #include "common/vtk_collection.h"
 
 #include <algorithm>
@@ -315,6 +316,17 @@ void VtuSeriesWriter::write_pvd() const
     data_sets.push_back({time, 0, name});
   const fs::path dir = directory.empty() ? fs::path(".") : fs::path(directory);
   write_collection(dir / (basename + ".pvd"), data_sets);
+}
+
+void VtuSeriesWriter::save(CheckpointOut& archive) const
+{
+  archive << entries;
+}
+
+void VtuSeriesWriter::load(CheckpointIn& archive)
+{
+  archive >> entries;
+  write_pvd();
 }
 
 } // namespace ddafem::dda

@@ -3,6 +3,7 @@
 // this small writer emits VTK XML UnstructuredGrid files directly.
 #pragma once
 
+#include "common/checkpoint_fwd.h"
 #include "dda/snapshot.h"
 
 #include <string>
@@ -30,6 +31,11 @@ public:
   std::string write(double time, const std::vector<ContactSnapshot>& contacts);
 
   std::size_t n_written() const { return entries.size(); }
+
+  /// Checkpoints: the files written so far. `load` rewrites the .pvd with them (a resumed run:
+  /// later files of the interrupted run drop out of the series and are written again).
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
 
 private:
   std::string write_text(double time, const std::string& text);

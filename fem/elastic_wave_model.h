@@ -2,6 +2,7 @@
 // incident plane wave (issue 5).
 #pragma once
 
+#include "common/checkpoint_fwd.h"
 #include "fem/far_field_description.h"
 
 #include <array>
@@ -156,6 +157,11 @@ public:
   /// directory).
   std::string write_snapshot(const std::string& directory, const std::string& basename,
                              VtuCompression compression = VtuCompression::best_speed);
+
+  /// Checkpoints (fem/far_field_checkpoint.cc): the state between two steps; `load` into a
+  /// model built from the same description restores it, so that it steps on bit for bit.
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
 
 private:
   class Impl;

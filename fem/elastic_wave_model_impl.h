@@ -172,6 +172,9 @@ public:
   };
   State save_state() const;
   void restore_state(const State& state);
+  /// Checkpoints (fem/far_field_checkpoint.cc): save and load in one function.
+  template <class Archive>
+  void transfer_state(Archive& archive);
 
   Vector<double> u, v, a;             ///< u: total displacement (static stage included)
   Vector<double> static_displacement; ///< u_s of the static stage (empty without one)

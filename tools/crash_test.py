@@ -14,7 +14,12 @@ drawn uniformly from [0.3 s, 0.95 T] with the given seed. After each kill it che
 - histories.h5 opens with h5py, every dataset reads, every dataset has as many rows as /time,
   and the rows are a prefix of the uninterrupted run's (the same values, bit for bit);
 - model.pvd (far_field.pvd for a far field alone) parses, and every file it lists exists and
-  parses as XML.
+  parses as XML;
+- then `ddafem resume` continues it from its last checkpoint (written every CHECKPOINT_EVERY s
+  of wall time: 5 s for the tunnel, 1 s for the far field) and the resumed run's histories must
+  equal the uninterrupted run's, every dataset bit for bit. A run killed before its first
+  checkpoint (in the tunnel's static stage, or within the first interval) has none: resume
+  refuses it with exit code 2, as it should, and the row says so.
 
 It reports per kill the moment, the rows readable, the simulated time they reach, how far the
 last flush lay behind the kill, and whether every file parsed; writes crash_test.{md,json} into
@@ -42,11 +47,17 @@ SCENES = {
     "tunnel": ("examples/tunnel/circular_sv.yaml", "model.pvd"),
     "far_field": ("examples/far_field/circular_hole.yaml", "far_field.pvd"),
 }
+CHECKPOINT_EVERY = {"tunnel": 5.0, "far_field": 1.0}  # [s] of wall time
 
 
-def run_to_end(ddafem, scene, out):
+def run_command(ddafem, scene, out, every):
+    return [ddafem, "run", os.path.join(TOP, scene), "-o", out, "--quiet", "--set",
+            f"output.checkpoint_every={every}"]
+
+
+def run_to_end(ddafem, scene, out, every):
     start = time.perf_counter()
-    result = subprocess.run([ddafem, "run", os.path.join(TOP, scene), "-o", out, "--quiet"],
+    result = subprocess.run(run_command(ddafem, scene, out, every),
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     if result.returncode != 0:
         sys.exit(f"the uninterrupted run of {scene} failed (exit {result.returncode}):\n"
@@ -54,8 +65,8 @@ def run_to_end(ddafem, scene, out):
     return time.perf_counter() - start
 
 
-def run_and_kill(ddafem, scene, out, moment):
-    proc = subprocess.Popen([ddafem, "run", os.path.join(TOP, scene), "-o", out, "--quiet"],
+def run_and_kill(ddafem, scene, out, moment, every):
+    proc = subprocess.Popen(run_command(ddafem, scene, out, every),
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
         proc.wait(timeout=moment)
@@ -119,6 +130,30 @@ def check_collection(run_dir, pvd):
     return problems
 
 
+def resume_and_compare(ddafem, run_dir, reference):
+    """(what resuming the killed run gave, its wall time [s])."""
+    if not os.path.exists(os.path.join(run_dir, "checkpoint.bin")):
+        result = subprocess.run([ddafem, "resume", run_dir, "--quiet"], capture_output=True,
+                                text=True)
+        refused = result.returncode == 2 and "no checkpoint" in result.stderr
+        return ("no checkpoint yet: refused" if refused
+                else f"no checkpoint, yet resume gave exit {result.returncode}"), 0.0
+    start = time.perf_counter()
+    result = subprocess.run([ddafem, "resume", run_dir, "--quiet"], capture_output=True,
+                            text=True)
+    wall = time.perf_counter() - start
+    if result.returncode != 0:
+        return f"resume failed (exit {result.returncode}): {result.stderr[-300:]}", wall
+    data = read_histories(os.path.join(run_dir, "histories.h5"))
+    equal = sorted(data) == sorted(reference) and all(
+        data[n].shape == reference[n].shape and data[n].tobytes() == reference[n].tobytes()
+        for n in reference)
+    line = next((x for x in result.stdout.splitlines() if x.startswith("resumed ")), "")
+    at = line.split(" at t = ")[-1].split(",")[0] if line else "?"
+    return (f"from t = {at}: equal bit for bit" if equal
+            else f"from t = {at}: histories differ"), wall
+
+
 def check_summary(run_dir):
     """(summary.json's content, problems)."""
     try:
@@ -131,14 +166,15 @@ def check_summary(run_dir):
 def crash_scene(ddafem, name, kills, rng, work):
     scene, pvd = SCENES[name]
     full_dir = os.path.join(work, name + "_full")
-    wall = run_to_end(ddafem, scene, full_dir)
+    every = CHECKPOINT_EVERY[name]
+    wall = run_to_end(ddafem, scene, full_dir, every)
     reference = read_histories(os.path.join(full_dir, "histories.h5"))
     flush_interval = None  # the running summary.json's
     records = []
     for k in range(kills):
         moment = rng.uniform(0.3, max(0.35, 0.95 * wall))
         run_dir = os.path.join(work, f"{name}_kill{k}")
-        killed = run_and_kill(ddafem, scene, run_dir, moment)
+        killed = run_and_kill(ddafem, scene, run_dir, moment, every)
         if os.path.isdir(run_dir):
             summary, problems = check_summary(run_dir)
             status = summary.get("status")
@@ -146,16 +182,22 @@ def crash_scene(ddafem, name, kills, rng, work):
             rows, reached, history_problems = check_histories(
                 os.path.join(run_dir, "histories.h5"), reference)
             problems += history_problems + check_collection(run_dir, pvd)
+            resumed, resume_wall = resume_and_compare(ddafem, run_dir, reference)
+            if "differ" in resumed or "failed" in resumed or "yet resume gave" in resumed:
+                problems.append(resumed)
         else:
             status, problems, rows, reached = "nothing written yet", [], 0, 0.0
+            resumed, resume_wall = "nothing to resume", 0.0
         records.append({"scene": name, "kill_s": round(moment, 3), "killed": killed,
                         "status": status, "rows": rows, "rows_full": len(reference["time"]),
-                        "time_reached_s": reached, "problems": problems})
+                        "time_reached_s": reached, "problems": problems, "resumed": resumed,
+                        "resume_wall_s": round(resume_wall, 2)})
         print(f"{name} kill {k}: at {moment:.2f} s, {rows} rows to t = {reached:.4g} s, "
-              f"status {status}, {'ok' if not problems else '; '.join(problems)}", flush=True)
+              f"status {status}, {'ok' if not problems else '; '.join(problems)}; "
+              f"resumed {resumed}", flush=True)
         shutil.rmtree(run_dir, ignore_errors=True)
     return {"scene": scene, "wall_s": wall, "flush_interval_s": flush_interval,
-            "kills": records}
+            "checkpoint_every_s": every, "kills": records}
 
 
 def write_report(results, out, command, seed):
@@ -166,21 +208,28 @@ def write_report(results, out, command, seed):
              f"Generated by `{command}` on {platform.machine()}, {os.cpu_count()} cores "
              f"(seed {seed}). Each run is killed with SIGKILL at a random moment; then "
              "summary.json, every dataset of histories.h5 (each a prefix of the uninterrupted "
-             "run's, bit for bit) and the PVD collection with every file it lists are read.", ""]
+             "run's, bit for bit) and the PVD collection with every file it lists are read; "
+             "then `ddafem resume` continues it from its last checkpoint and its histories "
+             "are compared with the uninterrupted run's, every dataset bit for bit.", ""]
     for name, r in results.items():
         bad = sum(1 for k in r["kills"] if k["problems"])
+        equal = sum(1 for k in r["kills"] if "equal bit for bit" in k["resumed"])
         lines += [f"## {name}: `{r['scene']}`", "",
                   f"Uninterrupted: {r['wall_s']:.1f} s wall time, "
                   f"{r['kills'][0]['rows_full'] if r['kills'] else 0} history rows; "
                   f"histories flushed every {r['flush_interval_s']} s of wall time "
-                  f"(`output.flush_interval`). **{len(r['kills']) - bad} of {len(r['kills'])} "
-                  "killed runs left every file readable.**", "",
-                  "| kill at [s] | status | rows readable | to t [s] | files |",
-                  "|---:|---|---:|---:|---|"]
+                  f"(`output.flush_interval`), checkpoints every {r['checkpoint_every_s']} s. "
+                  f"**{len(r['kills']) - bad} of {len(r['kills'])} killed runs left every file "
+                  f"readable; {equal} of them resumed to histories equal to the uninterrupted "
+                  "run's, the others were killed before their first checkpoint.**", "",
+                  "| kill at [s] | status | rows readable | to t [s] | files | resumed | "
+                  "resume wall [s] |",
+                  "|---:|---|---:|---:|---|---|---:|"]
         for k in r["kills"]:
             files = "all read" if not k["problems"] else "; ".join(k["problems"])
             lines.append(f"| {k['kill_s']:.2f} | {k['status']} | {k['rows']} of "
-                         f"{k['rows_full']} | {k['time_reached_s']:.4g} | {files} |")
+                         f"{k['rows_full']} | {k['time_reached_s']:.4g} | {files} | "
+                         f"{k['resumed']} | {k['resume_wall_s']:.1f} |")
         lines.append("")
     with open(os.path.join(out, "crash_test.md"), "w") as f:
         f.write("\n".join(lines))
@@ -210,7 +259,8 @@ def main():
             f" --seed {args.seed}" if args.seed != 1 else "")
         write_report(results, args.out, command, args.seed)
     bad = [k for r in results.values() for k in r["kills"] if k["problems"]]
-    print(f"{len(bad)} killed runs left an unreadable or differing file")
+    print(f"{len(bad)} killed runs left an unreadable or differing file, or did not resume to "
+          "the uninterrupted run's histories")
     return 1 if bad else 0
 
 

@@ -248,6 +248,63 @@ TEST(HistoryWriter, AnErrorUnwindingLeavesTheLastFlush)
   fs::remove(path);
 }
 
+// A resumed run reopens the file, cuts it back to the checkpoint's rows and appends after them:
+// the file ends as if the run had never stopped.
+TEST(HistoryWriter, ReopenCutsBackToTheCheckpointsRowsAndGoesOn)
+{
+  const fs::path path = temporary_file(".h5");
+  {
+    HistoryWriter writer(path.string(), monitor_and_energy_channels(), 16);
+    writer.set_attribute("scene", "two blocks");
+    for (std::size_t i = 0; i < 70; ++i) // the checkpoint counted 50; 20 more were flushed
+      writer.append(time_of_row(i), values_of_row(i));
+  }
+  {
+    HistoryWriter writer(path.string(), monitor_and_energy_channels(), HistoryWriter::Reopen{50},
+                         16);
+    EXPECT_EQ(writer.n_rows(), 50u);
+    for (std::size_t i = 50; i < 120; ++i)
+      writer.append(time_of_row(i), values_of_row(i));
+  }
+  ReadOnlyFile file(path);
+  ASSERT_GE(file.id, 0);
+  const auto time = read_dataset(file.id, "/time");
+  ASSERT_EQ(time.size(), 120u);
+  EXPECT_EQ(dataset_shape(file.id, "/monitors/M1/stress"), std::vector<hsize_t>({120, 3}));
+  const auto stress = read_dataset(file.id, "/monitors/M1/stress");
+  const auto kinetic = read_dataset(file.id, "/energy/kinetic");
+  for (std::size_t i = 0; i < 120; ++i)
+  {
+    EXPECT_EQ(time[i], time_of_row(i));
+    EXPECT_EQ(stress[3 * i + 1], values_of_row(i)[1]);
+    EXPECT_EQ(kinetic[i], values_of_row(i)[5]);
+  }
+  EXPECT_EQ(read_string_attribute(file.id, "/", "scene"), "two blocks");
+  fs::remove(path);
+}
+
+TEST(HistoryWriter, ReopenRefusesAFileShorterThanTheCheckpoint)
+{
+  const fs::path path = temporary_file(".h5");
+  {
+    HistoryWriter writer(path.string(), monitor_and_energy_channels(), 16);
+    for (std::size_t i = 0; i < 10; ++i)
+      writer.append(time_of_row(i), values_of_row(i));
+  }
+  try
+  {
+    HistoryWriter writer(path.string(), monitor_and_energy_channels(), HistoryWriter::Reopen{50});
+    FAIL() << "a file of 10 rows reopened at 50";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("10 rows, the checkpoint needs 50"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+  }
+  fs::remove(path);
+}
+
 TEST(HistoryWriter, EmptyRunLeavesEmptyDatasets)
 {
   const fs::path path = temporary_file(".h5");

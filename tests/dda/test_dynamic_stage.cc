@@ -1,11 +1,14 @@
 // Dynamic and settle stages (issue 16): a settle stage runs until every block is at rest or has
-// fallen, bounded by its max_duration.
+// fallen, bounded by its max_duration; checkpoints of a stage in progress (issue 20).
+#include "common/checkpoint_archive.h"
 #include "dda/dynamic_stage.h"
 #include "tests/dda/recording_body.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
+#include <stdexcept>
 
 using namespace ddafem;
 using namespace ddafem::dda;
@@ -242,4 +245,93 @@ TEST(DynamicStage, StopsWhereTheCallerAsks)
   EXPECT_EQ(r.failure.outcome, StepOutcome::success);
   EXPECT_LT(s.time(), 0.05);
   EXPECT_EQ(2 * calls, r.n_steps);
+}
+
+namespace
+{
+/// What a settle stage leaves of the blocks, every bit of it.
+std::vector<double> final_state(const System& s)
+{
+  std::vector<double> x = {s.time(), s.energy().kinetic, s.energy().dissipated};
+  for (const Block& b : s.get_blocks())
+  {
+    x.insert(x.end(), b.velocity.data(), b.velocity.data() + 6);
+    x.insert(x.end(), b.acceleration.data(), b.acceleration.data() + 6);
+    x.insert(x.end(), b.stress.data(), b.stress.data() + 3);
+    for (const Point& v : b.vertices)
+      x.insert(x.end(), {v.x(), v.y()});
+  }
+  for (const Contact& c : s.get_contacts())
+    x.insert(x.end(), {static_cast<double>(c.id), c.forces.normal_force, c.forces.shear_force,
+                       c.total_slip});
+  return x;
+}
+} // namespace
+
+// Checkpoints (issue 20): a settle stage on the slope (a block sliding, one falling and removed
+// as debris) stopped after 40 steps and saved, then loaded into a System and a stage built anew
+// from the same model, ends exactly as the stage that was never stopped: the same steps, removed
+// blocks and every bit of the blocks' and contacts' state.
+TEST(DynamicStage, ACheckpointedStageGoesOnBitForBit)
+{
+  const ModelDescription m = slope_and_falling_block();
+  Stage stage = settle_stage(0.5, 0.6);
+  stage.settle->remove_fallen = true;
+
+  System whole(m);
+  whole.begin_stage(StageMode::dynamic);
+  const DynamicStageResult uninterrupted =
+      run_dynamic_stage(whole, stage, m.time, no_displacement(whole));
+
+  System first(m);
+  first.begin_stage(StageMode::dynamic);
+  DynamicStageRun first_run(first, stage, m.time, no_displacement(first));
+  std::size_t calls = 0;
+  first_run.run([&](const TimeStepper&, const StepStatus&, bool) { return ++calls < 40; });
+  std::stringstream text;
+  {
+    CheckpointOut archive(text);
+    first.save(archive);
+    first_run.save(archive);
+  }
+
+  System resumed(m);
+  CheckpointIn archive(text);
+  resumed.load(archive);
+  DynamicStageRun resumed_run(resumed, stage, m.time, no_displacement(resumed));
+  resumed_run.load(archive);
+  const DynamicStageResult r = resumed_run.run();
+
+  EXPECT_EQ(r.n_steps, uninterrupted.n_steps);
+  EXPECT_EQ(r.removed, uninterrupted.removed);
+  EXPECT_EQ(r.fallen, uninterrupted.fallen);
+  EXPECT_EQ(r.settled, uninterrupted.settled);
+  EXPECT_EQ(resumed.n_steps(), whole.n_steps());
+  ASSERT_FALSE(uninterrupted.removed.empty()); // the debris was removed after the checkpoint
+  EXPECT_GT(uninterrupted.removed.front().second, 40 * 2 * m.time.dt);
+  EXPECT_EQ(final_state(resumed), final_state(whole));
+}
+
+// A checkpoint of another model is refused, naming what differs, instead of being restored.
+TEST(DynamicStage, ACheckpointOfAnotherModelIsRefused)
+{
+  const ModelDescription m = slope_and_falling_block();
+  System saved(m);
+  std::stringstream text;
+  {
+    CheckpointOut archive(text);
+    saved.save(archive);
+  }
+  System other(block_on_base({-0.5, 0.0}));
+  CheckpointIn archive(text);
+  try
+  {
+    other.load(archive);
+    FAIL() << "a checkpoint of 3 blocks loaded into 2";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("3 blocks saved, the scene has 2"), std::string::npos)
+        << e.what();
+  }
 }

@@ -1,0 +1,80 @@
+// Checkpoints of a System (issue 20): everything a later step reads, so that a System built anew
+// from the same scene and loaded continues bit for bit as the one saved would have. What the
+// constructor derives from the model alone (materials, convexity, tolerances, the tie runs) is
+// not stored; what steps recompute from scratch before reading it (contact detection's
+// features, the joints' sorted lists) is marked stale instead.
+#include "common/checkpoint_archive.h"
+#include "dda/checkpoint_types.h"
+#include "dda/system.h"
+
+#include <limits>
+
+namespace ddafem::dda
+{
+template <class Archive>
+void System::transfer_state(Archive& a)
+{
+  transfer_marker(a, "dda::System");
+  transfer_in_place(a, blocks, "blocks",
+                    [&a](Block& b)
+                    {
+                      transfer_all(a, b.vertices, b.moments, b.velocity, b.acceleration, b.force);
+                      transfer_all(a, b.stress, b.strain);
+                    });
+  transfer_all(a, joints, broken_joint_count, joint_revision, jointed_vertices);
+  transfer_in_place(a, loads, "loads", [&a](AttachedLoad& l) { transfer_all(a, l.point); });
+  transfer_in_place(a, fixed_points, "fixed points",
+                    [&a](AttachedFixedPoint& p) { transfer_all(a, p.point); });
+  transfer_all(a, monitors, monitor_origins);
+  transfer_in_place(a, boundary_edges, "boundary edges",
+                    [&a](BoundaryEdge& e) { transfer_all(a, e.midpoint); });
+  transfer_all(a, boundary_steps);
+  transfer_in_place(a, supports, "supports",
+                    [&a](Support& s) { transfer_all(a, s.point, s.stiffness, s.load, s.anchor); });
+  transfer_all(a, support_normal_stiffness, tie_points, tie_origins, tie_matrices);
+  transfer_contacts(a);
+  transfer_all(a, reversal_tolerance, contacts_enabled, mode, held, removed, balances,
+               motion_starts);
+  transfer_each(a, friction_jumps,
+                [&a](StateBeforeJump& s) { transfer_all(a, s.block, s.acceleration, s.force); });
+  transfer_all(a, step_integration, second_half, open_half);
+  transfer_each(a, first_halves,
+                [&a](FirstHalf& h)
+                { transfer_all(a, h.start_velocity, h.displacement, h.mid_force); });
+  transfer_all(a, coupling_pairs, coupling_rows, matrix, base_matrix, base_rhs, tied_matrix);
+  transfer_all(a, contact_terms.states, contact_terms.indexed, contact_terms.block_start);
+  transfer_all(a, contact_terms.block_contacts, contact_terms.coupling_start);
+  transfer_all(a, contact_terms.coupling_contacts, tied_rhs, matrix_dt, matrix_mass_factor,
+               step_masses);
+  transfer_all(a, joint_couplings_revision, rhs, solution);
+  transfer_object(a, solver);
+  transfer_all(a, current_time, work_of_loads, work_of_supports, work_of_boundaries,
+               removed_energy);
+  transfer_all(a, initial_energy, largest_energy_input, timings);
+  // The joints' sorted lists are rebuilt at the next detection.
+  joint_lists.revision = std::numeric_limits<std::uint64_t>::max();
+}
+
+template <class Archive>
+void System::transfer_contacts(Archive& a)
+{
+  transfer_all(a, contacts, trial_contacts);
+  transfer_each(a, frames,
+                [&a](ContactFrame& f)
+                { transfer_all(a, f.t_vertex, f.t_edge, f.normal, f.tangent); });
+  transfer_all(a, geometry_epoch, detected.epoch, detected.contacts, detected.predecessors);
+  transfer_all(a, next_contact_id, raised_penalties);
+}
+
+void System::save(CheckpointOut& archive) const
+{
+  // One function stores and restores (Boost.Serialization's `&`); storing changes nothing.
+  const_cast<System&>(*this).transfer_state(archive);
+}
+
+void System::load(CheckpointIn& archive)
+{
+  transfer_state(archive);
+}
+
+} // namespace ddafem::dda
