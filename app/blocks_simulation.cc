@@ -56,7 +56,7 @@ public:
   bool run_stage(std::size_t k, const std::function<bool()>& report) override;
   void close_outputs() override;
   void flush_outputs() override { outputs->flush(); }
-  bool can_checkpoint() const override { return stage_run.has_value(); }
+  bool can_checkpoint() const override { return stage_run || static_run; }
   void save_checkpoint(CheckpointOut& archive) const override;
   std::size_t resume(CheckpointIn& archive, const std::filesystem::path& dir) override;
   std::size_t n_steps() const override { return system.n_steps(); }
@@ -77,6 +77,17 @@ private:
   /// After each accepted step of a dynamic stage: its outputs, then `report`.
   bool after_dynamic_step(const dda::TimeStepper& stepper, const dda::StepStatus& status, bool last,
                           const std::function<bool()>& report);
+  /// A resumed run: the checkpoint's state of its stage into `run`, once.
+  template <class StageRun>
+  void load_resumed_stage(StageRun& run)
+  {
+    if (resumed_stage.empty())
+      return;
+    std::istringstream text(resumed_stage);
+    CheckpointIn archive(text);
+    run.load(archive);
+    resumed_stage.clear();
+  }
   /// save_checkpoint and resume: the run's own state around the System's and the stage's.
   template <class Archive>
   void transfer_run_state(Archive& archive);
@@ -93,6 +104,7 @@ private:
   bool stopped = false; ///< a stage stopped at a budget (report returned false)
   std::optional<std::vector<dda::Vector2>> fall_reference; ///< per block [m]
   std::optional<dda::DynamicStageRun> stage_run;           ///< the dynamic stage running, if any
+  std::optional<dda::StaticStageRun> static_run;           ///< the static stage running, if any
   std::size_t current_stage = 0;
   /// Steps of the running dynamic stage as the user sets dt: with bathe one step is two System
   /// half steps.
@@ -147,8 +159,12 @@ bool BlocksSimulation::run_stage(std::size_t k, const std::function<bool()>& rep
 void BlocksSimulation::run_static_stage(const dda::Stage& stage,
                                         const std::function<bool()>& report)
 {
-  const dda::StaticStageResult result =
-      dda::run_static_stage(system, stage, scene.model.time, report);
+  if (resumed_stage.empty())
+    system.begin_stage(dda::StageMode::static_equilibrium);
+  static_run.emplace(system, stage, scene.model.time);
+  load_resumed_stage(*static_run);
+  const dda::StaticStageResult result = static_run->run(report);
+  static_run.reset();
   stages.add(result);
   stopped = result.stopped;
   for (const dda::ReleasedBlock& r : result.released)
@@ -202,13 +218,7 @@ void BlocksSimulation::run_dynamic_stage(const dda::Stage& stage,
   if (resumed_stage.empty())
     begin_dynamic_stage();
   stage_run.emplace(system, stage, scene.model.time, *fall_reference);
-  if (!resumed_stage.empty())
-  {
-    std::istringstream text(resumed_stage);
-    CheckpointIn archive(text);
-    stage_run->load(archive);
-    resumed_stage.clear();
-  }
+  load_resumed_stage(*stage_run);
   const dda::DynamicStageResult result =
       stage_run->run([&](const dda::TimeStepper& stepper, const dda::StepStatus& status, bool last)
                      { return after_dynamic_step(stepper, status, last, report); });
@@ -241,7 +251,10 @@ void BlocksSimulation::save_checkpoint(CheckpointOut& archive) const
   std::ostringstream text;
   {
     CheckpointOut stage_archive(text);
-    stage_run->save(stage_archive);
+    if (stage_run)
+      stage_run->save(stage_archive);
+    else
+      static_run->save(stage_archive);
   }
   archive << text.str();
   const_cast<BlocksSimulation*>(this)->transfer_run_state(archive);

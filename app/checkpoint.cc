@@ -28,7 +28,7 @@ std::filesystem::path checkpoint_path(const std::filesystem::path& dir)
   return dir / "checkpoint.bin";
 }
 
-std::string read_scene_text(const std::string& file)
+std::string scene_file_text(const std::string& file)
 {
   std::ifstream in(file, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -56,8 +56,8 @@ CheckpointReader::CheckpointReader(const std::filesystem::path& dir) : path(chec
   if (!file)
     throw InputError(path.string() + ": no checkpoint to resume from: expected the output " +
                      "directory of a run killed or stopped after its first checkpoint (a run " +
-                     "with output.checkpoint_every 0, or that ended or stopped before a step " +
-                     "of its first dynamic stage, has none: run the scene again)");
+                     "with output.checkpoint_every 0, or that ended, has none: run the scene " +
+                     "again)");
   text.str(std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()));
   try
   {

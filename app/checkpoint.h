@@ -30,7 +30,7 @@ struct CheckpointHeader
 std::filesystem::path checkpoint_path(const std::filesystem::path& dir);
 
 /// The scene file's text (empty if it cannot be read).
-std::string read_scene_text(const std::string& file);
+std::string scene_file_text(const std::string& file);
 
 /// Writes the header and the simulation's state to DIR/checkpoint.bin atomically (a .tmp file
 /// renamed into place: a kill while writing leaves the previous checkpoint). Returns its size

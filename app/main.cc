@@ -107,7 +107,7 @@ int resume(const CommandLine& cl)
 {
   ddafem::CheckpointReader checkpoint(cl.directory);
   const ddafem::CheckpointHeader& header = checkpoint.header();
-  if (ddafem::read_scene_text(header.scene_file) != header.scene_text)
+  if (ddafem::scene_file_text(header.scene_file) != header.scene_text)
     throw ddafem::InputError(header.scene_file + ": changed or missing since the run in " +
                              cl.directory +
                              " started: expected the scene it ran (or run it again)");

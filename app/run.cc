@@ -152,7 +152,7 @@ CheckpointHeader SceneRun::checkpoint_header() const
   CheckpointHeader h;
   h.version = DDAFEM_VERSION;
   h.scene_file = std::filesystem::absolute(scene.file).string();
-  h.scene_text = read_scene_text(scene.file);
+  h.scene_text = scene_file_text(scene.file);
   h.settings = options.settings;
   h.allow_unstable = options.allow_unstable;
   return h;

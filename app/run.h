@@ -43,7 +43,7 @@ class CheckpointReader;
 /// anything is written. A run stopped at a budget (max_wall_time, max_memory) writes its state
 /// and summary.json with the status "stopped" and returns 3.
 /// Every output.checkpoint_every of wall time, and when a budget stops it, the run writes a
-/// checkpoint (app/checkpoint.h) between two steps of a dynamic stage. With `resume_from` (a
+/// checkpoint (app/checkpoint.h) between two steps of a stage. With `resume_from` (a
 /// checkpoint of this scene in the output directory) the run continues from it instead of
 /// starting: its outputs are reopened as they were then, and it goes on as the run that wrote it
 /// would have, bit for bit.

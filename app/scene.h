@@ -25,7 +25,7 @@ struct OutputSettings
   /// a run killed at any moment keeps the rows up to its last flush. 0: after every step.
   double flush_interval = 2.0;
   /// Wall-clock time between checkpoints (checkpoint.bin, for `ddafem resume`) [s], written
-  /// between two steps of a dynamic stage and when a budget stops the run; 0: none.
+  /// between two steps of a stage and when a budget stops the run; 0: none.
   double checkpoint_every = 60.0;
   fem::VtuCompression vtu_compression = fem::VtuCompression::best_speed; ///< far-field VTU zlib
 };

@@ -766,8 +766,8 @@ Section output_section()
            .at_least(0)
            .meaning("wall-clock time between checkpoints (checkpoint.bin) from which `ddafem "
                     "resume DIR` continues a killed or stopped run, its histories bit for bit "
-                    "those of an uninterrupted run; written between two steps of a dynamic "
-                    "stage, and when a budget stops the run; 0: none"),
+                    "those of an uninterrupted run; written between two steps of a stage, "
+                    "and when a budget stops the run; 0: none"),
        key("vtu_compression", T::choice)
            .default_yaml("best_speed")
            .choices(names_of<fem::VtuCompression>())

@@ -51,8 +51,7 @@ public:
   virtual void flush_outputs() = 0;
 
   /// Checkpoints (app/checkpoint.h). Whether one can be taken now: between two steps of a
-  /// dynamic stage (static stages are not checkpointed: a run resumes at most from the start of
-  /// the dynamic stage after them).
+  /// stage (not before the first step).
   virtual bool can_checkpoint() const = 0;
   /// Stores the run's whole state (when can_checkpoint(), after flush_outputs()).
   virtual void save_checkpoint(CheckpointOut& archive) const = 0;

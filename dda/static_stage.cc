@@ -1,7 +1,5 @@
 #include "dda/static_stage.h"
 
-#include "dda/time_stepper.h"
-
 #include <algorithm>
 
 namespace ddafem::dda
@@ -45,18 +43,43 @@ std::vector<std::size_t> ReleaseDetector::observe(const System& system)
   return released;
 }
 
-StaticStageResult run_static_stage(System& system, const Stage& stage, const TimeSettings& time,
-                                   const std::function<bool()>& after_step,
-                                   ReleaseCriterion criterion)
+namespace
 {
-  system.begin_stage(StageMode::static_equilibrium);
-  TimeSettings pseudo_time = time;
-  pseudo_time.control = TimeControl::adaptive;
-  TimeStepper stepper(system, pseudo_time, stage.dt);
-  ReleaseDetector detector(system, criterion);
-  StaticStageResult result;
+TimeSettings pseudo_time(TimeSettings time)
+{
+  time.control = TimeControl::adaptive;
+  return time;
+}
+} // namespace
+
+StaticStageRun::StaticStageRun(System& system_, const Stage& stage_, const TimeSettings& time,
+                               ReleaseCriterion criterion)
+    : system(system_), stage(stage_), stepper(system_, pseudo_time(time), stage_.dt),
+      detector(system_, criterion)
+{
   result.smallest_dt = stepper.next_dt();
-  while (result.n_steps < stage.max_steps)
+}
+
+std::size_t StaticStageRun::release_blocks()
+{
+  const std::vector<std::size_t> released = detector.observe(system);
+  for (const std::size_t i : released)
+  {
+    result.released.push_back({i, result.n_steps, system.mass_of(i),
+                               system.get_blocks()[i].moments.centroid,
+                               system.block_balances()[i].ratio()});
+    if (stage.release == ReleaseAction::remove)
+      system.remove_block(i);
+    else
+      system.hold_block(i);
+  }
+  return released.size();
+}
+
+StaticStageResult StaticStageRun::run(const std::function<bool()>& after_step)
+{
+  // (A run loaded from a checkpoint taken at its equilibrium step has ended already.)
+  while (result.outcome == StaticOutcome::not_converged && result.n_steps < stage.max_steps)
   {
     const StepStatus status = stepper.step();
     if (status.outcome != StepOutcome::success)
@@ -69,26 +92,12 @@ StaticStageResult run_static_stage(System& system, const Stage& stage, const Tim
     result.smallest_dt = std::min(result.smallest_dt, stepper.last_dt());
     result.ratio = status.unbalanced_force_ratio;
     result.block = status.unbalanced_block;
+    // A step that released blocks measured them still: equilibrium is judged without them.
+    if (release_blocks() == 0 && result.ratio <= stage.tolerance)
+      result.outcome = StaticOutcome::equilibrium;
     if (after_step && !after_step())
     {
-      result.stopped = true;
-      break;
-    }
-    const std::vector<std::size_t> released = detector.observe(system);
-    for (const std::size_t i : released)
-    {
-      result.released.push_back({i, result.n_steps, system.mass_of(i),
-                                 system.get_blocks()[i].moments.centroid,
-                                 system.block_balances()[i].ratio()});
-      if (stage.release == ReleaseAction::remove)
-        system.remove_block(i);
-      else
-        system.hold_block(i);
-    }
-    // A step that released blocks measured them still: equilibrium is judged without them.
-    if (released.empty() && result.ratio <= stage.tolerance)
-    {
-      result.outcome = StaticOutcome::equilibrium;
+      result.stopped = result.outcome == StaticOutcome::not_converged;
       break;
     }
   }
@@ -97,6 +106,14 @@ StaticStageResult run_static_stage(System& system, const Stage& stage, const Tim
   result.n_penalty_raises = stepper.n_penalty_raises();
   result.cuts_by_cause = stepper.cuts_by_cause();
   return result;
+}
+
+StaticStageResult run_static_stage(System& system, const Stage& stage, const TimeSettings& time,
+                                   const std::function<bool()>& after_step,
+                                   ReleaseCriterion criterion)
+{
+  system.begin_stage(StageMode::static_equilibrium);
+  return StaticStageRun(system, stage, time, criterion).run(after_step);
 }
 
 } // namespace ddafem::dda

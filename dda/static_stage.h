@@ -2,8 +2,10 @@
 // equilibrium (issue 16): a roof wedge that must fall is a result, not a numerical failure.
 #pragma once
 
+#include "common/checkpoint_fwd.h"
 #include "dda/model_description.h"
 #include "dda/system.h"
+#include "dda/time_stepper.h"
 
 #include <cstddef>
 #include <functional>
@@ -47,6 +49,10 @@ public:
 
   /// After an accepted static step: the blocks, not held, that meet the criterion now.
   std::vector<std::size_t> observe(const System& system);
+
+  /// Checkpoints (dda/stage_checkpoint.cc): the windows and the last centroids.
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
 
 private:
   /// A block's current window.
@@ -93,6 +99,33 @@ struct StaticStageResult
   std::map<StepOutcome, std::size_t> cuts_by_cause; ///< TimeStepper::cuts_by_cause
   double smallest_dt = 0.0;                         ///< of the accepted pseudo steps [s]
   bool stopped = false; ///< after_step asked to stop (a wall-time or memory budget)
+};
+
+/// A static stage in progress (run_static_stage, after System::begin_stage): its time stepper,
+/// release detector and result so far, which a checkpoint keeps between two steps (save, and
+/// load into a run of the same stage, System and settings) so that it goes on as the saved one
+/// would have.
+class StaticStageRun
+{
+public:
+  StaticStageRun(System& system, const Stage& stage, const TimeSettings& time,
+                 ReleaseCriterion criterion = {});
+
+  /// Steps to equilibrium (run_static_stage), or until `after_step` returns false.
+  StaticStageResult run(const std::function<bool()>& after_step = {});
+
+  void save(CheckpointOut& archive) const;
+  void load(CheckpointIn& archive);
+
+private:
+  /// Releases the blocks the detector finds after a step; returns how many.
+  std::size_t release_blocks();
+
+  System& system;
+  const Stage& stage;
+  StaticStageResult result;
+  TimeStepper stepper;
+  ReleaseDetector detector;
 };
 
 /// Starts a static stage of `system` (System::begin_stage) and steps it with a pseudo time step

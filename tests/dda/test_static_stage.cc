@@ -1,11 +1,14 @@
 // Static stages (issue 16): equilibrium judged per block against its own load, and blocks that
-// cannot be in equilibrium released rather than reported as a failure.
+// cannot be in equilibrium released rather than reported as a failure; checkpoints of a stage in
+// progress (issue 20).
+#include "common/checkpoint_archive.h"
 #include "dda/static_stage.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <iostream>
+#include <sstream>
 
 using namespace ddafem;
 using namespace ddafem::dda;
@@ -188,4 +191,49 @@ TEST(StaticStage, LightBlockIsJudgedAgainstItsOwnLoad)
   // It landed: its weight rests on the base (penalty penetration W / p at most).
   EXPECT_LT(s.get_blocks()[2].moments.centroid.y(), 0.5 + 1e-9);
   EXPECT_GT(light.load, 1.9 * light.weight);
+}
+
+// Checkpoints (issue 20): the slope's static stage stopped after 30 steps (before the release,
+// inside the detector's first window) and saved, then loaded into a System and a stage built
+// anew, ends as the stage that was never stopped: the same steps, the same released block at
+// the same step, every bit of the blocks' state the same.
+TEST(StaticStage, ACheckpointedStageGoesOnBitForBit)
+{
+  ModelDescription m = blocks_on_base({{2, Point(-2.5, 0)}, {1, Point(0.5, 0)}});
+  m.gravity = slope_gravity();
+  const Stage stage = static_stage(1e-6);
+
+  System whole(m);
+  const StaticStageResult uninterrupted = run_static_stage(whole, stage, m.time);
+
+  System first(m);
+  first.begin_stage(StageMode::static_equilibrium);
+  StaticStageRun first_run(first, stage, m.time);
+  std::size_t calls = 0;
+  first_run.run([&] { return ++calls < 30; });
+  std::stringstream text;
+  {
+    CheckpointOut archive(text);
+    first.save(archive);
+    first_run.save(archive);
+  }
+  System resumed(m);
+  CheckpointIn archive(text);
+  resumed.load(archive);
+  StaticStageRun resumed_run(resumed, stage, m.time);
+  resumed_run.load(archive);
+  const StaticStageResult r = resumed_run.run();
+
+  ASSERT_EQ(uninterrupted.released.size(), 1u);
+  EXPECT_GT(uninterrupted.released[0].step, 30u);
+  EXPECT_EQ(r.outcome, uninterrupted.outcome);
+  EXPECT_EQ(r.n_steps, uninterrupted.n_steps);
+  ASSERT_EQ(r.released.size(), 1u);
+  EXPECT_EQ(r.released[0].step, uninterrupted.released[0].step);
+  EXPECT_EQ(r.ratio, uninterrupted.ratio);
+  for (std::size_t i = 0; i < whole.get_blocks().size(); ++i)
+  {
+    EXPECT_EQ(resumed.get_blocks()[i].vertices, whole.get_blocks()[i].vertices);
+    EXPECT_EQ(resumed.get_blocks()[i].stress, whole.get_blocks()[i].stress);
+  }
 }
