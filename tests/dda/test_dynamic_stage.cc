@@ -2,6 +2,7 @@
 // fallen, bounded by its max_duration; checkpoints of a stage in progress (issue 20).
 #include "common/checkpoint_archive.h"
 #include "dda/dynamic_stage.h"
+#include "tests/dda/checkpoint_round_trip.h"
 #include "tests/dda/recording_body.h"
 
 #include <gtest/gtest.h>
@@ -288,18 +289,9 @@ TEST(DynamicStage, ACheckpointedStageGoesOnBitForBit)
   DynamicStageRun first_run(first, stage, m.time, no_displacement(first));
   std::size_t calls = 0;
   first_run.run([&](const TimeStepper&, const StepStatus&, bool) { return ++calls < 40; });
-  std::stringstream text;
-  {
-    CheckpointOut archive(text);
-    first.save(archive);
-    first_run.save(archive);
-  }
-
   System resumed(m);
-  CheckpointIn archive(text);
-  resumed.load(archive);
-  DynamicStageRun resumed_run(resumed, stage, m.time, no_displacement(resumed));
-  resumed_run.load(archive);
+  DynamicStageRun resumed_run(resumed, stage, m.time, no_displacement(first));
+  round_trip(first, first_run, resumed, resumed_run);
   const DynamicStageResult r = resumed_run.run();
 
   EXPECT_EQ(r.n_steps, uninterrupted.n_steps);

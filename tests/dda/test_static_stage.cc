@@ -1,14 +1,13 @@
 // Static stages (issue 16): equilibrium judged per block against its own load, and blocks that
 // cannot be in equilibrium released rather than reported as a failure; checkpoints of a stage in
 // progress (issue 20).
-#include "common/checkpoint_archive.h"
 #include "dda/static_stage.h"
+#include "tests/dda/checkpoint_round_trip.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <iostream>
-#include <sstream>
 
 using namespace ddafem;
 using namespace ddafem::dda;
@@ -211,17 +210,9 @@ TEST(StaticStage, ACheckpointedStageGoesOnBitForBit)
   StaticStageRun first_run(first, stage, m.time);
   std::size_t calls = 0;
   first_run.run([&] { return ++calls < 30; });
-  std::stringstream text;
-  {
-    CheckpointOut archive(text);
-    first.save(archive);
-    first_run.save(archive);
-  }
   System resumed(m);
-  CheckpointIn archive(text);
-  resumed.load(archive);
   StaticStageRun resumed_run(resumed, stage, m.time);
-  resumed_run.load(archive);
+  round_trip(first, first_run, resumed, resumed_run);
   const StaticStageResult r = resumed_run.run();
 
   ASSERT_EQ(uninterrupted.released.size(), 1u);
