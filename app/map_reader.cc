@@ -476,6 +476,11 @@ YAML::Node load_yaml(const std::string& file)
   std::ifstream in(file);
   if (!in)
     throw InputError::at(file, 0, "", "", "cannot open the scene file");
+  return parse_yaml(in, file);
+}
+
+YAML::Node parse_yaml(std::istream& in, const std::string& file)
+{
   try
   {
     return YAML::Load(in);

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <istream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -171,5 +172,7 @@ AppliedOverride apply_override(YAML::Node& root, const Override& o);
 
 /// The scene file's YAML tree; a missing file or a syntax error throws InputError.
 YAML::Node load_yaml(const std::string& file);
+/// The YAML tree of a scene's text from `in`; a syntax error throws InputError at `file`.
+YAML::Node parse_yaml(std::istream& in, const std::string& file);
 
 } // namespace ddafem::scene_reading

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <sstream>
 #include <utility>
 
 namespace ddafem
@@ -57,24 +58,13 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   scene.output = read_output(top);
   return scene;
 }
-} // namespace
 
-Override parse_override(const std::string& argument)
-{
-  const auto equals = argument.find('=');
-  if (equals == std::string::npos || trim(argument.substr(0, equals)).empty())
-    throw InputError::at(command_line_location(argument), 0, "", "",
-                         "expected path.to.key=value, e.g. --set time.dt=1e-4 or --set "
-                         "blocks.0.material=granite");
-  return {trim(argument.substr(0, equals)), argument.substr(equals + 1)};
-}
-
-Scene read_scene(const std::string& file, const std::vector<Override>& overrides,
-                 const ResourceLimits& limits)
+/// The overrides, the tunnel's expansion and every section, on the scene's YAML tree `root`.
+Scene read_scene_tree(const std::string& file, YAML::Node& root,
+                      const std::vector<Override>& overrides, const ResourceLimits& limits)
 {
   const SceneSchema schema;
   Locator locator(file);
-  YAML::Node root = load_yaml(file);
   try
   {
     for (const Override& o : overrides)
@@ -96,6 +86,32 @@ Scene read_scene(const std::string& file, const std::vector<Override>& overrides
     throw InputError::at(file, e.mark.is_null() ? 0 : e.mark.line + 1, "", "",
                          "cannot read the YAML tree: " + e.msg);
   }
+}
+} // namespace
+
+Override parse_override(const std::string& argument)
+{
+  const auto equals = argument.find('=');
+  if (equals == std::string::npos || trim(argument.substr(0, equals)).empty())
+    throw InputError::at(command_line_location(argument), 0, "", "",
+                         "expected path.to.key=value, e.g. --set time.dt=1e-4 or --set "
+                         "blocks.0.material=granite");
+  return {trim(argument.substr(0, equals)), argument.substr(equals + 1)};
+}
+
+Scene read_scene(const std::string& file, const std::vector<Override>& overrides,
+                 const ResourceLimits& limits)
+{
+  YAML::Node root = load_yaml(file);
+  return read_scene_tree(file, root, overrides, limits);
+}
+
+Scene read_scene_text(const std::string& text, const std::string& file,
+                      const std::vector<Override>& overrides, const ResourceLimits& limits)
+{
+  std::istringstream in(text);
+  YAML::Node root = parse_yaml(in, file);
+  return read_scene_tree(file, root, overrides, limits);
 }
 
 } // namespace ddafem

@@ -90,6 +90,12 @@ double estimate_far_field_dofs(const fem::FarFieldDescription& d);
 Scene read_scene(const std::string& file, const std::vector<Override>& overrides = {},
                  const ResourceLimits& limits = ResourceLimits::of_this_machine());
 
+/// read_scene for a scene given as `text`: `file` names it in messages and is where its
+/// relative paths (CSV files, meshes) start; nothing is read from `file` itself.
+Scene read_scene_text(const std::string& text, const std::string& file,
+                      const std::vector<Override>& overrides = {},
+                      const ResourceLimits& limits = ResourceLimits::of_this_machine());
+
 /// Markdown reference of every scene key (type, unit, default, range, meaning), generated from
 /// the same schema the reader validates against, so that it cannot drift.
 std::string scene_reference_markdown();

@@ -16,6 +16,7 @@ packages=(
   libtbb-dev              # threads (common/parallel)
   libcgal-dev libgmp-dev libmpfr-dev
   libgtest-dev googletest # tests
+  clang libclang-rt-14-dev llvm  # scripts/sanitize.sh: sanitizers, libFuzzer, llvm-symbolizer
   python3 python3-numpy python3-matplotlib python3-h5py  # plots
   python3-vtk9            # tests/tools/check_vtk_readers.py: VTK's own XML readers
 )

@@ -560,6 +560,33 @@ TEST_F(SceneTest, CsvPathsAreRelativeToTheSceneFile)
   EXPECT_NEAR(scene.model.point_loads[0].time_function.value(0.5), 1.5, 1e-12);
 }
 
+// The fuzz harness's entry point (tests/fuzz): a scene's text, read as if from a file that need
+// not exist, its relative paths starting beside that file and its errors naming it.
+TEST_F(SceneTest, TextIsReadAsIfFromItsFile)
+{
+  write("data/f.csv", "0,1\n1,2\n");
+  const std::string file = (directory / "not_written.yaml").string();
+  const Scene scene = read_scene_text(
+      std::string(minimal_scene) +
+          "point_loads:\n  - {point: [0, 0], force: [1, 0], time_function: {type: csv, file: "
+          "data/f.csv}}\n",
+      file, {{"time.dt", "2e-4"}});
+  EXPECT_EQ(scene.name, "not_written");
+  EXPECT_EQ(scene.model.time.dt, 2e-4);
+  EXPECT_NEAR(scene.model.point_loads[0].time_function.value(0.5), 1.5, 1e-12);
+  try
+  {
+    read_scene_text("materials:\n  rock: {density: 1\nblocks: []\n", file);
+    FAIL() << "no InputError";
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("not_written.yaml:3: YAML syntax error"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // ---- Boundaries -----------------------------------------------------------------------------
 
 /// Three by two unit squares (blocks 0 to 5, row by row) and the boundaries in `boundaries`.
