@@ -24,9 +24,12 @@ TimeFunction read_csv_table(const MapReader& r)
     csv_path = r.ctx().scene_directory / csv_path;
   const std::string shown = csv_path.lexically_normal().string();
 
+  // A regular file first: opening a named pipe (or a device) would wait for a writer.
   std::error_code ec;
+  if (!std::filesystem::is_regular_file(csv_path, ec))
+    throw r.error("file", "cannot open CSV file '" + shown + "': expected a regular file");
   std::ifstream in(csv_path);
-  if (!std::filesystem::is_regular_file(csv_path, ec) || !in)
+  if (!in)
     throw r.error("file", "cannot open CSV file '" + shown + "'");
 
   std::vector<double> times, values;

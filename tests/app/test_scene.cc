@@ -6,6 +6,7 @@
 #include "dda/geometry.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -985,6 +986,21 @@ TEST_F(SceneTest, TimeSettingsAreChecked)
   // end_time = dt is allowed: one step.
   EXPECT_EQ(read(replaced(minimal_scene, "end_time: 0.01", "end_time: 1e-4")).model.time.end_time,
             1e-4);
+}
+
+// A CSV "file" that is a named pipe is refused at once (opening it would wait for a writer).
+TEST_F(SceneTest, CsvThatIsNotARegularFileIsRefusedAtOnce)
+{
+  const std::string load =
+      "point_loads:\n  - {point: [0, 0], force: [1, 0], time_function: {type: csv, file: p.csv}}\n";
+  ASSERT_EQ(mkfifo((directory / "p.csv").c_str(), 0600), 0);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string pipe = error_of(std::string(minimal_scene) + load);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  EXPECT_NE(pipe.find("cannot open CSV file '" + (directory / "p.csv").string() +
+                      "': expected a regular file"),
+            std::string::npos)
+      << pipe;
 }
 
 TEST_F(SceneTest, CsvProblemsNameTheFileTheRowAndTheKey)
