@@ -8,8 +8,8 @@
 A CASE is an example's path under examples/ without `.yaml` (`bao2012/p_wave_bar`); `write`
 without cases stores every case of CASES. What is stored (tests/reference/examples/CASE.json, the
 slash a dot) is a numdiff-like fingerprint of one run:
-- every number, flag and word of summary.json but the timings, memory, wall time, version and
-  paths (they change from run to run);
+- every number, flag and word of summary.json but the timings, memory, wall time, version,
+  checkpoints and paths (they change from run to run);
 - of every history in histories.h5 its shape, its largest magnitude and 11 rows evenly spaced
   over the run (the first and the last among them);
 - a determinism hash (sha256 of those numbers' shortest round-trip text and of every history's
@@ -62,8 +62,9 @@ TOL_ITERATIONS = 1e-3  # of an iterative solver's iteration count
 # residual displacements and final velocities are small differences of large motions
 FLOORS = {"_m": 1e-9, "_m_s": 1e-9}
 N_ROWS = 11
-# summary.json keys that change from run to run of one binary (or name the run's directory)
-VOLATILE = re.compile(r"timing|wall|memory|version|elapsed|outputs|scene$|per_s$")
+# summary.json keys that change from run to run of one binary (or name the run's directory);
+# `checkpoints` counts and times the process's checkpoint writes, which depend on its wall time
+VOLATILE = re.compile(r"timing|wall|memory|version|elapsed|outputs|scene$|per_s$|checkpoints")
 
 
 def platform():
