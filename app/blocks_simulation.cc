@@ -110,7 +110,8 @@ private:
   /// half steps.
   std::size_t stage_steps = 0;
   double next_snapshot = 0.0; ///< [s]
-  /// A resumed run: the checkpoint's state of the dynamic stage to continue (empty otherwise).
+  /// A resumed run: the checkpoint's state of the stage to continue (empty otherwise), an
+  /// archive of its own: the stage's run is built when run_stage reaches it.
   std::string resumed_stage;
 };
 
