@@ -14,6 +14,7 @@ packages=(
   mpi-default-dev         # mpi.h, which the OpenMPI build's hdf5.h includes
   libsuitesparse-dev      # KLU (blocks and far field), CHOLMOD (far field)
   libtbb-dev              # threads (common/parallel)
+  libboost-serialization-dev  # checkpoints (common/checkpoint_archive.h; deal.II's needs it too)
   libcgal-dev libgmp-dev libmpfr-dev
   libgtest-dev googletest # tests
   clang libclang-rt-14-dev llvm  # scripts/sanitize.sh: sanitizers, libFuzzer, llvm-symbolizer
