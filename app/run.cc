@@ -4,6 +4,7 @@
 
 #include "app/checkpoint.h"
 #include "app/far_field_module.h"
+#include "app/run_summary.h"
 #include "app/run_support.h"
 #include "app/simulation.h"
 
@@ -256,6 +257,8 @@ int SceneRun::write_summary()
     summary["status"] = "stopped";
     summary["stopped"] = stop_reason;
   }
+  if (nlohmann::json records = records_summary(scene); !records.empty())
+    summary["records"] = std::move(records);
   summary["checkpoints"] = {{"every_s", scene.output.checkpoint_every},
                             {"written", n_checkpoints},
                             {"seconds", checkpoint_seconds},

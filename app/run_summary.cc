@@ -189,4 +189,58 @@ nlohmann::json run_summary(const RunRecord& run)
   return summary;
 }
 
+namespace
+{
+nlohmann::json record_json(const std::string& where, const RecordInfo& r)
+{
+  const MotionSummary& m = r.summary;
+  return {{"where", where},
+          {"file", r.file},
+          {"motion", name_of(r.motion)},
+          {"incident_factor", incident_factor(r.motion)},
+          {"scale", r.scale},
+          {"window_s", {r.window_from, r.window_to}},
+          {"start_s", r.start},
+          {"dt_s", r.dt},
+          {"pga_m_s2", m.pga},
+          {"pga_g", m.pga / standard_gravity},
+          {"pgv_m_s", m.pgv},
+          {"pgd_m", m.pgd},
+          {"arias_intensity_m_s", m.arias_intensity},
+          {"t5_s", m.t5},
+          {"t95_s", m.t95},
+          {"mean_frequency_hz", m.mean_frequency},
+          {"f99_hz", m.f99},
+          {"baseline",
+           {{"end_velocity_before_m_s", r.scale * r.baseline.end_velocity_before},
+            {"end_displacement_before_m", r.scale * r.baseline.end_displacement_before},
+            {"end_displacement_after_m", r.scale * r.baseline.end_displacement_after}}}};
+}
+} // namespace
+
+nlohmann::json records_summary(const Scene& scene)
+{
+  nlohmann::json records = nlohmann::json::array();
+  const auto add = [&](const std::string& where, const TimeFunction& f)
+  {
+    if (const RecordInfo* r = f.record_info())
+      records.push_back(record_json(where, *r));
+  };
+  if (scene.far_field)
+    add("far_field.incident.velocity", scene.far_field->incident.velocity);
+  const dda::ModelDescription& model = scene.model;
+  for (std::size_t i = 0; i < model.boundaries.size(); ++i)
+    if (model.boundaries[i].has_input)
+      add("boundaries." + std::to_string(i) + ".input.velocity",
+          model.boundaries[i].input.velocity);
+  for (std::size_t i = 0; i < model.fixed_points.size(); ++i)
+  {
+    add("fixed_points." + std::to_string(i) + ".displacement_x",
+        model.fixed_points[i].displacement_x);
+    add("fixed_points." + std::to_string(i) + ".displacement_y",
+        model.fixed_points[i].displacement_y);
+  }
+  return records;
+}
+
 } // namespace ddafem

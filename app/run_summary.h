@@ -59,6 +59,10 @@ void mark_energy_source(nlohmann::json& summary, const dda::EnergyBalance& e);
 /// the failure), the time reached and the end time [s], the steps and dt [s].
 nlohmann::json summary_head(const Scene& scene, bool failed, const std::string& failure,
                             double time_reached, double end_time, std::size_t n_steps, double dt);
+/// The recorded ground motions of a scene (`record` time functions), each with where it acts,
+/// what it is and its measures; empty if none.
+nlohmann::json records_summary(const Scene& scene);
+
 /// The wall time [s], the peak memory and the warnings of a run.
 void add_run_facts(nlohmann::json& summary, double wall_time,
                    const std::vector<std::string>& warnings);

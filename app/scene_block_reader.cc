@@ -262,7 +262,7 @@ void read_point_loads(const MapReader& top, const BlockBoxes& boxes, dda::ModelD
     dda::PointLoad load;
     load.point = r.vector2("point");
     load.force = r.vector2("force");
-    load.time_function = read_time_function(r, "time_function");
+    load.time_function = read_time_function(r, "time_function", TimeFunctionUse::factor);
     load.origin = r.key_path();
     check_point_in_blocks(r, "point", load.point, model, boxes);
     model.point_loads.push_back(load);
@@ -276,8 +276,8 @@ void read_fixed_points(const MapReader& top, const BlockBoxes& boxes, dda::Model
     dda::FixedPoint f;
     f.point = r.vector2("point");
     f.stiffness = r.number("stiffness");
-    f.displacement_x = read_time_function(r, "displacement_x");
-    f.displacement_y = read_time_function(r, "displacement_y");
+    f.displacement_x = read_time_function(r, "displacement_x", TimeFunctionUse::displacement);
+    f.displacement_y = read_time_function(r, "displacement_y", TimeFunctionUse::displacement);
     f.origin = r.key_path();
     check_point_in_blocks(r, "point", f.point, model, boxes);
     model.fixed_points.push_back(f);

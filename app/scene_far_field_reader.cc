@@ -325,6 +325,26 @@ void require_far_field_fits(const MapReader& f, const fem::FarFieldDescription& 
 } // namespace
 
 /// The `far_field` section (the plane mode, time step and integrator come from the scene).
+namespace
+{
+/// A `within` record is the motion at depth, the ground surface's reflection included: taken as
+/// the incident wave it is right only where nothing above the base reflects. Refused under a
+/// free top.
+void require_no_within_record_under_surface(const MapReader& inc, const fem::FarFieldDescription& d)
+{
+  const RecordInfo* record = d.incident.velocity.record_info();
+  if (record == nullptr || record->motion != RecordMotion::within)
+    return;
+  for (const fem::BoundaryCondition& b : d.boundaries)
+    if (b.part == fem::BoundaryPart::top && b.kind == fem::BoundaryKind::free)
+      throw inc.error("velocity",
+                      "a record taken `within` (at depth) already holds the ground surface's "
+                      "reflection, and the far field's free top would add it again: expected "
+                      "motion outcrop (the incident wave is half of it) or incident (a record "
+                      "deconvolved to the upgoing wave, e.g. by a site-response code)");
+}
+} // namespace
+
 fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDescription& model,
                                         const std::vector<std::string>& material_names)
 {
@@ -351,8 +371,17 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
   d.element_size = f.number("element_size");
   d.max_frequency = f.number("max_frequency");
   d.points_per_wavelength = f.number("points_per_wavelength");
-  if (d.element_size == 0.0 && d.max_frequency == 0.0 && !f.has("mesh"))
-    throw f.error("element_size", "expected element_size > 0, or max_frequency > 0 to choose it");
+  if (f.has("incident"))
+  {
+    const MapReader inc = f.section_reader("incident");
+    d.incident.type = inc.choice_of<WaveType>("type");
+    d.incident.velocity = read_time_function(inc, "velocity", TimeFunctionUse::velocity);
+  }
+  // A record's spectrum gives the highest frequency (MotionSummary::f99) when none is given.
+  if (d.element_size == 0.0 && d.max_frequency == 0.0 && !f.has("mesh") &&
+      d.incident.velocity.record_info() == nullptr)
+    throw f.error("element_size", "expected element_size > 0, or max_frequency > 0 to choose it "
+                                  "(or an incident record, whose spectrum chooses it)");
   if (f.has("hole"))
     d.hole = read_hole(f.section_reader("hole"), d);
   d.solver = f.choice_of<fem::LinearSolver>("solver");
@@ -370,11 +399,7 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
   for (const MapReader& r : f.section_list("boundaries"))
     d.boundaries.push_back(read_far_field_boundary(r, d, parts));
   if (f.has("incident"))
-  {
-    const MapReader inc = f.section_reader("incident");
-    d.incident.type = inc.choice_of<WaveType>("type");
-    d.incident.velocity = read_time_function(inc, "velocity");
-  }
+    require_no_within_record_under_surface(f.section_reader("incident"), d);
   require_far_field_fits(f, d);
   return d;
 }

@@ -19,15 +19,8 @@ TimeFunction read_csv_table(const MapReader& r)
   const long long time_column = r.integer("time_column");
   const long long value_column = r.integer("value_column");
   const long long skip_rows = r.integer("skip_rows");
-  std::filesystem::path csv_path(file);
-  if (csv_path.is_relative())
-    csv_path = r.ctx().scene_directory / csv_path;
+  const std::filesystem::path csv_path = scene_file(r, "file", "CSV file");
   const std::string shown = csv_path.lexically_normal().string();
-
-  // A regular file first: opening a named pipe (or a device) would wait for a writer.
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(csv_path, ec))
-    throw r.error("file", "cannot open CSV file '" + shown + "': expected a regular file");
   std::ifstream in(csv_path);
   if (!in)
     throw r.error("file", "cannot open CSV file '" + shown + "'");
@@ -186,11 +179,17 @@ dda::Stage read_stage(const MapReader& r, const dda::ModelDescription& model)
 }
 } // namespace
 
-TimeFunction read_time_function(const MapReader& parent, const std::string& name)
+TimeFunction read_time_function(const MapReader& parent, const std::string& name,
+                                TimeFunctionUse use)
 {
   const MapReader r = parent.time_function_reader(name);
   switch (r.choice_of<schema::TimeFunctionType>("type"))
   {
+  case schema::TimeFunctionType::record:
+    if (use == TimeFunctionUse::factor)
+      throw r.error("type", "a record is a ground motion: expected it where a velocity or a "
+                            "displacement is given, not as a load's factor");
+    return read_record(r, use);
   case schema::TimeFunctionType::constant:
     return TimeFunction::constant(r.number("value"));
   case schema::TimeFunctionType::sine_pulse:
@@ -291,7 +290,7 @@ dda::BoundaryDescription read_boundary(const MapReader& r, const dda::ModelDescr
     const MapReader in = r.section_reader("input");
     b.has_input = true;
     b.input.type = in.choice_of<WaveType>("type");
-    b.input.velocity = read_time_function(in, "velocity");
+    b.input.velocity = read_time_function(in, "velocity", TimeFunctionUse::velocity);
   }
   check_boundary_selector(r, b.outer);
   if (r.has("edges"))

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "app/map_reader.h"
+#include "app/record_reader.h"
 #include "app/scene.h"
 #include "dda/model_description.h"
 #include "dda/rock_mass.h"
@@ -72,7 +73,9 @@ struct BlockBoxes
 
 // ---- Model (app/scene_model_reader.cc) ------------------------------------------------------
 
-TimeFunction read_time_function(const MapReader& parent, const std::string& name);
+/// The time function at key `name` of `parent`, giving what `use` says (a record needs to know).
+TimeFunction read_time_function(const MapReader& parent, const std::string& name,
+                                TimeFunctionUse use);
 /// `analysis`: plane mode and geometry.
 void read_analysis(const MapReader& top, dda::ModelDescription& model);
 /// `materials`, `joint_materials` and `joints`.

@@ -116,7 +116,8 @@ SceneSchema::SceneSchema()
                   constant_time_function_section(),
                   sine_pulse_time_function_section(),
                   table_time_function_section(),
-                  csv_time_function_section()};
+                  csv_time_function_section(),
+                  record_time_function_section()};
 }
 
 } // namespace ddafem::schema

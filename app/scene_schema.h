@@ -61,15 +61,64 @@ enum class TimeFunctionType
   constant,
   sine_pulse,
   table,
-  csv
+  csv,
+  record
 };
 
-constexpr std::array<EnumName<TimeFunctionType>, 4> enum_names(TimeFunctionType)
+constexpr std::array<EnumName<TimeFunctionType>, 5> enum_names(TimeFunctionType)
 {
   return {{{TimeFunctionType::constant, "constant"},
            {TimeFunctionType::sine_pulse, "sine_pulse"},
            {TimeFunctionType::table, "table"},
-           {TimeFunctionType::csv, "csv"}}};
+           {TimeFunctionType::csv, "csv"},
+           {TimeFunctionType::record, "record"}}};
+}
+
+/// The file formats of a `record` time function.
+enum class RecordFormat
+{
+  peer, ///< PEER NGA: four header lines (quantity and units, NPTS and DT), then the samples
+  table ///< numbers in rows, separated by commas or blanks: a time column, or a fixed dt
+};
+
+constexpr std::array<EnumName<RecordFormat>, 2> enum_names(RecordFormat)
+{
+  return {{{RecordFormat::peer, "peer"}, {RecordFormat::table, "table"}}};
+}
+
+/// The units of a record's samples, which also say what they measure.
+enum class RecordUnit
+{
+  g,
+  m_per_s2,
+  cm_per_s2,
+  m_per_s,
+  cm_per_s,
+  m,
+  cm
+};
+
+constexpr std::array<EnumName<RecordUnit>, 7> enum_names(RecordUnit)
+{
+  return {{{RecordUnit::g, "g"},
+           {RecordUnit::m_per_s2, "m/s^2"},
+           {RecordUnit::cm_per_s2, "cm/s^2"},
+           {RecordUnit::m_per_s, "m/s"},
+           {RecordUnit::cm_per_s, "cm/s"},
+           {RecordUnit::m, "m"},
+           {RecordUnit::cm, "cm"}}};
+}
+
+/// A record's baseline correction (common/ground_motion.h correct_baseline).
+enum class BaselineMethod
+{
+  polynomial,
+  none
+};
+
+constexpr std::array<EnumName<BaselineMethod>, 2> enum_names(BaselineMethod)
+{
+  return {{{BaselineMethod::polynomial, "polynomial"}, {BaselineMethod::none, "none"}}};
 }
 
 /// Allowed interval of a number (or of each component of a vector of numbers).

@@ -66,23 +66,42 @@ void read_tunnel_rock(const MapReader& r, const YAML::Node& root, const Context&
                                 "a long tunnel is in plane strain");
 }
 
-/// `tunnel.wave`: the incident wave's type, velocity record and frequencies [Hz].
-void read_tunnel_wave(const MapReader& r, const YAML::Node& tunnel_node, TunnelDescription& t)
+/// `tunnel.wave`: the incident wave's type, velocity record and frequencies [Hz]. Returns the
+/// velocity.
+TimeFunction read_tunnel_wave(const MapReader& r, TunnelDescription& t)
 {
   const MapReader wave = r.section_reader("wave");
   t.wave_type = wave.choice_of<WaveType>("type");
-  const TimeFunction velocity = read_time_function(wave, "velocity");
-  const bool pulse = nested(tunnel_node, {"wave", "velocity", "type"}).Scalar() ==
-                     name_of(schema::TimeFunctionType::sine_pulse);
+  const TimeFunction velocity = read_time_function(wave, "velocity", TimeFunctionUse::velocity);
   if (wave.has("frequency"))
     t.wave_frequency = wave.number("frequency");
-  else if (pulse)
-    t.wave_frequency = velocity.characteristic_frequency();
+  else if (velocity.dominant_frequency() > 0.0)
+    t.wave_frequency = velocity.dominant_frequency();
   else
-    throw wave.error("frequency", "expected the wave's dominant frequency [Hz] for a record");
-  t.max_frequency =
-      wave.has("max_frequency") ? wave.number("max_frequency") : 2.0 * t.wave_frequency;
+    throw wave.error("frequency", "expected the wave's dominant frequency [Hz] for a table");
+  // A record's spectrum says how high its content goes; a pulse's harmonics, twice its frequency.
+  if (wave.has("max_frequency"))
+    t.max_frequency = wave.number("max_frequency");
+  else if (velocity.record_info() != nullptr)
+    t.max_frequency = std::max(velocity.characteristic_frequency(), t.wave_frequency);
+  else
+    t.max_frequency = 2.0 * t.wave_frequency;
   t.wave_duration = velocity.active_until();
+  return velocity;
+}
+
+/// A `within` record (the motion at depth, the surface's reflection in it) under a model that
+/// reaches the ground surface, which would add the reflection again: refused.
+void require_no_within_record_under_surface(const MapReader& r, const TimeFunction& velocity,
+                                            const TunnelPlan& plan)
+{
+  const RecordInfo* record = velocity.record_info();
+  if (record != nullptr && record->motion == RecordMotion::within && plan.top_is_surface)
+    throw r.section_reader("wave").error(
+        "velocity", "a record taken `within` (at depth) already holds the ground surface's "
+                    "reflection, and this model reaches the ground surface (ddafem check says "
+                    "why), which would add it again: expected motion outcrop (the incident wave "
+                    "is half of it) or incident");
 }
 
 /// The near field, the truncation, the far field's margins and mesh, the window and the time step.
@@ -153,13 +172,14 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
                    t.rock_mass.chord_tolerance));
   t.depth = r.number("depth");
   t.k0 = r.number("k0");
-  read_tunnel_wave(r, tunnel_node, t);
+  const TimeFunction velocity = read_tunnel_wave(r, t);
   read_tunnel_domain(r, t);
   read_tunnel_stages(r, t);
 
   try
   {
     TunnelPlan plan = plan_tunnel(t);
+    require_no_within_record_under_surface(r, velocity, plan);
     write_tunnel_sections(t, plan,
                           {child(tunnel_node, "opening"), child(tunnel_node, "joint_sets"),
                            child(tunnel_node, "joints"), nested(tunnel_node, {"wave", "velocity"})},

@@ -34,7 +34,8 @@ Section far_field_section()
            .unit("Hz")
            .default_yaml("0")
            .at_least(0)
-           .meaning("highest frequency to resolve (needed when element_size is 0)"),
+           .meaning("highest frequency to resolve (needed when element_size is 0, unless the "
+                    "incident wave is a record: then its spectrum's f99)"),
        key("points_per_wavelength", T::number)
            .default_yaml("10")
            .greater_than(0)

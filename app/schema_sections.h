@@ -76,5 +76,6 @@ Section constant_time_function_section();
 Section sine_pulse_time_function_section();
 Section table_time_function_section();
 Section csv_time_function_section();
+Section record_time_function_section();
 
 } // namespace ddafem::schema

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace ddafem
@@ -39,6 +40,15 @@ TimeFunction TimeFunction::table(std::vector<double> times, std::vector<double> 
   return f;
 }
 
+TimeFunction TimeFunction::record(std::vector<double> times, std::vector<double> values,
+                                  RecordInfo info)
+{
+  TimeFunction f = table(std::move(times), std::move(values));
+  f.kind = Kind::record;
+  f.info = std::make_shared<const RecordInfo>(std::move(info));
+  return f;
+}
+
 double TimeFunction::value(double t) const
 {
   switch (kind)
@@ -53,6 +63,7 @@ double TimeFunction::value(double t) const
     return amplitude * std::sin(2.0 * M_PI * frequency * tau);
   }
   case Kind::table:
+  case Kind::record:
   {
     if (t <= times.front())
       return values.front();
@@ -76,7 +87,23 @@ double TimeFunction::active_until() const
   case Kind::sine_pulse:
     return start + n_cycles / frequency;
   case Kind::table:
+  case Kind::record:
     return times.back();
+  }
+  return 0.0;
+}
+
+double TimeFunction::dominant_frequency() const
+{
+  switch (kind)
+  {
+  case Kind::sine_pulse:
+    return frequency;
+  case Kind::record:
+    return info->summary.mean_frequency;
+  case Kind::constant:
+  case Kind::table:
+    break;
   }
   return 0.0;
 }
@@ -100,6 +127,8 @@ double TimeFunction::characteristic_frequency() const
     }
     return smallest > 0.0 ? 1.0 / smallest : 0.0;
   }
+  case Kind::record:
+    return info->summary.f99;
   }
   return 0.0;
 }
@@ -120,6 +149,21 @@ std::string TimeFunction::describe() const
     s << "table of " << times.size() << " points, " << times.front() << " to " << times.back()
       << " s";
     break;
+  case Kind::record:
+  {
+    const RecordInfo& r = *info;
+    const MotionSummary& m = r.summary;
+    s << std::setprecision(3) << "record " << r.file << " (" << name_of(r.motion)
+      << ", the incident wave " << incident_factor(r.motion) << " x it): " << r.window_from
+      << " to " << r.window_to << " s of it every " << r.dt << " s from t = " << r.start
+      << " s, scale " << r.scale << "; PGA " << m.pga << " m/s^2 (" << m.pga / standard_gravity
+      << " g), PGV " << m.pgv << " m/s, PGD " << m.pgd << " m, Arias " << m.arias_intensity
+      << " m/s, D5-95 " << m.t95 - m.t5 << " s, mean frequency " << m.mean_frequency << " Hz, f99 "
+      << m.f99 << " Hz; baseline: end velocity " << r.scale * r.baseline.end_velocity_before
+      << " -> 0 m/s, end displacement " << r.scale * r.baseline.end_displacement_before << " -> "
+      << r.scale * r.baseline.end_displacement_after << " m";
+    break;
+  }
   }
   return s.str();
 }

@@ -1,6 +1,9 @@
 // Scalar functions of time used to scale loads and prescribed motions.
 #pragma once
 
+#include "common/ground_motion.h"
+
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,7 +16,9 @@ namespace ddafem
 /// - sine pulse: f(t) = amplitude * sin(2 pi frequency (t - start)) for
 ///   start <= t <= start + n_cycles / frequency, zero elsewhere (an n-cycle sine pulse);
 /// - table: piecewise-linear interpolation of (time, value) pairs, holding the first value before
-///   the first time and the last value after the last time (from the scene or a CSV file).
+///   the first time and the last value after the last time (from the scene or a CSV file);
+/// - record: a table made from a recorded ground motion (app/record_reader), which keeps what
+///   the record is (RecordInfo) and whose frequencies come from its spectrum, not its sampling.
 class TimeFunction
 {
 public:
@@ -24,6 +29,9 @@ public:
   /// Piecewise-linear table; times strictly increasing, same length as values, at least one
   /// point. The caller validates; this constructor asserts.
   static TimeFunction table(std::vector<double> times, std::vector<double> values);
+  /// A table from a record; `info` says what it is.
+  static TimeFunction record(std::vector<double> times, std::vector<double> values,
+                             RecordInfo info);
 
   /// f(t) = 1.
   TimeFunction() = default;
@@ -32,8 +40,14 @@ public:
   double value(double t) const;
 
   /// Highest frequency [Hz] of interest in this function: the pulse frequency for a sine pulse,
-  /// 1/(smallest table interval) for a table, 0 for a constant.
+  /// 1/(smallest table interval) for a table, 99 % of the Fourier power of a record's
+  /// acceleration below it (MotionSummary::f99), 0 for a constant.
   double characteristic_frequency() const;
+  /// Dominant frequency [Hz]: the pulse frequency, a record's mean frequency
+  /// (MotionSummary::mean_frequency), 0 for a constant or a table (not known).
+  double dominant_frequency() const;
+  /// What a record is; nullptr for the other kinds.
+  const RecordInfo* record_info() const { return info.get(); }
 
   /// Time [s] after which the function keeps its final value: the end of a sine pulse, the
   /// last time of a table, 0 for a constant.
@@ -46,7 +60,8 @@ private:
   {
     constant,
     sine_pulse,
-    table
+    table,
+    record
   };
   Kind kind = Kind::constant;
   double amplitude = 1.0;
@@ -55,6 +70,7 @@ private:
   double start = 0.0;
   std::vector<double> times;
   std::vector<double> values;
+  std::shared_ptr<const RecordInfo> info; ///< record only
 };
 
 } // namespace ddafem

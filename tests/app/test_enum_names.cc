@@ -2,6 +2,7 @@
 // itself, and the choices the schema offers are exactly those names.
 #include "app/scene_schema.h"
 #include "app/tunnel_scene.h"
+#include "common/ground_motion.h"
 #include "dda/model_description.h"
 #include "dda/rock_mass.h"
 #include "dda/system.h"
@@ -49,6 +50,11 @@ TEST(EnumNames, AppTablesRoundTrip)
   expect_round_trip<TunnelTruncation>();
   expect_round_trip<schema::ValueType>();
   expect_round_trip<schema::TimeFunctionType>();
+  expect_round_trip<schema::RecordFormat>();
+  expect_round_trip<schema::RecordUnit>();
+  expect_round_trip<schema::BaselineMethod>();
+  expect_round_trip<RecordMotion>();
+  expect_round_trip<MotionQuantity>();
 }
 
 TEST(EnumNames, SpellingsOfScenesAndSummaries)
@@ -61,7 +67,11 @@ TEST(EnumNames, SpellingsOfScenesAndSummaries)
   EXPECT_STREQ(name_of(fem::BoundaryKind::free_field), "free_field");
   EXPECT_STREQ(name_of(schema::ValueType::vector2), "[x, y]");
   EXPECT_EQ(names_of<schema::TimeFunctionType>(),
-            (std::vector<std::string>{"constant", "sine_pulse", "table", "csv"}));
+            (std::vector<std::string>{"constant", "sine_pulse", "table", "csv", "record"}));
+  EXPECT_EQ(names_of<schema::RecordUnit>(),
+            (std::vector<std::string>{"g", "m/s^2", "cm/s^2", "m/s", "cm/s", "m", "cm"}));
+  EXPECT_EQ(names_of<RecordMotion>(),
+            (std::vector<std::string>{"outcrop", "within", "incident"}));
   // A hole shape of none is no scene's choice.
   EXPECT_STREQ(name_of(fem::HoleShape::none), "");
 }
