@@ -3,6 +3,7 @@
 //   ddafem check SCENE [--set key=value]...
 //   ddafem run SCENE [-o DIR] [--quiet] [--allow-unstable] [--set key=value]...
 //   ddafem resume DIR [--quiet] [--max-wall-time S] [--max-memory SIZE]
+//   ddafem sweep SCENE --key KEY [--find first_fall|displacement] [--threshold M] [-o DIR] ...
 //   ddafem scene-reference
 //
 // Exit codes: 0 success, 1 numerical failure (or an I/O failure while writing results),
@@ -11,6 +12,7 @@
 #include "app/checkpoint.h"
 #include "app/run.h"
 #include "app/scene.h"
+#include "app/sweep.h"
 #include "common/input_error.h"
 
 #include <CLI/CLI.hpp>
@@ -118,6 +120,61 @@ int resume(const CommandLine& cl)
   return ddafem::run_scene(scene, options, std::cout, &checkpoint);
 }
 
+/// The `sweep` command's options.
+void add_sweep_options(CLI::App& command, ddafem::SweepOptions& o)
+{
+  command.add_option("SCENE", o.scene, "the scene file (YAML)")->required();
+  command.add_option("--key", o.key, "the scene key to sweep, e.g. tunnel.wave.velocity.amplitude")
+      ->required();
+  command
+      .add_option("--find", o.find,
+                  "first_fall: the smallest value at which a keyblock falls (not one the "
+                  "excavation released); displacement: at which a keyblock's residual "
+                  "displacement relative to the rock exceeds --threshold")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, ddafem::SweepCriterion>{
+              {"first_fall", ddafem::SweepCriterion::first_fall},
+              {"displacement", ddafem::SweepCriterion::displacement}},
+          CLI::ignore_case));
+  command.add_option("--threshold", o.threshold, "[m] for --find displacement")
+      ->check(CLI::PositiveNumber);
+  command.add_option("--low", o.low,
+                     "lowest value to run (with --high; default: bracket from "
+                     "the scene's value by doubling or halving)");
+  command.add_option("--high", o.high, "highest value to run");
+  command
+      .add_option("--tolerance", o.tolerance,
+                  "stop when the bracket is this narrow "
+                  "relative to its upper end (default 0.05)")
+      ->check(CLI::Range(1e-6, 1.0));
+  command.add_option("-j,--jobs", o.jobs, "runs at a time (default 0: the cores)")
+      ->check(CLI::Range(0u, 256u));
+  command.add_option("-o,--output", o.directory, "output directory (default results/sweep)")
+      ->type_name("DIR");
+  command.add_option("--set", o.settings, "override a scene key in every run (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  command.add_flag("-q,--quiet", o.quiet, "no line per run");
+}
+
+/// The `sweep` command, its results by default in results/sweep.
+CLI::App* add_sweep_command(CLI::App& app, ddafem::SweepOptions& o)
+{
+  o.directory = "results/sweep";
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "find the critical value of a key (e.g. the wave's amplitude): runs in parallel");
+  add_sweep_options(*sweep, o);
+  return sweep;
+}
+
+/// Runs the sweep; returns the exit code.
+int sweep_command(const ddafem::SweepOptions& o)
+{
+  if (o.find == ddafem::SweepCriterion::displacement && !(o.threshold > 0.0))
+    throw ddafem::InputError("sweep: --find displacement needs --threshold M (> 0)");
+  return ddafem::run_sweep(o, std::cerr);
+}
+
 /// The options of a run that `run` and `resume` share.
 void add_run_options(CLI::App& command, CommandLine& cl)
 {
@@ -164,17 +221,20 @@ int main(int argc, char** argv)
       ->add_option("--max-memory", cl.max_memory,
                    "stop cleanly, exit code 3, if the run uses more memory than this, e.g. 8G")
       ->type_name("SIZE");
+  ddafem::SweepOptions sweep_options;
+  CLI::App* sweep = add_sweep_command(app, sweep_options);
   CLI::App* reference =
       app.add_subcommand("scene-reference", "print the scene key reference (Markdown)");
   const auto is_command = [&](const std::string& word)
   {
     return word == check->get_name() || word == run->get_name() ||
-           word == resume_command->get_name() || word == reference->get_name();
+           word == resume_command->get_name() || word == reference->get_name() ||
+           word == sweep->get_name();
   };
   if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1]))
   {
     std::cerr << "error: unknown command '" << argv[1]
-              << "': expected check, run, resume or scene-reference (ddafem --help)\n";
+              << "': expected check, run, resume, sweep or scene-reference (ddafem --help)\n";
     return 2;
   }
   try
@@ -197,6 +257,8 @@ int main(int argc, char** argv)
     }
     if (resume_command->parsed())
       return resume(cl);
+    if (sweep->parsed())
+      return sweep_command(sweep_options);
     return check_or_run(cl, run->parsed());
   }
   catch (const ddafem::InputError& e)

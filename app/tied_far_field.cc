@@ -224,6 +224,9 @@ void TiedFarFieldModel::describe_interface(std::ostream& out) const
   }
   for (const fem::BoundaryCondition& b : scene.far_field->boundaries)
     out << "  far field " << fem::name_of(b.part) << ": " << fem::name_of(b.kind) << "\n";
+  const fem::IncidentWave& incident = scene.far_field->incident;
+  out << "  far field incident: " << name_of(incident.type) << ", v_in "
+      << incident.velocity.describe() << "\n";
   out << "  far-field monitors: " << scene.far_field->monitors.size() << "\n";
 }
 } // namespace

@@ -379,6 +379,26 @@ def solver_line(solver):
     return line
 
 
+def record_lines(records):
+    """The recorded ground motions (summary.json `records`, docs/ground_motions.md)."""
+    lines = []
+    for r in records or []:
+        b = r["baseline"]
+        lines += ["- `%s`: record `%s`, %s motion (the incident wave %.3g x it), %.4g to %.4g s "
+                  "of it every %.4g s from t = %.4g s, scale %.4g"
+                  % (r["where"], r["file"], r["motion"], r["incident_factor"], r["window_s"][0],
+                     r["window_s"][1], r["dt_s"], r["start_s"], r["scale"]),
+                  "  - PGA %.3g m/s^2 (%.3g g), PGV %.3g m/s, PGD %.3g m, Arias intensity "
+                  "%.3g m/s, D5-95 %.3g s (%.3g to %.3g s), mean frequency %.3g Hz, f99 %.3g Hz"
+                  % (r["pga_m_s2"], r["pga_g"], r["pgv_m_s"], r["pgd_m"],
+                     r["arias_intensity_m_s"], r["t95_s"] - r["t5_s"], r["t5_s"], r["t95_s"],
+                     r["mean_frequency_hz"], r["f99_hz"]),
+                  "  - baseline correction: end velocity %.3g -> 0 m/s, end displacement %.3g "
+                  "-> %.3g m" % (b["end_velocity_before_m_s"], b["end_displacement_before_m"],
+                                 b["end_displacement_after_m"])]
+    return lines
+
+
 def write_report(run_dir, summary, figures, path):
     status = summary.get("status", "?")
     lines = ["# Run report: %s" % summary.get("name", os.path.basename(run_dir)), "",
@@ -405,6 +425,8 @@ def write_report(run_dir, summary, figures, path):
              "- wall time: %.3g s, peak memory %.0f MB"
              % (summary.get("wall_time_s", 0.0), summary.get("peak_memory_mb", 0.0)), ""]
     lines += ["## Model", ""] + model_lines(summary) + [""]
+    if summary.get("records"):
+        lines += ["## Ground motion", ""] + record_lines(summary["records"]) + [""]
     stages = stage_lines(summary)
     if stages:
         lines += ["## Stages", ""] + stages + [""]

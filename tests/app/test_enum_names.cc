@@ -70,8 +70,7 @@ TEST(EnumNames, SpellingsOfScenesAndSummaries)
             (std::vector<std::string>{"constant", "sine_pulse", "table", "csv", "record"}));
   EXPECT_EQ(names_of<schema::RecordUnit>(),
             (std::vector<std::string>{"g", "m/s^2", "cm/s^2", "m/s", "cm/s", "m", "cm"}));
-  EXPECT_EQ(names_of<RecordMotion>(),
-            (std::vector<std::string>{"outcrop", "within", "incident"}));
+  EXPECT_EQ(names_of<RecordMotion>(), (std::vector<std::string>{"outcrop", "within", "incident"}));
   // A hole shape of none is no scene's choice.
   EXPECT_STREQ(name_of(fem::HoleShape::none), "");
 }

@@ -1,0 +1,413 @@
+#include "app/sweep.h"
+
+#include "app/map_reader.h"
+#include "app/run_support.h"
+#include "app/scene.h"
+#include "app/scene_text.h"
+#include "common/format.h"
+#include "common/input_error.h"
+#include "common/stopwatch.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+extern char** environ;
+
+namespace ddafem
+{
+CaseVerdict judge_case(const nlohmann::json& summary, SweepCriterion criterion, double threshold)
+{
+  CaseVerdict v;
+  v.failed = summary.value("status", "") == "failed";
+  const nlohmann::json& keyblocks = summary.value("keyblocks", nlohmann::json());
+  if (keyblocks.is_object())
+  {
+    v.keyblock_peak_m = keyblocks.value("keyblock_peak_m", 0.0);
+    for (const nlohmann::json& b : keyblocks.value("blocks", nlohmann::json::array()))
+    {
+      if (b.value("released", false))
+        continue;
+      if (b.value("fell", false))
+        v.fallen.push_back(b.value("id", std::size_t(0)));
+      v.max_relative_m = std::max(v.max_relative_m, b.value("residual_relative_m", 0.0));
+    }
+  }
+  const bool met =
+      criterion == SweepCriterion::first_fall ? !v.fallen.empty() : v.max_relative_m > threshold;
+  v.exceeded = met || v.failed;
+  return v;
+}
+
+CriticalValueSearch::CriticalValueSearch(double start_, std::optional<double> low_,
+                                         std::optional<double> high_, double tolerance_,
+                                         unsigned parallel_)
+    : start(start_), tolerance(tolerance_), low(low_), high(high_),
+      parallel(std::max(parallel_, 1u))
+{
+}
+
+void CriticalValueSearch::add(double value, bool exceeded)
+{
+  cases.emplace_back(value, exceeded);
+}
+
+std::optional<double> CriticalValueSearch::lowest_exceeding() const
+{
+  std::optional<double> v;
+  for (const auto& [value, exceeded] : cases)
+    if (exceeded && (!v || value < *v))
+      v = value;
+  return v;
+}
+
+std::optional<double> CriticalValueSearch::highest_holding() const
+{
+  const std::optional<double> exceeding = lowest_exceeding();
+  std::optional<double> v;
+  for (const auto& [value, exceeded] : cases)
+    if (!exceeded && (!exceeding || value < *exceeding) && (!v || value > *v))
+      v = value;
+  return v;
+}
+
+std::vector<double> CriticalValueSearch::non_monotonic() const
+{
+  const std::optional<double> exceeding = lowest_exceeding();
+  std::vector<double> v;
+  for (const auto& [value, exceeded] : cases)
+    if (!exceeded && exceeding && value > *exceeding)
+      v.push_back(value);
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+std::string CriticalValueSearch::conclusion() const
+{
+  const std::optional<double> exceeding = lowest_exceeding(), holding = highest_holding();
+  if (exceeding && holding && *exceeding - *holding <= tolerance * *exceeding)
+    return "bracketed";
+  const double top = high.value_or(start * max_factor);
+  const double bottom = low.value_or(start / max_factor);
+  if (!exceeding && holding && *holding >= top * (1.0 - 1e-12))
+    return "never exceeded";
+  if (exceeding && !holding && *exceeding <= bottom * (1.0 + 1e-12))
+    return "always exceeded";
+  return "";
+}
+
+std::vector<double> CriticalValueSearch::next() const
+{
+  if (!conclusion().empty())
+    return {};
+  std::vector<double> values;
+  const std::optional<double> exceeding = lowest_exceeding(), holding = highest_holding();
+  if (cases.empty() && low && high)
+    return {*low, *high};
+  if (cases.empty())
+  {
+    for (unsigned k = 0; k < parallel; ++k)
+      values.push_back(
+          start * std::pow(2.0, static_cast<double>(k) - static_cast<double>((parallel - 1) / 2)));
+    return values;
+  }
+  if (!exceeding) // everything held: up by doubling, to the top
+  {
+    const double top = high.value_or(start * max_factor);
+    for (unsigned k = 1; k <= parallel && (values.empty() || values.back() < top); ++k)
+      values.push_back(std::min(*holding * std::pow(2.0, k), top));
+    return values;
+  }
+  if (!holding) // everything exceeded: down by halving, to the bottom
+  {
+    const double bottom = low.value_or(start / max_factor);
+    for (unsigned k = 1; k <= parallel && (values.empty() || values.back() > bottom); ++k)
+      values.push_back(std::max(*exceeding / std::pow(2.0, k), bottom));
+    return values;
+  }
+  const double width = *exceeding - *holding;
+  for (unsigned k = 1; k <= parallel; ++k)
+    values.push_back(*holding + width * k / (parallel + 1.0));
+  return values;
+}
+
+namespace
+{
+using scene_reading::apply_override;
+using scene_reading::load_yaml;
+using scene_reading::parse_double;
+using scene_reading::split;
+using scene_reading::trim;
+
+/// The number at `key` of the scene file with `settings` applied, if there is one.
+std::optional<double> scene_value(const std::string& file, const std::vector<std::string>& settings,
+                                  const std::string& key)
+{
+  YAML::Node root = load_yaml(file);
+  for (const std::string& s : settings)
+    apply_override(root, parse_override(s));
+  YAML::Node node = root;
+  for (const std::string& c : split(key, '.'))
+  {
+    const bool digits = !c.empty() && c.find_first_not_of("0123456789") == std::string::npos;
+    YAML::Node child = node.IsSequence() && digits && c.size() < 10 ? node[std::stoul(c)]
+                       : node.IsMap()                               ? node[c]
+                                                                    : YAML::Node();
+    if (!child.IsDefined())
+      return std::nullopt;
+    node.reset(child);
+  }
+  return node.IsScalar() ? parse_double(node.Scalar()) : std::nullopt;
+}
+
+std::string value_text(double value)
+{
+  std::ostringstream s;
+  s.precision(6);
+  s << value;
+  return s.str();
+}
+
+/// One run of the sweep.
+struct Case
+{
+  double value = 0.0;
+  std::filesystem::path directory;
+  pid_t pid = 0;
+  int exit_code = -1;
+  double wall_s = 0.0;
+  std::string status;
+  CaseVerdict verdict;
+};
+
+/// Starts `ddafem run` on the scene with the key at the case's value; its output goes to
+/// DIR/case_NN.log.
+pid_t start_case(const SweepOptions& o, const Case& c, unsigned threads)
+{
+  std::vector<std::string> args = {
+      "/proc/self/exe",     "run", o.scene,     "-o",
+      c.directory.string(), "-q",  "--threads", std::to_string(threads)};
+  for (const std::string& s : o.settings)
+    args.insert(args.end(), {"--set", s});
+  args.insert(args.end(), {"--set", o.key + "=" + value_text(c.value)});
+  std::vector<char*> argv;
+  for (std::string& a : args)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::string log = c.directory.string() + ".log";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  pid_t pid = 0;
+  const int error = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error != 0)
+    throw std::runtime_error("cannot start a run of the sweep: " + std::string(strerror(error)));
+  return pid;
+}
+
+/// Reads a finished case's summary.json and judges it; a run refused as bad input throws.
+void finish_case(const SweepOptions& o, Case& c)
+{
+  const std::filesystem::path summary_file = c.directory / "summary.json";
+  if (c.exit_code == 2)
+  {
+    std::ifstream log(c.directory.string() + ".log");
+    std::stringstream text;
+    text << log.rdbuf();
+    throw InputError("the run with " + o.key + " = " + value_text(c.value) +
+                     " was refused: " + trim(text.str()));
+  }
+  std::ifstream in(summary_file);
+  if (!in)
+    throw std::runtime_error("the run with " + o.key + " = " + value_text(c.value) + " wrote no " +
+                             summary_file.string() + " (exit code " + std::to_string(c.exit_code) +
+                             ")");
+  const nlohmann::json summary = nlohmann::json::parse(in);
+  c.status = summary.value("status", "");
+  c.verdict = judge_case(summary, o.find, o.threshold);
+}
+
+/// Runs the values of one round, `jobs` at a time, each with `threads` threads.
+void run_round(const SweepOptions& o, const std::vector<double>& values, unsigned jobs,
+               unsigned threads, std::vector<Case>& cases, std::ostream& log)
+{
+  std::size_t next = cases.size();
+  for (const double v : values)
+  {
+    Case c;
+    c.value = v;
+    const std::string number = std::to_string(cases.size() + 1);
+    c.directory = std::filesystem::path(o.directory) /
+                  ("case_" + std::string(number.size() < 2 ? 1 : 0, '0') + number);
+    cases.push_back(c);
+  }
+  std::vector<std::chrono::steady_clock::time_point> started(cases.size());
+  std::size_t running = 0;
+  while (next < cases.size() || running > 0)
+  {
+    for (; next < cases.size() && running < jobs; ++next, ++running)
+    {
+      cases[next].pid = start_case(o, cases[next], threads);
+      started[next] = std::chrono::steady_clock::now();
+    }
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0)
+      throw std::runtime_error("waiting for the sweep's runs: " + std::string(strerror(errno)));
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      if (cases[i].pid == pid && cases[i].exit_code < 0)
+      {
+        Case& c = cases[i];
+        c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+        c.wall_s = seconds_since(started[i]);
+        --running;
+        finish_case(o, c);
+        if (!o.quiet)
+          log << "sweep: " << o.key << " = " << value_text(c.value) << ": "
+              << (c.verdict.failed ? "failed (counted as exceeded)"
+                  : c.verdict.exceeded
+                      ? (o.find == SweepCriterion::first_fall ? "a keyblock fell" : "exceeded")
+                      : "held")
+              << ", largest relative residual "
+              << format_significant(1e3 * c.verdict.max_relative_m, 3) << " mm, "
+              << format_significant(c.wall_s, 3) << " s (" << c.directory.filename().string() << ")"
+              << std::endl;
+      }
+  }
+}
+
+/// sweep.json: the question, every case and the answer.
+nlohmann::json sweep_json(const SweepOptions& o, const std::vector<Case>& cases,
+                          const CriticalValueSearch& search, double wall_s)
+{
+  nlohmann::json list = nlohmann::json::array();
+  for (const Case& c : cases)
+    list.push_back({{"value", c.value},
+                    {"directory", c.directory.filename().string()},
+                    {"exit_code", c.exit_code},
+                    {"status", c.status},
+                    {"exceeded", c.verdict.exceeded},
+                    {"failed", c.verdict.failed},
+                    {"fallen_keyblocks", c.verdict.fallen},
+                    {"max_relative_residual_m", c.verdict.max_relative_m},
+                    {"keyblock_peak_m", c.verdict.keyblock_peak_m},
+                    {"wall_s", c.wall_s}});
+  const auto optional = [](std::optional<double> v)
+  { return v ? nlohmann::json(*v) : nlohmann::json(); };
+  return {{"scene", o.scene},
+          {"settings", o.settings},
+          {"key", o.key},
+          {"find", name_of(o.find)},
+          {"threshold_m", o.threshold},
+          {"tolerance", o.tolerance},
+          {"cases", list},
+          {"conclusion", search.conclusion()},
+          {"highest_holding", optional(search.highest_holding())},
+          {"lowest_exceeding", optional(search.lowest_exceeding())},
+          {"non_monotonic", search.non_monotonic()},
+          {"wall_s", wall_s}};
+}
+
+/// sweep.md: the answer, then the cases in the order of their values.
+std::string sweep_markdown(const nlohmann::json& j)
+{
+  std::ostringstream md;
+  md << "# Sweep of " << j["key"].get<std::string>() << ": " << j["find"].get<std::string>()
+     << "\n\nScene `" << j["scene"].get<std::string>() << "`, " << j["cases"].size() << " runs in "
+     << format_significant(j["wall_s"].get<double>(), 3) << " s. ";
+  const std::string conclusion = j["conclusion"];
+  if (conclusion == "bracketed")
+    md << "**The critical value lies above " << j["highest_holding"].get<double>()
+       << " and at most " << j["lowest_exceeding"].get<double>() << "** (within "
+       << 100.0 * j["tolerance"].get<double>() << " %).";
+  else
+    md << "**" << conclusion << "** over the values run.";
+  if (!j["non_monotonic"].empty())
+    md << " Not monotonic: held at " << j["non_monotonic"].dump()
+       << ", above the lowest value that exceeded.";
+  md << "\n\n| " << j["key"].get<std::string>()
+     << " | verdict | fallen keyblocks | largest relative residual [mm] | keyblock peak [mm] | "
+        "status | wall [s] | run |\n|---|---|---|---|---|---|---|---|\n";
+  std::vector<nlohmann::json> cases(j["cases"].begin(), j["cases"].end());
+  std::sort(cases.begin(), cases.end(),
+            [](const auto& a, const auto& b) { return a["value"] < b["value"]; });
+  for (const nlohmann::json& c : cases)
+    md << "| " << c["value"].get<double>() << " | "
+       << (c["exceeded"].get<bool>() ? "**exceeded**" : "held") << " | "
+       << c["fallen_keyblocks"].dump() << " | "
+       << format_significant(1e3 * c["max_relative_residual_m"].get<double>(), 3) << " | "
+       << format_significant(1e3 * c["keyblock_peak_m"].get<double>(), 3) << " | "
+       << c["status"].get<std::string>() << " | "
+       << format_significant(c["wall_s"].get<double>(), 3) << " | "
+       << c["directory"].get<std::string>() << " |\n";
+  return md.str();
+}
+} // namespace
+
+int run_sweep(const SweepOptions& o, std::ostream& log)
+{
+  const auto wall_start = std::chrono::steady_clock::now();
+  std::vector<Override> overrides;
+  for (const std::string& s : o.settings)
+    overrides.push_back(parse_override(s));
+  const std::optional<double> given = scene_value(o.scene, o.settings, o.key);
+  if (!o.low != !o.high)
+    throw InputError("sweep: expected both --low and --high, or neither (then it starts from the "
+                     "scene's " +
+                     o.key + ")");
+  if (o.low && !(*o.low > 0.0 && *o.high > *o.low))
+    throw InputError("sweep: expected 0 < --low < --high");
+  if (!o.low && !(given && *given > 0.0))
+    throw InputError(o.scene + ": key '" + o.key +
+                     "' has no number > 0 to start the sweep from: "
+                     "expected it in the scene (or a --set), or --low and --high");
+  const double start = given.value_or(*o.low);
+  // Bad input fails here, within seconds, not in a run.
+  for (const double v : {start, o.low.value_or(start), o.high.value_or(start)})
+  {
+    std::vector<Override> with = overrides;
+    with.push_back({o.key, value_text(v)});
+    read_scene(o.scene, with);
+  }
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned jobs = o.jobs > 0 ? o.jobs : cores;
+  const unsigned threads = std::max(1u, cores / jobs);
+  run_support::create_output_directory(o.directory);
+  CriticalValueSearch search(start, o.low, o.high, o.tolerance, jobs);
+  std::vector<Case> cases;
+  for (std::vector<double> values = search.next(); !values.empty(); values = search.next())
+  {
+    const std::size_t first = cases.size();
+    run_round(o, values, jobs, threads, cases, log);
+    for (std::size_t i = first; i < cases.size(); ++i)
+      search.add(cases[i].value, cases[i].verdict.exceeded);
+    const nlohmann::json j = sweep_json(o, cases, search, seconds_since(wall_start));
+    run_support::write_text_file(std::filesystem::path(o.directory) / "sweep.json",
+                                 j.dump(2) + "\n");
+    run_support::write_text_file(std::filesystem::path(o.directory) / "sweep.md",
+                                 sweep_markdown(j));
+  }
+  log << "sweep: " << search.conclusion();
+  if (search.conclusion() == "bracketed")
+    log << ": the critical " << o.key << " lies above " << *search.highest_holding()
+        << " and at most " << *search.lowest_exceeding();
+  log << "; " << cases.size() << " runs in " << format_significant(seconds_since(wall_start), 3)
+      << " s; " << (std::filesystem::path(o.directory) / "sweep.md").string() << "\n";
+  return 0;
+}
+
+} // namespace ddafem
