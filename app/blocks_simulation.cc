@@ -59,6 +59,7 @@ public:
   bool can_checkpoint() const override { return stage_run || static_run; }
   void save_checkpoint(CheckpointOut& archive) const override;
   std::size_t resume(CheckpointIn& archive, const std::filesystem::path& dir) override;
+  std::optional<std::size_t> fallen_keyblock() const override { return keyblocks.first_fallen(); }
   std::size_t n_steps() const override { return system.n_steps(); }
   double time() const override { return system.time(); }
   double end_time() const override { return scene.model.time.end_time; }

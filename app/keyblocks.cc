@@ -257,6 +257,17 @@ std::vector<bool> KeyblockRecorder::held_keyblocks(const dda::System& system) co
   return held;
 }
 
+std::optional<std::size_t> KeyblockRecorder::first_fallen() const
+{
+  for (std::size_t k = 0; k < tracks.size(); ++k)
+  {
+    const double size = geometry.openings[geometry.opening_of[k]].size();
+    if (!released[k] && tracks[k].last.dot(down) > criterion.fall_fraction * size)
+      return geometry.blocks[k];
+  }
+  return std::nullopt;
+}
+
 nlohmann::json KeyblockRecorder::keyblock_summary(std::size_t k, const dda::System& system,
                                                   bool held) const
 {

@@ -11,6 +11,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include <cstddef>
+#include <optional>
 #include <unordered_set>
 #include <utility>
 #include <vector>
@@ -57,6 +58,9 @@ public:
   /// Appends the keyblocks' displacements to a history row (in the order of add_channels) and
   /// updates the peaks and the joints' extremes.
   void append_row(const dda::System& system, std::vector<double>& row);
+  /// The first keyblock (its block index) that a static stage did not release and whose
+  /// centroid has fallen by the fall threshold in the last row, if any (--stop-at-first-fall).
+  std::optional<std::size_t> first_fallen() const;
   /// The `keyblocks` section of summary.json from the last row and the system's final state
   /// (null for a model without openings); see docs/outputs.md.
   nlohmann::json summary(const dda::System& system) const;

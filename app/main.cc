@@ -192,6 +192,23 @@ void add_run_options(CLI::App& command, CommandLine& cl)
       ->check(CLI::PositiveNumber)
       ->type_name("SECONDS");
 }
+/// The `run` command.
+CLI::App* add_run_command(CLI::App& app, CommandLine& cl)
+{
+  CLI::App* run = app.add_subcommand("run", "run a scene, results into DIR");
+  add_scene_arguments(*run, cl);
+  run->add_option("-o,--output", cl.options.output_directory,
+                  "output directory (default: the scene's output.directory)")
+      ->type_name("DIR");
+  add_run_options(*run, cl);
+  run->add_flag("--allow-unstable", cl.options.allow_unstable,
+                "run although a boundary feeds energy in at this dt (it will fail)");
+  run->add_flag("--stop-at-first-fall", cl.options.stop_at_first_fall,
+                "stop (exit code 3) once a keyblock has fallen that the excavation did not "
+                "release");
+  return run;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -205,14 +222,7 @@ int main(int argc, char** argv)
   CommandLine cl;
   CLI::App* check = app.add_subcommand("check", "validate a scene and print a model summary");
   add_scene_arguments(*check, cl);
-  CLI::App* run = app.add_subcommand("run", "run a scene, results into DIR");
-  add_scene_arguments(*run, cl);
-  run->add_option("-o,--output", cl.options.output_directory,
-                  "output directory (default: the scene's output.directory)")
-      ->type_name("DIR");
-  add_run_options(*run, cl);
-  run->add_flag("--allow-unstable", cl.options.allow_unstable,
-                "run although a boundary feeds energy in at this dt (it will fail)");
+  CLI::App* run = add_run_command(app, cl);
   CLI::App* resume_command = app.add_subcommand(
       "resume", "continue a killed or stopped run from the checkpoint in its DIR");
   resume_command->add_option("DIR", cl.directory, "the run's output directory")->required();

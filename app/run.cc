@@ -79,6 +79,9 @@ private:
     if (wall - last_flush >= scene.output.flush_interval)
       flush(wall);
     stop_reason = budget_exceeded(wall);
+    if (options.stop_at_first_fall && stop_reason.empty())
+      if (const std::optional<std::size_t> block = simulation->fallen_keyblock())
+        stop_reason = "keyblock " + std::to_string(*block) + " fell (--stop-at-first-fall)";
     const double every = scene.output.checkpoint_every;
     if (every > 0.0 && simulation->can_checkpoint() &&
         (wall - last_checkpoint >= every || !stop_reason.empty()))

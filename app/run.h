@@ -28,6 +28,10 @@ struct RunOptions
   /// Stop cleanly after a step at which the resident memory exceeds this [bytes] (--max-memory,
   /// which also refuses a scene estimated beyond it); 0: no budget.
   double max_memory = 0.0;
+  /// Stop cleanly (exit code 3, status "stopped") after the step at which a keyblock has fallen
+  /// that the excavation did not release (--stop-at-first-fall; `ddafem sweep --find
+  /// first_fall` asks for it: the verdict is known then).
+  bool stop_at_first_fall = false;
   /// The --set overrides as given, kept in checkpoints so that `resume` reads the scene the
   /// same way.
   std::vector<std::string> settings;

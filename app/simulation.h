@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
+
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -60,6 +62,8 @@ public:
   /// stage to go on with: its run_stage continues it from the step saved.
   virtual std::size_t resume(CheckpointIn& archive, const std::filesystem::path& dir) = 0;
 
+  /// A keyblock that has fallen (not one a static stage released), if any: blocks only.
+  virtual std::optional<std::size_t> fallen_keyblock() const { return std::nullopt; }
   virtual std::size_t n_steps() const = 0; ///< steps taken so far
   virtual double time() const = 0;         ///< simulated time reached [s]
   virtual double end_time() const = 0;     ///< the scene's end time [s]

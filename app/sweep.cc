@@ -195,9 +195,16 @@ struct Case
 /// DIR/case_NN.log.
 pid_t start_case(const SweepOptions& o, const Case& c, unsigned threads)
 {
-  std::vector<std::string> args = {
-      "/proc/self/exe",     "run", o.scene,     "-o",
-      c.directory.string(), "-q",  "--threads", std::to_string(threads)};
+  std::vector<std::string> args = {"ddafem",
+                                   "run",
+                                   o.scene,
+                                   "-o",
+                                   c.directory.string(),
+                                   "-q",
+                                   "--threads",
+                                   std::to_string(threads)};
+  if (o.find == SweepCriterion::first_fall)
+    args.push_back("--stop-at-first-fall"); // the verdict is known once a block has fallen
   for (const std::string& s : o.settings)
     args.insert(args.end(), {"--set", s});
   args.insert(args.end(), {"--set", o.key + "=" + value_text(c.value)});
@@ -334,8 +341,15 @@ std::string sweep_markdown(const nlohmann::json& j)
     md << "**The critical value lies above " << j["highest_holding"].get<double>()
        << " and at most " << j["lowest_exceeding"].get<double>() << "** (within "
        << 100.0 * j["tolerance"].get<double>() << " %).";
-  else
+  else if (!conclusion.empty())
     md << "**" << conclusion << "** over the values run.";
+  else
+    md << "Still searching (the sweep was stopped, or is running)"
+       << (j["highest_holding"].is_null() || j["lowest_exceeding"].is_null()
+               ? std::string(".")
+               : ": the critical value lies above " +
+                     format_significant(j["highest_holding"].get<double>(), 6) + " and at most " +
+                     format_significant(j["lowest_exceeding"].get<double>(), 6) + " so far.");
   if (!j["non_monotonic"].empty())
     md << " Not monotonic: held at " << j["non_monotonic"].dump()
        << ", above the lowest value that exceeded.";

@@ -1,8 +1,10 @@
 """Open a ddafem run in ParaView, coloured for reading: blocks by |displacement|, contacts and
-ties by state, the far field by |displacement|, in a 2D view at the last time step.
+ties by state, the far field by |displacement|, in a 2D view at the last time step, framed on
+the blocks (the near field; the far field around it), the blocks drawn above the far field, one
+scalar bar per part in its own corner, the time in the top left.
 
-Untested here (no ParaView on the development machine): written against paraview.simple's
-documented API (ParaView 5.9 and later).
+Tested headless with Debian's ParaView 5.11 (pvpython under xvfb-run) by
+tests/tools/check_paraview.py (CI test cli.paraview_pictures): the picture's pixels.
 
     pvpython tools/paraview_open.py RUN_DIR                      # opens a window
     pvpython tools/paraview_open.py RUN_DIR --screenshot end.png # or saves a picture
@@ -20,14 +22,28 @@ import os
 import sys
 import xml.etree.ElementTree as ET
 
+import numpy as np
+from paraview import servermanager
+from vtk.numpy_interface import dataset_adapter as dsa
+
 from paraview.simple import (AnnotateTimeFilter, ColorBy, GetActiveViewOrCreate,
                              GetAnimationScene, GetColorTransferFunction, GetScalarBar,
-                             PVDReader, Render, RenameSource, ResetCamera, SaveScreenshot, Show)
+                             PVDReader, Render, RenameSource, ResetCamera, SaveScreenshot, Show,
+                             Transform)
 
 # File name prefix of each part's VTU files in model.pvd, in part order (app/run_outputs.cc).
 PARTS = ("blocks", "contacts", "far_field", "ties")
 STATES = (("0", "open", (0.75, 0.75, 0.75)), ("1", "slide", (1.0, 0.55, 0.0)),
           ("2", "lock", (0.1, 0.45, 0.85)), ("3", "bonded", (0.1, 0.6, 0.2)))
+# Each part's colour map and the corner of its scalar bar (normalised view coordinates of the
+# bar's lower left corner), so that no two bars or titles overlap and none covers the blocks'
+# middle: blocks right, far field left, states top right; the time stays top left.
+MAPS = {"blocks": ("Viridis (matplotlib)", (0.89, 0.05)),
+        "far_field": ("Cool to Warm", (0.02, 0.05)),
+        "state": (None, (0.89, 0.62))}
+# Depth of each part [m along z, towards the viewer]: the blocks above the far field, the
+# contacts and ties above the blocks.
+DEPTH = {"far_field": -1.0, "blocks": 0.0, "contacts": 0.5, "ties": 0.5}
 
 
 def parts_of(run_dir):
@@ -51,57 +67,101 @@ def time_steps(source):
 
 
 def magnitude_range_over_time(source, association, name):
-    """(0, largest |name|) over every time step of `source`."""
+    """(0, the 98th percentile of |name| at the time step where it is largest): a block that
+    fell metres does not turn every other block the colour of zero."""
     largest = 0.0
     for t in time_steps(source):
         source.UpdatePipeline(t)
-        data = source.CellData if association == "CELLS" else source.PointData
-        if name in data.keys():
-            largest = max(largest, data[name].GetRange(-1)[1])
+        data = dsa.WrapDataObject(servermanager.Fetch(source))
+        arrays = data.CellData if association == "CELLS" else data.PointData
+        if name in arrays.keys():
+            for block in (arrays[name].Arrays if hasattr(arrays[name], "Arrays")
+                          else [arrays[name]]):
+                values = np.linalg.norm(np.asarray(block).reshape(len(block), -1), axis=1)
+                if values.size:
+                    largest = max(largest, float(np.percentile(values, 98)))
     return 0.0, largest if largest > 0.0 else 1.0
 
 
-def colour_by_magnitude(source, display, view, association, name, title):
-    ColorBy(display, (association, name, "Magnitude"))
-    lut = GetColorTransferFunction(name)
+def place_bar(lut, view, part, title):
+    """The scalar bar of `lut` in its part's corner, small, with a one-line title."""
+    bar = GetScalarBar(lut, view)
+    bar.Title = title
+    bar.ComponentTitle = ""
+    bar.WindowLocation = "Any Location"
+    bar.Position = list(MAPS[part][1])
+    bar.ScalarBarLength = 0.3
+    bar.TitleFontSize = 12
+    bar.LabelFontSize = 11
+    bar.TitleJustification = "Left"
+    return bar
+
+
+def colour_by_magnitude(source, display, view, association, name, part, title):
+    """Colours `display` by |name| with its own map (a per-part array name), over every time."""
+    ColorBy(display, (association, name, "Magnitude"), separate=True)
+    lut = GetColorTransferFunction(name, display, separate=True)
+    lut.ApplyPreset(MAPS[part][0], True)
     lut.AutomaticRescaleRangeMode = "Never"
     lut.RescaleTransferFunction(*magnitude_range_over_time(source, association, name))
     display.SetScalarBarVisibility(view, True)
-    GetScalarBar(lut, view).Title = title
+    place_bar(lut, view, part, title)
 
 
-def colour_by_state(display, view):
+def colour_by_state(display, view, title):
     ColorBy(display, ("CELLS", "state"))
     lut = GetColorTransferFunction("state")
     lut.InterpretValuesAsCategories = 1
     lut.Annotations = [text for value, label, _ in STATES for text in (value, label)]
     lut.IndexedColors = [c for _, _, colour in STATES for c in colour]
     display.SetScalarBarVisibility(view, True)
-    display.PointSize = 5.0
+    place_bar(lut, view, "state", title)
+    display.PointSize = 4.0
     display.RenderPointsAsSpheres = 1
+
+
+def frame_on(view, bounds, margin=0.08):
+    """A parallel 2D camera on bounds (xmin, xmax, ymin, ymax) with a margin."""
+    cx, cy = 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3])
+    half = 0.5 * max(bounds[1] - bounds[0], bounds[3] - bounds[2]) * (1.0 + 2.0 * margin)
+    view.CameraParallelProjection = 1
+    view.CameraPosition = [cx, cy, 100.0 * half]
+    view.CameraFocalPoint = [cx, cy, 0.0]
+    view.CameraViewUp = [0.0, 1.0, 0.0]
+    view.CameraParallelScale = half
 
 
 def open_run(run_dir):
     """Opens the parts of RUN_DIR in the active render view; returns the view."""
     view = GetActiveViewOrCreate("RenderView")
+    view.ViewSize = [1600, 1200]
     sources = {}
+    titles = {"contacts": "contact state", "ties": "contact and tie state"}
     for name, path in parts_of(run_dir):
-        source = PVDReader(FileName=path)
-        RenameSource(name, source)
-        display = Show(source, view)
-        sources[name] = source
+        reader = PVDReader(FileName=path)
+        RenameSource(name, reader)
+        shown = Transform(Input=reader)
+        shown.Transform.Translate = [0.0, 0.0, DEPTH.get(name, 0.0)]
+        RenameSource(name + " (drawn at z = %g)" % DEPTH.get(name, 0.0), shown)
+        display = Show(shown, view)
+        display.Ambient, display.Diffuse = 1.0, 0.0  # a flat 2D picture: the maps' own colours
+        display.SetScalarBarVisibility(view, False)  # of the shared map Show picked
+        ColorBy(display, ("POINTS", None))  # each part's own colouring below
+        sources[name] = reader
         if name == "blocks":
-            colour_by_magnitude(source, display, view, "CELLS", "displacement",
+            colour_by_magnitude(reader, display, view, "CELLS", "displacement", "blocks",
                                 "blocks |u| [m]")
             display.EdgeColor = [0.2, 0.2, 0.2]
             display.SetRepresentationType("Surface With Edges")
         elif name == "far_field":
-            colour_by_magnitude(source, display, view, "POINTS", "displacement",
+            colour_by_magnitude(reader, display, view, "POINTS", "displacement", "far_field",
                                 "far field |u| [m]")
         elif name in ("contacts", "ties"):
-            colour_by_state(display, view)
+            colour_by_state(display, view, titles["ties" if "ties" in sources else name])
     if "blocks" in sources:
-        Show(AnnotateTimeFilter(Input=sources["blocks"]), view)
+        time = Show(AnnotateTimeFilter(Input=sources["blocks"], Format="t = {time:.4f} s"), view)
+        time.WindowLocation = "Upper Left Corner"
+        time.FontSize = 14
     view.InteractionMode = "2D"
     view.OrientationAxesVisibility = 0
     scene = GetAnimationScene()
@@ -109,6 +169,9 @@ def open_run(run_dir):
     scene.AnimationTime = max((t for s in sources.values() for t in time_steps(s)
                                if t is not None), default=0.0)
     ResetCamera(view)
+    if "blocks" in sources:
+        sources["blocks"].UpdatePipeline(scene.AnimationTime)
+        frame_on(view, sources["blocks"].GetDataInformation().GetBounds())
     Render(view)
     return view
 
