@@ -1,6 +1,7 @@
 // `ddafem check`: what a scene builds into (blocks, joints, boundaries, the far field and the
 // interface, or a far field alone), the engineering rules' findings and the suggested dt.
 #include "app/far_field_module.h"
+#include "app/keyblocks.h"
 #include "app/rock_mass_scene.h"
 #include "app/run.h"
 #include "app/run_warnings.h"
@@ -141,6 +142,39 @@ void describe_stepping(const Scene& scene, const dda::System& system, std::ostre
       << format_significant(advice.dt_max, 3) << " s (" << time_step_reason(advice) << ")\n";
 }
 
+/// One yield acceleration: "2.1 m/s^2 (0.21 g), slides on edge 3".
+std::string describe_yield(const dda::YieldAcceleration& y)
+{
+  if (y.mode == dda::YieldMode::none)
+    return "none (this shaking alone cannot move it without rotating it)";
+  if (y.a_y == 0.0)
+    return "0 (gravity alone moves it: " +
+           std::string(y.mode == dda::YieldMode::slide ? "slides" : "falls") + ")";
+  std::string text =
+      format_significant(y.a_y, 3) + " m/s^2 (" + format_significant(y.a_y / 9.80665, 3) + " g), ";
+  return text + (y.mode == dda::YieldMode::slide ? "slides on edge " + std::to_string(y.edge)
+                                                 : std::string("lifts off"));
+}
+
+/// Newmark's yield acceleration of each keyblock (app/keyblocks.h), if the blocks enclose an
+/// opening.
+void describe_keyblocks(const Scene& scene, std::ostream& out)
+{
+  const KeyblockRecorder keyblocks(scene.model);
+  if (keyblocks.empty())
+    return;
+  out << "  keyblocks: " << keyblocks.keyblock_ids().size()
+      << "; Newmark's yield acceleration a_y of each, rigid on the joints of its edges with "
+         "their friction (no cohesion, tension or clamping by the in-situ stress: a lower "
+         "bound), horizontal | vertical ground acceleration:\n";
+  for (std::size_t k = 0; k < keyblocks.keyblock_ids().size(); ++k)
+  {
+    const KeyblockRecorder::Yield& y = keyblocks.yield_accelerations()[k];
+    out << "    block " << keyblocks.keyblock_ids()[k] << ": " << describe_yield(y.horizontal)
+        << " | " << describe_yield(y.vertical) << "\n";
+  }
+}
+
 /// The estimate that read_scene checked against the memory limit, for the model as read.
 std::string describe_resources(const Scene& scene)
 {
@@ -177,6 +211,7 @@ std::string check_scene(const Scene& scene)
       out << "    " << reason << "\n";
   }
   describe_blocks(scene, system, out);
+  describe_keyblocks(scene, out);
   describe_stepping(scene, system, out);
   if (!scene.model.boundaries.empty())
     describe_boundaries(system, scene.model.time.dt, out);

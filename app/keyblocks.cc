@@ -1,6 +1,7 @@
 #include "app/keyblocks.h"
 
 #include "dda/geometry.h"
+#include "dda/joints.h"
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +17,47 @@ namespace
 using dda::Point;
 using dda::Vector2;
 constexpr std::size_t npos = std::numeric_limits<std::size_t>::max();
+} // namespace
+
+namespace
+{
+/// Newmark's yield accelerations of the keyblocks of `geometry`: each block rigid on the joints
+/// of its edges that are not on its opening (friction of the edge's joint material), under the
+/// model's gravity, for horizontal and vertical shaking.
+std::vector<KeyblockRecorder::Yield> keyblock_yields(const dda::ModelDescription& model,
+                                                     const KeyblockGeometry& geometry, double tol)
+{
+  std::vector<KeyblockRecorder::Yield> yields;
+  for (std::size_t k = 0; k < geometry.blocks.size(); ++k)
+  {
+    const std::size_t id = geometry.blocks[k];
+    const std::vector<Point>& polygon = model.blocks[id].vertices;
+    std::vector<double> tan_friction(polygon.size(), 0.0);
+    for (std::size_t e = 0; e < polygon.size(); ++e)
+    {
+      const std::size_t jm = dda::joint_material_at_edge(model, id, e, id);
+      if (jm < model.joint_materials.size())
+        tan_friction[e] = std::tan(model.joint_materials[jm].friction_angle * M_PI / 180.0);
+    }
+    const std::vector<dda::BlockFace> faces = dda::block_faces(
+        polygon, geometry.openings[geometry.opening_of[k]].segments, tan_friction, tol);
+    yields.push_back({dda::yield_acceleration(faces, model.gravity, Vector2(1.0, 0.0)),
+                      dda::yield_acceleration(faces, model.gravity, Vector2(0.0, 1.0))});
+  }
+  return yields;
+}
+
+/// A yield acceleration in summary.json: {"m_s2" (null if none), "mode", "edge"}.
+nlohmann::json yield_json(const dda::YieldAcceleration& y)
+{
+  nlohmann::json j = {{"m_s2", std::isfinite(y.a_y) ? nlohmann::json(y.a_y) : nlohmann::json()},
+                      {"mode", y.mode == dda::YieldMode::slide      ? "slide"
+                               : y.mode == dda::YieldMode::lift_off ? "lift_off"
+                                                                    : "none"}};
+  if (y.mode == dda::YieldMode::slide)
+    j["edge"] = y.edge;
+  return j;
+}
 } // namespace
 
 KeyblockRecorder::KeyblockRecorder(const dda::ModelDescription& model, FallCriterion fall)
@@ -36,7 +78,9 @@ KeyblockRecorder::KeyblockRecorder(const dda::ModelDescription& model, FallCrite
   if (polygons.empty())
     return;
   // The collinearity tolerance of the System's joints.
-  geometry = dda::find_keyblocks(polygons, 1e-9 * (upper - lower).maxCoeff());
+  const double tol = 1e-9 * (upper - lower).maxCoeff();
+  geometry = dda::find_keyblocks(polygons, tol);
+  yields = keyblock_yields(model, geometry, 1e3 * tol);
   if (model.gravity.norm() > 0.0)
   {
     down = model.gravity.normalized();
@@ -295,7 +339,10 @@ nlohmann::json KeyblockRecorder::keyblock_summary(std::size_t k, const dda::Syst
           {"detached", !held},
           {"fell", fell},
           {"loosened", !fell && t.last_relative.norm() > criterion.loosen_fraction * size},
-          {"released", static_cast<bool>(released[k])}};
+          {"released", static_cast<bool>(released[k])},
+          {"yield_acceleration",
+           {{"horizontal", yield_json(yields[k].horizontal)},
+            {"vertical", yield_json(yields[k].vertical)}}}};
 }
 
 nlohmann::json KeyblockRecorder::summary(const dda::System& system) const

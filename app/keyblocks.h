@@ -7,6 +7,7 @@
 #include "dda/keyblocks.h"
 #include "dda/model_description.h"
 #include "dda/system.h"
+#include "dda/yield_acceleration.h"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -58,6 +59,16 @@ public:
   /// Appends the keyblocks' displacements to a history row (in the order of add_channels) and
   /// updates the peaks and the joints' extremes.
   void append_row(const dda::System& system, std::vector<double>& row);
+  /// Newmark's yield acceleration of a keyblock (dda/yield_acceleration.h) for horizontal (SV)
+  /// and vertical (P) shaking, from the model at t = 0.
+  struct Yield
+  {
+    dda::YieldAcceleration horizontal, vertical;
+  };
+  /// Per keyblock, in the order of keyblock_ids().
+  const std::vector<Yield>& yield_accelerations() const { return yields; }
+  /// The keyblocks' block indices, ascending.
+  const std::vector<std::size_t>& keyblock_ids() const { return geometry.blocks; }
   /// The first keyblock (its block index) that a static stage did not release and whose
   /// centroid has fallen by the fall threshold in the last row, if any (--stop-at-first-fall).
   std::optional<std::size_t> first_fallen() const;
@@ -100,6 +111,7 @@ private:
   nlohmann::json keyblock_summary(std::size_t k, const dda::System& system, bool held) const;
 
   KeyblockGeometry geometry;
+  std::vector<Yield> yields;
   FallCriterion criterion;
   dda::Vector2 down = dda::Vector2(0.0, -1.0); ///< unit vector along gravity
   double gravity = 9.81;                       ///< |g| [m/s^2] of the fall-speed criterion

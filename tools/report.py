@@ -337,19 +337,38 @@ def keyblock_lines(keyblocks, not_reached=None):
     lines += ["",
               "| block | name | peak \\|u\\| [mm] | at [s] | peak relative [mm] | "
               "residual ux, uy [mm] | residual relative ux, uy [mm] | "
-              "max slip [mm] | max opening [mm] | detached | fell | loosened |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+              "max slip [mm] | max opening [mm] | detached | fell | loosened | "
+              "a_y horizontal, vertical [m/s^2] |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for b in sorted(keyblocks["blocks"], key=lambda b: -b.get("peak_relative_m",
                                                                b["peak_displacement_m"])):
         ux, uy = b["residual_displacement_m"]
         rx, ry = b.get("residual_relative_displacement_m", [None, None])
-        lines.append("| %d | %s | %s | %.4g | %s | %s, %s | %s, %s | %s | %s | %s | %s | %s |"
+        lines.append("| %d | %s | %s | %.4g | %s | %s, %s | %s, %s | %s | %s | %s | %s | %s | %s |"
                      % (b["id"], b.get("name", ""), mm(b["peak_displacement_m"]),
                         b["peak_time_s"], mm(b.get("peak_relative_m")), mm(ux), mm(uy), mm(rx),
                         mm(ry), mm(b["max_slip_m"]), mm(b["max_opening_m"]),
                         verdict(b["detached"]), verdict(b["fell"]),
-                        verdict(b.get("loosened", False))))
+                        verdict(b.get("loosened", False)), yield_text(b)))
+    lines += ["", "a_y: Newmark's yield acceleration of the block at t = 0, rigid on the joints "
+              "of its edges with their friction, for a horizontal (SV) and a vertical (P) ground "
+              "acceleration; 0: gravity alone moves it; none: that shaking alone cannot move it "
+              "without rotating it. No cohesion, tension or clamping by the in-situ stress: a "
+              "lower bound of what holds it (`ddafem check` lists them)."]
     return lines
+
+
+def yield_text(block):
+    """'a_h, a_v' of summary.json keyblocks.blocks[i].yield_acceleration."""
+    y = block.get("yield_acceleration")
+    if not y:
+        return "-"
+    text = []
+    for part in ("horizontal", "vertical"):
+        value = y[part]["m_s2"]
+        text.append("none" if value is None else "%.3g%s" % (
+            value, " (slide)" if y[part]["mode"] == "slide" and value > 0 else ""))
+    return ", ".join(text)
 
 
 def simulated_of(summary):
