@@ -9,6 +9,7 @@
 #include "common/stopwatch.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -238,14 +239,28 @@ void finish_case(const SweepOptions& o, Case& c)
     throw InputError("the run with " + o.key + " = " + value_text(c.value) +
                      " was refused: " + trim(text.str()));
   }
+  // 0 completed, 1 failed numerically, 3 stopped (--stop-at-first-fall): judged by summary.json.
+  // Anything else (killed, an output error) says nothing about the shaking.
   std::ifstream in(summary_file);
-  if (!in)
-    throw std::runtime_error("the run with " + o.key + " = " + value_text(c.value) + " wrote no " +
-                             summary_file.string() + " (exit code " + std::to_string(c.exit_code) +
-                             ")");
+  if (!in || (c.exit_code != 0 && c.exit_code != 1 && c.exit_code != 3))
+    throw std::runtime_error(
+        "the run with " + o.key + " = " + value_text(c.value) + " ended with exit code " +
+        std::to_string(c.exit_code) + " (128 + n: killed by signal n), its summary " +
+        summary_file.string() + " cannot judge it: see " + c.directory.string() + ".log");
   const nlohmann::json summary = nlohmann::json::parse(in);
   c.status = summary.value("status", "");
   c.verdict = judge_case(summary, o.find, o.threshold);
+}
+
+/// Ends the runs still going (a sweep that stops on an error leaves none behind).
+void stop_running(const std::vector<Case>& cases)
+{
+  for (const Case& c : cases)
+    if (c.pid > 0 && c.exit_code < 0)
+    {
+      kill(c.pid, SIGTERM);
+      waitpid(c.pid, nullptr, 0);
+    }
 }
 
 /// Runs the values of one round, `jobs` at a time, each with `threads` threads.
@@ -256,7 +271,7 @@ void run_round(const SweepOptions& o, const std::vector<double>& values, unsigne
   for (const double v : values)
   {
     Case c;
-    c.value = v;
+    c.value = std::stod(value_text(v)); // the value the run is given
     const std::string number = std::to_string(cases.size() + 1);
     c.directory = std::filesystem::path(o.directory) /
                   ("case_" + std::string(number.size() < 2 ? 1 : 0, '0') + number);
@@ -282,7 +297,15 @@ void run_round(const SweepOptions& o, const std::vector<double>& values, unsigne
         c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
         c.wall_s = seconds_since(started[i]);
         --running;
-        finish_case(o, c);
+        try
+        {
+          finish_case(o, c);
+        }
+        catch (...)
+        {
+          stop_running(cases);
+          throw;
+        }
         if (!o.quiet)
           log << "sweep: " << o.key << " = " << value_text(c.value) << ": "
               << (c.verdict.failed ? "failed (counted as exceeded)"
