@@ -124,6 +124,15 @@ void describe_stepping(const Scene& scene, const dda::System& system, std::ostre
       << " (default penalty " << format_significant(system.default_fixed_point_stiffness())
       << " N/m)"
       << ", monitors: " << model.monitors.size() << "\n";
+  if (!system.get_bolts().empty())
+    out << "  bolts: " << system.get_bolts().size() << "\n";
+  for (const dda::Bolt& b : system.get_bolts())
+    out << "  bolt " << b.name << ": blocks " << b.head.block << " to " << b.anchor.block << ", L0 "
+        << format_significant(b.law.free_length, 5) << " m, k "
+        << format_significant(b.law.stiffness, 5) << " N/m, pretension "
+        << format_significant(b.law.pretension, 5) << " N, yield force "
+        << format_significant(b.law.yield_force, 5) << " N, ruptures beyond "
+        << format_significant(b.law.rupture_elongation, 5) << " m\n";
   const auto n_steps = static_cast<std::size_t>(std::llround(model.time.end_time / model.time.dt));
   out << "  time: dt " << format_significant(model.time.dt) << " s, end "
       << format_significant(model.time.end_time) << " s, " << n_steps << " steps, integrator "

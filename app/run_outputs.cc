@@ -21,6 +21,9 @@ std::vector<double> history_row(const dda::System& system, const LastStep& last)
     row.insert(row.end(), {s.displacement.x(), s.displacement.y(), s.velocity.x(), s.velocity.y(),
                            s.stress[0], s.stress[1], s.stress[2]});
   }
+  for (const dda::Bolt& b : system.get_bolts())
+    row.insert(row.end(), {b.forces.axial_force, b.length() - b.law.free_length,
+                           static_cast<double>(b.forces.state)});
   const dda::EnergyBalance e = system.energy();
   row.insert(row.end(), {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
                          e.work_of_boundaries, e.work_of_ties, e.removed, e.dissipated});
@@ -51,6 +54,13 @@ std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
   std::vector<HistoryChannel> channels;
   for (const dda::Monitor& m : model.monitors)
     run_support::add_monitor_channels(channels, m.name, "of the material point", "of its block");
+  for (const dda::BoltDescription& b : model.bolts)
+  {
+    channels.push_back({"bolts/" + b.name + "/axial_force", 1, "N", "tension positive"});
+    channels.push_back({"bolts/" + b.name + "/elongation", 1, "m", "L - L0"});
+    channels.push_back(
+        {"bolts/" + b.name + "/state", 1, "", "0 elastic, 1 yielding, 2 slack, 3 ruptured"});
+  }
   channels.push_back({"energy/kinetic", 1, "J", "sum of v^T M v / 2"});
   channels.push_back({"energy/strain", 1, "J", "elastic energy of the blocks"});
   channels.push_back({"energy/spring", 1, "J", "joint and fixed-point penalty springs"});

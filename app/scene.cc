@@ -42,6 +42,7 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   const BlockBoxes boxes = block_boxes(model);
   read_point_loads(top, boxes, model);
   read_fixed_points(top, boxes, model);
+  read_bolts(top, boxes, model);
   model.gravity = top.vector2("gravity");
   if (scene.far_field && scene.far_field->static_stage.enabled &&
       !top.section_reader("far_field").section_reader("static_stage").has("gravity"))

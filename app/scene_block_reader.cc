@@ -2,6 +2,7 @@
 // the points that must lie in some block (`point_loads`, `fixed_points`, `monitors`).
 #include "app/scene_readers.h"
 
+#include "common/format.h"
 #include "dda/contact/broad_phase.h"
 #include "dda/geometry.h"
 
@@ -94,15 +95,23 @@ double overlap_area_bound(const std::vector<Point>& a, const std::vector<Point>&
   return bound;
 }
 
-/// Points of loads, supports and monitors must be inside or on the boundary of some block.
-bool in_some_block(const Point& p, const dda::ModelDescription& model, const BlockBoxes& boxes)
+/// The first block that p lies inside or on the boundary of (the one dda::System attaches it
+/// to), if any.
+std::optional<std::size_t> block_containing(const Point& p, const dda::ModelDescription& model,
+                                            const BlockBoxes& boxes)
 {
   for (std::size_t b = 0; b < model.blocks.size(); ++b)
     if (boxes.boxes[b].contains(p, boxes.tolerance) &&
         dda::locate_point(model.blocks[b].vertices, p, boxes.tolerance) !=
             dda::PointLocation::outside)
-      return true;
-  return false;
+      return b;
+  return std::nullopt;
+}
+
+/// Points of loads, supports and monitors must be inside or on the boundary of some block.
+bool in_some_block(const Point& p, const dda::ModelDescription& model, const BlockBoxes& boxes)
+{
+  return block_containing(p, model, boxes).has_value();
 }
 
 void check_point_in_blocks(const MapReader& r, const std::string& key, const Point& p,
@@ -281,6 +290,44 @@ void read_fixed_points(const MapReader& top, const BlockBoxes& boxes, dda::Model
     f.origin = r.key_path();
     check_point_in_blocks(r, "point", f.point, model, boxes);
     model.fixed_points.push_back(f);
+  }
+}
+
+void read_bolts(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescription& model)
+{
+  std::map<std::string, std::string> bolt_paths;
+  for (const MapReader& r : top.section_list("bolts"))
+  {
+    dda::BoltDescription b;
+    b.origin = r.key_path();
+    b.name = r.has("name") ? r.string("name") : "bolt" + std::to_string(model.bolts.size());
+    if (trim(b.name).empty())
+      throw r.error("name", "expected a non-empty name");
+    if (const auto [it, inserted] = bolt_paths.emplace(b.name, b.origin); !inserted)
+      throw r.error("name",
+                    "duplicate bolt name (also used by " + it->second + "): expected unique names");
+    b.head = r.vector2("head");
+    b.anchor = r.vector2("anchor");
+    b.area = r.number("area");
+    b.youngs_modulus = r.number("youngs_modulus");
+    b.yield_force = r.number("yield_force");
+    b.rupture_strain = r.number("rupture_strain");
+    b.pretension = r.number("pretension");
+    if (b.pretension >= b.yield_force)
+      throw r.error("pretension", "expected a pretension below the yield force (" +
+                                      format_significant(b.yield_force) + " N)");
+    const std::optional<std::size_t> head = block_containing(b.head, model, boxes);
+    if (!head)
+      check_point_in_blocks(r, "head", b.head, model, boxes);
+    const std::optional<std::size_t> anchor = block_containing(b.anchor, model, boxes);
+    if (!anchor)
+      check_point_in_blocks(r, "anchor", b.anchor, model, boxes);
+    if (*head == *anchor)
+      throw r.error("anchor", "the anchor " + format_point(b.anchor) +
+                                  " lies in the same block as the head (" +
+                                  model.blocks[*head].origin +
+                                  "): expected the anchor in another block");
+    model.bolts.push_back(b);
   }
 }
 

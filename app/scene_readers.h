@@ -108,6 +108,8 @@ BlockBoxes block_boxes(const dda::ModelDescription& model);
 /// `point_loads` and `fixed_points`, each inside some block.
 void read_point_loads(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescription& model);
 void read_fixed_points(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescription& model);
+/// `bolts`: each end in a block, the two ends in different blocks, pretension below yield.
+void read_bolts(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescription& model);
 /// `monitors`: in a coupled scene a monitor belongs to the block it lies in, else to the far
 /// field.
 void read_monitors(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescription& model,

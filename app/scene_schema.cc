@@ -93,6 +93,7 @@ SceneSchema::SceneSchema()
                   rock_mass_openings_horseshoe_section(),
                   point_loads_section(),
                   fixed_points_section(),
+                  bolts_section(),
                   monitors_section(),
                   far_field_section(),
                   interface_section(),

@@ -126,6 +126,10 @@ std::vector<Key> top_level_run_keys()
               .section("fixed_points[i]")
               .default_note("none")
               .meaning("material points tied to their initial position (plus a prescribed motion)"),
+          key("bolts", T::section_list)
+              .section("bolts[i]")
+              .default_note("none")
+              .meaning("end-anchored rock bolts between two blocks"),
           key("gravity", T::vector2)
               .unit("m/s^2")
               .default_yaml("[0, 0]")

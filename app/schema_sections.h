@@ -41,6 +41,9 @@ Section stages_section();
 Section solver_section();
 Section output_section();
 
+// rock support: bolts (app/schema_support.cc)
+Section bolts_section();
+
 // the generated rock mass: region, joint sets, explicit joints, openings (app/schema_rock_mass.cc)
 Section rock_mass_section();
 Section rock_mass_region_section();

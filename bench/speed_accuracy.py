@@ -132,6 +132,25 @@ def run(ddafem, job, out):
             "summary": summary}
 
 
+def verification_arguments(doc, check_help):
+    """The command line of a verification table's tool (tools/verify_*.py): --build, --jobs,
+    --out (docs/verification) and --check with its meaning."""
+    parser = argparse.ArgumentParser(description=doc.split("\n")[0])
+    parser.add_argument("--build", default=os.path.join(TOP, "build"))
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--out", default=os.path.join(TOP, "docs", "verification"))
+    parser.add_argument("--check", action="store_true", help=check_help)
+    return parser.parse_args()
+
+
+def write_verification(out, name, data, write_markdown):
+    """OUT/NAME.json (data) and OUT/NAME.md (write_markdown(path, data))."""
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, name + ".json"), "w") as f:
+        json.dump(data, f, indent=1)
+    write_markdown(os.path.join(out, name + ".md"), data)
+
+
 def frozen_binary(build, directory):
     """A copy of BUILD/ddafem and of the far-field module beside it
     (libddafem_far_field.so, loaded from the executable's directory) in directory: every run of

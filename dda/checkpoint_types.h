@@ -64,6 +64,18 @@ void serialize(Archive& a, Contact& c, const unsigned int /*version*/)
 }
 
 template <class Archive>
+void serialize(Archive& a, BoltForces& f, const unsigned int /*version*/)
+{
+  transfer_all(a, f.state, f.axial_force, f.plastic_elongation);
+}
+
+template <class Archive>
+void serialize(Archive& a, BoltRecord& r, const unsigned int /*version*/)
+{
+  transfer_all(a, r.max_force, r.max_elongation, r.yield_time, r.rupture_time);
+}
+
+template <class Archive>
 void serialize(Archive& a, JointPoint& p, const unsigned int /*version*/)
 {
   transfer_all(a, p.on_a, p.on_b, p.normal_force, p.shear_force, p.normal_preload, p.shear_preload);

@@ -82,6 +82,10 @@ void System::refresh_joint_lists()
     add(j.block_a, j.edge_a, j.block_b);
     add(j.block_b, j.edge_b, j.block_a);
   }
+  // A bolt couples its two blocks in the matrix like a joint (not in contact detection).
+  for (const Bolt& b : bolts)
+    joint_lists.joined.emplace_back(std::min(b.head.block, b.anchor.block),
+                                    std::max(b.head.block, b.anchor.block));
   std::sort(joint_lists.bonded_pairs.begin(), joint_lists.bonded_pairs.end());
   std::sort(joint_lists.joined.begin(), joint_lists.joined.end());
   std::stable_sort(

@@ -105,6 +105,21 @@ struct FixedPoint
   std::string origin;
 };
 
+/// An end-anchored rock bolt (dda/bolt.h): a steel tendon attached to the block containing
+/// `head` and to the (other) block containing `anchor`, an axial spring between them.
+struct BoltDescription
+{
+  std::string name;              ///< for outputs; unique
+  Point head = Point::Zero();    ///< [m]
+  Point anchor = Point::Zero();  ///< [m], in another block than the head
+  double area = 0.0;             ///< steel cross-section A_s [m^2], > 0
+  double youngs_modulus = 200e9; ///< E_s [Pa], > 0
+  double yield_force = 0.0;      ///< [N], > 0
+  double rupture_strain = 0.1;   ///< total elongation over L0 at which it breaks [-], > 0
+  double pretension = 0.0;       ///< force at L = L0 as installed [N], in [0, yield_force)
+  std::string origin;            ///< for messages, e.g. "bolts[0]"
+};
+
 /// A measurement point: the history of the material point and of its block's stress.
 struct Monitor
 {
@@ -391,6 +406,7 @@ struct ModelDescription
   std::vector<BlockDescription> blocks;
   std::vector<PointLoad> point_loads;
   std::vector<FixedPoint> fixed_points;
+  std::vector<BoltDescription> bolts;
   std::vector<Monitor> monitors;
   std::vector<BoundaryDescription> boundaries;
   Vector2 gravity = Vector2::Zero(); ///< body acceleration [m/s^2], e.g. (0, -9.81)

@@ -174,6 +174,22 @@ void System::attach_points()
     monitors.push_back(attach(m.point, "monitor " + m.name));
     monitor_origins.push_back(m.point);
   }
+  for (const BoltDescription& d : model.bolts)
+  {
+    Bolt b;
+    b.name = d.name;
+    const std::string what = d.origin.empty() ? "bolt " + d.name : d.origin;
+    b.head = attach(d.head, what + ".head");
+    b.anchor = attach(d.anchor, what + ".anchor");
+    if (b.head.block == b.anchor.block)
+      throw InputError(what + ".anchor lies in the same block as its head (block " +
+                       std::to_string(b.head.block) +
+                       "): expected the anchor in another block than the head");
+    b.law = make_bolt_law(d.head, d.anchor, d.youngs_modulus, d.area, d.pretension, d.yield_force,
+                          d.rupture_strain);
+    b.forces = evaluate_bolt(b.law, {}, b.law.free_length);
+    bolts.push_back(b);
+  }
 }
 
 void System::select_boundaries(double size)

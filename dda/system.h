@@ -7,6 +7,7 @@
 #include "common/checkpoint_fwd.h"
 #include "common/parallel.h"
 #include "dda/block.h"
+#include "dda/bolt.h"
 #include "dda/contact/contact.h"
 #include "dda/contact/narrow_phase.h"
 #include "dda/joints.h"
@@ -38,10 +39,10 @@ namespace ddafem::dda
 /// linear model).
 struct EnergyBalance
 {
-  double kinetic = 0.0;          ///< sum of v^T M v / 2
-  double strain = 0.0;           ///< block elastic energy, sum of area sigma^T C^-1 sigma / 2
-  double spring = 0.0;           ///< joint springs and fixed-point penalty springs
-  double work_of_loads = 0.0;    ///< point loads and gravity, since t = 0
+  double kinetic = 0.0;       ///< sum of v^T M v / 2
+  double strain = 0.0;        ///< block elastic energy, sum of area sigma^T C^-1 sigma / 2
+  double spring = 0.0;        ///< joint springs, fixed-point penalty springs and bolts (N^2 / 2k)
+  double work_of_loads = 0.0; ///< point loads and gravity, since t = 0
   double work_of_supports = 0.0; ///< done by prescribed motions of fixed points, since t = 0
   /// Done by the viscous boundaries on the blocks since t = 0: negative when they absorb.
   double work_of_boundaries = 0.0;
@@ -248,6 +249,8 @@ public:
   /// The intact bonded joints (broken ones are gone: their blocks meet through contacts).
   const std::vector<Joint>& get_joints() const { return joints; }
   std::size_t n_broken_joints() const { return broken_joint_count; }
+  /// The bolts, with their state at the last accepted step.
+  const std::vector<Bolt>& get_bolts() const { return bolts; }
   /// The contacts of the last accepted step, ordered by (vertex block, vertex, edge block, edge).
   const std::vector<Contact>& get_contacts() const { return contacts; }
   ContactCounts contact_counts() const;
@@ -341,7 +344,8 @@ private:
   void set_contact_distances(double size);
   /// The fixed points' default penalty [N/m]: 10 x the stiffest joint or block (E x 1 m).
   void set_default_fixed_stiffness();
-  /// Point loads, fixed points and monitors onto their blocks (attach).
+  /// Point loads, fixed points, monitors and bolts onto their blocks (attach); throws
+  /// InputError for a bolt with both ends in one block.
   void attach_points();
   /// The edges of each boundary (`size`: model_size [m], for tolerances); throws InputError for
   /// an edge two boundaries select.
@@ -534,6 +538,9 @@ private:
   void add_boundary_terms(double dt, double t1, bool with_matrix);
   /// Bonded joints' end springs on the gaps, with their preloads.
   void add_joint_terms(bool with_matrix);
+  /// Bolts: their force at the step start, and k e e^T on the ends' relative displacement
+  /// while elastic (bolt_tangent_stiffness).
+  void add_bolt_terms(bool with_matrix);
   /// The blocks and everything on them take the step's displacements d (6 per block).
   void update_blocks(double dt, const Eigen::VectorXd& d);
   /// Adds the step's work of loads and gravity, boundaries and moving supports [J] (before the
@@ -546,6 +553,8 @@ private:
   void advance_block_states(double dt, const Eigen::VectorXd& d);
   /// The bonded joints' spring forces at the gaps of the moved joint ends.
   void update_joint_forces();
+  /// Each bolt's state and record from its moved ends (evaluate_bolt, record_bolt).
+  void update_bolts();
   double stored_spring_energy() const;
   /// Outward unit normal of a boundary edge in the configuration the step is linearised about.
   Vector2 boundary_normal(const BoundaryEdge& e) const;
@@ -567,6 +576,7 @@ private:
   std::vector<AttachedLoad> loads;
   std::vector<AttachedFixedPoint> fixed_points;
   std::vector<MaterialPoint> monitors;
+  std::vector<Bolt> bolts;
   std::vector<Point> monitor_origins; ///< where each monitor's displacement is measured from
   std::vector<BoundaryEdge> boundary_edges;
   /// Each boundary edge's stiffness and force in the current step (set by assemble, used for
@@ -641,7 +651,8 @@ private:
     std::uint64_t revision = std::numeric_limits<std::uint64_t>::max();
     /// Pairs of convex blocks joined by an intact joint (no contacts between them).
     std::vector<std::pair<std::size_t, std::size_t>> bonded_pairs;
-    /// (block_a, block_b) of every intact joint (the matrix couples them).
+    /// (block_a, block_b) of every intact joint, and the blocks of every bolt (lower first):
+    /// the matrix couples them.
     std::vector<std::pair<std::size_t, std::size_t>> joined;
     /// The end vertices of each joint's edge on either block, which mark_jointed_vertices
     /// tests, sorted by (block, vertex, other block): its list comes out sorted.

@@ -25,6 +25,8 @@ void System::transfer_state(Archive& a)
   transfer_in_place(a, loads, "loads", [&a](AttachedLoad& l) { transfer_all(a, l.point); });
   transfer_in_place(a, fixed_points, "fixed points",
                     [&a](AttachedFixedPoint& p) { transfer_all(a, p.point); });
+  transfer_in_place(a, bolts, "bolts",
+                    [&a](Bolt& b) { transfer_all(a, b.head, b.anchor, b.forces, b.record); });
   transfer_all(a, monitors, monitor_origins);
   transfer_in_place(a, boundary_edges, "boundary edges",
                     [&a](BoundaryEdge& e) { transfer_all(a, e.midpoint); });

@@ -15,6 +15,8 @@ double System::stored_spring_energy() const
     for (const JointPoint& p : j.points)
       e += joint_point_energy(p, jm);
   }
+  for (const Bolt& b : bolts)
+    e += bolt_energy(b.law, b.forces);
   for (const AttachedFixedPoint& f : fixed_points)
     e += 0.5 * f.stiffness * (f.point.position - f.target(current_time)).squaredNorm();
   for (const Contact& c : contacts)

@@ -115,7 +115,8 @@ bool System::assemble_step(double dt)
   // With updated geometry every step has its own matrix; a small-displacement analysis (no
   // contacts) keeps the matrix of the initial configuration while dt is unchanged.
   const auto start = Clock::now();
-  const bool new_matrix = !small_displacement() || dt != matrix_dt ||
+  // Bolts change their stiffness with their state: assembled anew every step.
+  const bool new_matrix = !small_displacement() || !bolts.empty() || dt != matrix_dt ||
                           step_integration.mass_factor(dt) != matrix_mass_factor;
   assemble(dt, new_matrix);
   if (new_matrix)
@@ -269,6 +270,11 @@ void System::measure_balance(StepStatus& status)
     add(f.point.block, f.stiffness * (f.target(current_time) - f.point.position).norm());
   for (const Support& s : supports)
     add(s.point.block, s.force().norm());
+  for (const Bolt& b : bolts)
+  {
+    add(b.head.block, b.forces.axial_force);
+    add(b.anchor.block, b.forces.axial_force);
+  }
   for (const Joint& j : joints)
     for (const JointPoint& p : j.points)
     {

@@ -16,6 +16,7 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
   move_material_points(d);
   advance_block_states(dt, d);
   update_joint_forces();
+  update_bolts();
 }
 
 void System::add_work_of_step(double dt, const Eigen::VectorXd& d)
@@ -83,6 +84,11 @@ void System::move_material_points(const Eigen::VectorXd& d)
       move(p.on_a);
       move(p.on_b);
     }
+  for (Bolt& b : bolts)
+  {
+    move(b.head);
+    move(b.anchor);
+  }
 }
 
 void System::advance_block_states(double dt, const Eigen::VectorXd& d)
@@ -118,6 +124,17 @@ void System::update_joint_forces()
     const Vector2 n = Joint::normal_of(t);
     for (JointPoint& p : j.points)
       update_joint_point_forces(p, jm, n, t);
+  }
+}
+
+void System::update_bolts()
+{
+  // The clock of a static stage stands still: its events are recorded at the stage's time.
+  for (Bolt& b : bolts)
+  {
+    const double length = b.length();
+    b.forces = evaluate_bolt(b.law, b.forces, length);
+    b.record = record_bolt(b.record, b.forces, length - b.law.free_length, current_time);
   }
 }
 

@@ -244,6 +244,26 @@ def model_lines(summary):
     return lines
 
 
+def support_lines(bolts):
+    """The bolts of summary.json: law, extremes, final state, yield and rupture times."""
+    if not bolts:
+        return []
+    lines = ["End-anchored bolts (docs/support.md): k = E_s A_s / L0, N tension positive.", "",
+             "| bolt | head [m] | anchor [m] | L0 [m] | k [N/m] | pretension [N] | "
+             "yield force [N] | max force [N] | max elongation [mm] | final state | "
+             "yielded at [s] | ruptured at [s] |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+
+    def when(t):
+        return "-" if t is None else "%.4g" % t
+    for b in bolts:
+        lines.append("| %s | (%g, %g) | (%g, %g) | %.4g | %.4g | %.4g | %.4g | %.4g | %s | %s | %s | %s |"
+                     % (b["name"], *b["head_m"], *b["anchor_m"], b["free_length_m"],
+                        b["stiffness_n_per_m"], b["pretension_n"], b["yield_force_n"],
+                        b["max_force_n"], mm(b["max_elongation_m"]), b["final_state"],
+                        when(b["yield_time_s"]), when(b["rupture_time_s"])))
+    return lines
+
+
 def stage_lines(summary):
     stages = summary.get("stages", [])
     if not stages:
@@ -449,6 +469,8 @@ def write_report(run_dir, summary, figures, path):
     stages = stage_lines(summary)
     if stages:
         lines += ["## Stages", ""] + stages + [""]
+    if summary.get("bolts"):
+        lines += ["## Support", ""] + support_lines(summary["bolts"]) + [""]
     if summary.get("warnings"):
         lines += ["## Warnings", ""] + ["- " + w for w in summary["warnings"]] + [""]
     lines += ["## Keyblocks", "",

@@ -22,9 +22,7 @@ largest downward speed before it, against sqrt(2 g h).
 
 Writes docs/verification/impacts.{md,json} (--out DIR elsewhere). Regenerated, never typed.
 """
-import argparse
 import concurrent.futures
-import json
 import math
 import os
 import sys
@@ -112,13 +110,8 @@ def write_markdown(path, data):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--build", default=os.path.join(TOP, "build"))
-    parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--out", default=os.path.join(TOP, "docs", "verification"))
-    parser.add_argument("--check", action="store_true",
-                        help="exit 1 unless free fall and energy hold (check(); CI)")
-    args = parser.parse_args()
+    args = SA.verification_arguments(
+        __doc__, "exit 1 unless free fall and energy hold (check(); CI)")
     ddafem = os.path.join(args.build, "ddafem")
     start = time.monotonic()
     cases = [(h, dt, i) for i in INTEGRATORS for dt in DTS for h in HEIGHTS]
@@ -128,10 +121,7 @@ def main():
         print(f"{r['integrator']:20s} dt {r['dt']:g} h {r['height_m']:g}: "
               + (f"e {r['restitution']:.2f}" if "restitution" in r else r.get("message", "")))
     data = {"rows": rows, "elapsed_s": time.monotonic() - start}
-    os.makedirs(args.out, exist_ok=True)
-    with open(os.path.join(args.out, "impacts.json"), "w") as f:
-        json.dump(data, f, indent=1)
-    write_markdown(os.path.join(args.out, "impacts.md"), data)
+    SA.write_verification(args.out, "impacts", data, write_markdown)
     if args.check:
         return check(rows)
     return 0 if all(r["exit"] == 0 for r in rows) else 1
