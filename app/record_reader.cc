@@ -145,8 +145,9 @@ RawRecord read_peer(const MapReader& r, const std::filesystem::path& path)
   raw.unit = *unit;
   raw.unit_known = true;
 
-  static const std::regex new_form(R"(NPTS\s*=\s*(\d+)\s*,?\s*DT\s*=\s*([0-9.eE+-]+))");
-  static const std::regex old_form(R"(^\s*(\d+)\s+([0-9.eE+-]+)\s+NPTS)");
+  // At most 9 digits: a count that fits, and that stoul reads.
+  static const std::regex new_form(R"(NPTS\s*=\s*(\d{1,9})\s*,?\s*DT\s*=\s*([0-9.eE+-]+))");
+  static const std::regex old_form(R"(^\s*(\d{1,9})\s+([0-9.eE+-]+)\s+NPTS)");
   std::smatch m;
   const std::string counts = upper(header[3]);
   if (!std::regex_search(counts, m, new_form) && !std::regex_search(counts, m, old_form))

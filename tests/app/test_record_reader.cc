@@ -165,6 +165,9 @@ TEST_F(RecordTest, BadFilesAndKeysAreRefusedWithWhereAndWhat)
   write("odd.AT2", "PEER\nTEST\nSPECTRAL ORDINATES\nNPTS= 3, DT= .01 SEC\n1 2 3\n");
   refused("{type: record, file: odd.AT2, motion: outcrop}",
           "line 3: found 'SPECTRAL ORDINATES', expected ACCELERATION, VELOCITY or DISPLACEMENT");
+  write("huge.AT2", "PEER\nTEST\nACCELERATION IN UNITS OF G\nNPTS= 123456789012, DT= .01 SEC\n1\n");
+  refused("{type: record, file: huge.AT2, motion: outcrop}",
+          "line 4: found 'NPTS= 123456789012, DT= .01 SEC', expected 'NPTS= n, DT= dt SEC'");
   write("word.AT2", std::string(peer_header) + "0.1 0.2\n0.3 x\n");
   refused("{type: record, file: word.AT2, motion: outcrop}", "line 6: 'x' is not a number");
   write("a.AT2", std::string(peer_header) + sine_samples(0.1, 5));
