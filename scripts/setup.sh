@@ -19,9 +19,11 @@ packages=(
   libgtest-dev googletest # tests
   clang libclang-rt-14-dev llvm  # scripts/sanitize.sh: sanitizers, libFuzzer, llvm-symbolizer
   python3 python3-numpy python3-matplotlib python3-h5py  # plots
-  python3-vtk9            # tests/tools/check_vtk_readers.py: VTK's own XML readers
   python3-pil ffmpeg      # tools/animate.py: GIF frames, MP4
-  paraview python3-paraview xvfb xauth  # tools/paraview_open.py, tested headless (pvpython, xvfb-run)
+  # tools/paraview_open.py, tested headless (pvpython, xvfb-run). python3-paraview also gives
+  # /usr/bin/python3 VTK's modules (vtkmodules: tests/tools/check_vtk_readers.py's XML readers);
+  # it conflicts with python3-vtk9, which installing it removes.
+  paraview python3-paraview xvfb xauth
 )
 
 missing=()

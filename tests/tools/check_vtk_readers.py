@@ -20,7 +20,7 @@ try:
     from vtkmodules.util.numpy_support import vtk_to_numpy
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 except ImportError:
-    sys.exit("FAIL: VTK's Python modules are missing: install python3-vtk9 (scripts/setup.sh)")
+    sys.exit("FAIL: VTK's Python modules are missing: install python3-paraview (scripts/setup.sh)")
 
 import numpy as np
 
