@@ -1,5 +1,6 @@
 #include "app/keyblocks.h"
 
+#include "common/enum_names.h"
 #include "dda/geometry.h"
 #include "dda/joints.h"
 
@@ -298,11 +299,19 @@ std::vector<bool> KeyblockRecorder::held_keyblocks(const dda::System& system) co
     hold(j.block_a);
     hold(j.block_b);
   }
+  for (const dda::Bolt& b : system.get_bolts())
+    if (b.forces.state != dda::BoltState::ruptured)
+    {
+      hold(b.head.block);
+      hold(b.anchor.block);
+    }
   return held;
 }
 
 std::optional<std::size_t> KeyblockRecorder::first_fallen() const
 {
+  // Dropped only: a block detached and away from its place in one row may be hopping and land
+  // back (a floor block the wave throws up); the verdict at the end judges it (keyblock_fell).
   for (std::size_t k = 0; k < tracks.size(); ++k)
   {
     const double size = geometry.openings[geometry.opening_of[k]].size();
@@ -319,9 +328,9 @@ nlohmann::json KeyblockRecorder::keyblock_summary(std::size_t k, const dda::Syst
   const Track& t = tracks[k];
   const Vector2 v = system.get_blocks()[id].velocity.head<2>();
   const double size = geometry.openings[geometry.opening_of[k]].size();
-  const double threshold = criterion.fall_fraction * size;
-  const bool fell =
-      t.last.dot(down) > threshold || (!held && v.dot(down) > std::sqrt(2.0 * gravity * threshold));
+  const dda::FallVerdict verdict = dda::keyblock_fell({t.last, t.last_relative, v, held}, down,
+                                                      criterion.fall_fraction * size, gravity);
+  const bool fell = verdict != dda::FallVerdict::no;
   return {{"id", id},
           {"name", system.get_model().blocks[id].origin},
           {"opening", geometry.opening_of[k]},
@@ -338,6 +347,7 @@ nlohmann::json KeyblockRecorder::keyblock_summary(std::size_t k, const dda::Syst
           {"max_opening_m", t.max_opening},
           {"detached", !held},
           {"fell", fell},
+          {"fall", name_of(verdict)},
           {"loosened", !fell && t.last_relative.norm() > criterion.loosen_fraction * size},
           {"released", static_cast<bool>(released[k])},
           {"yield_acceleration",

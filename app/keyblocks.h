@@ -105,7 +105,8 @@ private:
   std::vector<dda::Vector2> ring_displacements(const std::vector<dda::Block>& blocks) const;
   /// Per opening: {"fallen_blocks": [ids], "fallen_area_m2"} at the end.
   nlohmann::json fallen_per_opening(const dda::System& system) const;
-  /// Per keyblock: held by an intact bonded joint or a closed contact at the end.
+  /// Per keyblock: held by an intact bonded joint, a closed contact or a bolt not ruptured at
+  /// the end.
   std::vector<bool> held_keyblocks(const dda::System& system) const;
   /// Keyblock k's entry of the summary's `blocks`, with its verdicts.
   nlohmann::json keyblock_summary(std::size_t k, const dda::System& system, bool held) const;

@@ -203,4 +203,16 @@ double distance_to_boundary(const OpeningOutline& opening, const Point& p)
   return distance;
 }
 
+FallVerdict keyblock_fell(const KeyblockMotion& motion, const Vector2& down, double threshold,
+                          double gravity)
+{
+  if (motion.displacement.dot(down) > threshold)
+    return FallVerdict::dropped;
+  if (!motion.held && motion.velocity.dot(down) > std::sqrt(2.0 * gravity * threshold))
+    return FallVerdict::falling;
+  if (!motion.held && motion.relative_displacement.norm() > threshold)
+    return FallVerdict::thrown_out;
+  return FallVerdict::no;
+}
+
 } // namespace ddafem::dda

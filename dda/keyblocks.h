@@ -3,9 +3,11 @@
 // and when a keyblock counts as fallen.
 #pragma once
 
+#include "common/enum_names.h"
 #include "dda/types.h"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -50,10 +52,12 @@ KeyblockGeometry find_keyblocks(const std::vector<std::vector<Point>>& blocks, d
 /// Distance [m] from `p` to the nearest piece of the opening's boundary.
 double distance_to_boundary(const OpeningOutline& opening, const Point& p);
 
-/// When a keyblock counts as fallen: its residual (final) displacement along gravity exceeds
-/// `fall_fraction` times the size of its opening, or it is detached and still moves along
-/// gravity faster than a free fall over that distance would make it, sqrt(2 g threshold), with
-/// g = |gravity| (9.81 m/s^2 for a scene without gravity).
+/// When a keyblock counts as fallen (keyblock_fell): its residual (final) displacement along
+/// gravity exceeds `fall_fraction` times the size of its opening; or it is detached and still
+/// moves along gravity faster than a free fall over that distance would make it,
+/// sqrt(2 g threshold), with g = |gravity| (9.81 m/s^2 for a scene without gravity); or it is
+/// detached and its displacement relative to the rock around the opening exceeds the threshold
+/// in any direction (thrown out of its place, e.g. a wall block ejected sideways).
 struct FallCriterion
 {
   double fall_fraction = 0.01; ///< [-] of OpeningOutline::size()
@@ -64,5 +68,37 @@ struct FallCriterion
   /// percent of the fall threshold's way.
   double loosen_fraction = 1e-4;
 };
+
+/// The state of a keyblock that keyblock_fell judges, in SI units.
+struct KeyblockMotion
+{
+  Vector2 displacement = Vector2::Zero();          ///< of its centroid since the reference [m]
+  Vector2 relative_displacement = Vector2::Zero(); ///< the same less the surrounding rock's [m]
+  Vector2 velocity = Vector2::Zero();              ///< of its centroid [m/s]
+  bool held = true; ///< held by a joint, a closed contact or a bolt (else detached)
+};
+
+/// How a keyblock fell, or `no` (FallCriterion): `dropped` by the threshold along gravity,
+/// `falling` (detached, along gravity faster than the fall speed), `thrown_out` (detached, its
+/// relative displacement beyond the threshold). `down`: unit vector along gravity; `threshold`
+/// [m]; `gravity` = |g| [m/s^2].
+enum class FallVerdict
+{
+  no,
+  dropped,
+  falling,
+  thrown_out
+};
+
+constexpr std::array<EnumName<FallVerdict>, 4> enum_names(FallVerdict)
+{
+  return {{{FallVerdict::no, "no"},
+           {FallVerdict::dropped, "dropped"},
+           {FallVerdict::falling, "falling"},
+           {FallVerdict::thrown_out, "thrown_out"}}};
+}
+
+FallVerdict keyblock_fell(const KeyblockMotion& motion, const Vector2& down, double threshold,
+                          double gravity);
 
 } // namespace ddafem::dda

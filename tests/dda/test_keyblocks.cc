@@ -96,3 +96,29 @@ TEST(Keyblocks, DistanceToTheOpeningsBoundary)
   EXPECT_NEAR(distance_to_boundary(k.openings[0], Point(2.5, 2.0)), 0.0, 1e-12);
   EXPECT_NEAR(distance_to_boundary(k.openings[0], Point(0.0, 6.0)), std::hypot(2.0, 3.0), 1e-12);
 }
+
+// keyblock_fell with a 6 cm threshold (1 % of a 6 m opening) under g = 9.81 m/s^2 downwards:
+// the fall speed is sqrt(2 x 9.81 x 0.06) = 1.085 m/s.
+TEST(Keyblocks, FallVerdicts)
+{
+  const Vector2 down(0.0, -1.0);
+  const double threshold = 0.06, g = 9.81;
+  const auto verdict = [&](Vector2 u, Vector2 relative, Vector2 v, bool held) {
+    return keyblock_fell({u, relative, v, held}, down, threshold, g);
+  };
+  const Vector2 zero = Vector2::Zero();
+  // Dropped 6.1 cm, held or not, whatever the rock did.
+  EXPECT_EQ(verdict({0.0, -0.061}, zero, zero, true), FallVerdict::dropped);
+  // 5.9 cm down and held: no (friction caught it above the threshold).
+  EXPECT_EQ(verdict({0.0, -0.059}, {0.0, -0.059}, zero, true), FallVerdict::no);
+  // Detached, 1 cm down but faster than the fall speed: falling; just slower: no.
+  EXPECT_EQ(verdict({0.0, -0.01}, {0.0, -0.01}, {0.0, -1.09}, false), FallVerdict::falling);
+  EXPECT_EQ(verdict({0.0, -0.01}, {0.0, -0.01}, {0.0, -1.08}, false), FallVerdict::no);
+  // Thrown sideways 0.8 m and up 0.15 m, detached (block 50 of the default tunnel at 2.44 m/s):
+  // thrown out; the same displacement held (lying on the floor of the opening): no.
+  EXPECT_EQ(verdict({0.8, 0.15}, {0.8, 0.15}, {2.2, 0.0}, false), FallVerdict::thrown_out);
+  EXPECT_EQ(verdict({0.8, 0.15}, {0.8, 0.15}, zero, true), FallVerdict::no);
+  // Detached but within the threshold of its place relative to the rock, although the rock
+  // carried it 0.2 m: no (the free field moves it, not a fall).
+  EXPECT_EQ(verdict({0.2, 0.0}, {0.05, 0.0}, zero, false), FallVerdict::no);
+}
