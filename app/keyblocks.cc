@@ -217,6 +217,25 @@ void KeyblockRecorder::append_row(const dda::System& system, std::vector<double>
       t.peak_relative_time = system.time();
     }
   }
+  update_thrown_out(system);
+}
+
+void KeyblockRecorder::update_thrown_out(const dda::System& system)
+{
+  bool any = false;
+  for (std::size_t k = 0; k < tracks.size(); ++k)
+  {
+    Track& t = tracks[k];
+    t.thrown_out = dda::left_its_place(system.get_model().blocks[geometry.blocks[k]].vertices,
+                                       t.last_relative);
+    any = any || t.thrown_out;
+  }
+  if (!any)
+    return;
+  // Out of place but held (a contact, joint or bolt): lying somewhere else, not in flight.
+  const std::vector<bool> held = held_keyblocks(system);
+  for (std::size_t k = 0; k < tracks.size(); ++k)
+    tracks[k].thrown_out = tracks[k].thrown_out && !held[k];
 }
 
 void KeyblockRecorder::update_joints(const dda::System& system)
@@ -310,12 +329,13 @@ std::vector<bool> KeyblockRecorder::held_keyblocks(const dda::System& system) co
 
 std::optional<std::size_t> KeyblockRecorder::first_fallen() const
 {
-  // Dropped only: a block detached and away from its place in one row may be hopping and land
-  // back (a floor block the wave throws up); the verdict at the end judges it (keyblock_fell).
+  // Not a block merely detached and beyond the fall threshold in one row: it may be hopping and
+  // land back (a floor block the wave throws up); the verdict at the end judges it.
   for (std::size_t k = 0; k < tracks.size(); ++k)
   {
     const double size = geometry.openings[geometry.opening_of[k]].size();
-    if (!released[k] && tracks[k].last.dot(down) > criterion.fall_fraction * size)
+    if (!released[k] &&
+        (tracks[k].last.dot(down) > criterion.fall_fraction * size || tracks[k].thrown_out))
       return geometry.blocks[k];
   }
   return std::nullopt;

@@ -69,8 +69,9 @@ public:
   const std::vector<Yield>& yield_accelerations() const { return yields; }
   /// The keyblocks' block indices, ascending.
   const std::vector<std::size_t>& keyblock_ids() const { return geometry.blocks; }
-  /// The first keyblock (its block index) that a static stage did not release and whose
-  /// centroid has fallen by the fall threshold in the last row, if any (--stop-at-first-fall).
+  /// The first keyblock (its block index) that a static stage did not release and that in the
+  /// last row has dropped by the fall threshold, or is detached and has left its place relative
+  /// to the rock (dda::left_its_place: thrown out for good), if any (--stop-at-first-fall).
   std::optional<std::size_t> first_fallen() const;
   /// The `keyblocks` section of summary.json from the last row and the system's final state
   /// (null for a model without openings); see docs/outputs.md.
@@ -97,6 +98,8 @@ private:
     /// Largest normal opening of its joints [m]: bonded joints' stretch, gaps of contacts that
     /// were closed in an earlier row (contacts exist within the search distance only).
     double max_opening = 0.0;
+    /// In the last row: detached and out of its place relative to the rock (left_its_place).
+    bool thrown_out = false;
   };
 
   /// Slip and opening of every joint (contact or bonded joint) of a keyblock, into the tracks.
@@ -105,6 +108,8 @@ private:
   std::vector<dda::Vector2> ring_displacements(const std::vector<dda::Block>& blocks) const;
   /// Per opening: {"fallen_blocks": [ids], "fallen_area_m2"} at the end.
   nlohmann::json fallen_per_opening(const dda::System& system) const;
+  /// Track::thrown_out of every keyblock after a row.
+  void update_thrown_out(const dda::System& system);
   /// Per keyblock: held by an intact bonded joint, a closed contact or a bolt not ruptured at
   /// the end.
   std::vector<bool> held_keyblocks(const dda::System& system) const;

@@ -15,6 +15,7 @@ void transfer_track(Archive& a, Track& t)
 {
   transfer_all(a, t.reference, t.last, t.last_relative, t.peak, t.peak_time, t.peak_relative);
   transfer_all(a, t.peak_relative_time, t.row_slip, t.row_opening, t.max_slip, t.max_opening);
+  transfer_all(a, t.thrown_out);
 }
 
 } // namespace

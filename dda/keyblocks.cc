@@ -203,6 +203,20 @@ double distance_to_boundary(const OpeningOutline& opening, const Point& p)
   return distance;
 }
 
+bool left_its_place(const std::vector<Point>& vertices, const Vector2& moved)
+{
+  if (vertices.empty() || moved.squaredNorm() == 0.0)
+    return false;
+  const Vector2 u = moved.normalized();
+  double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+  for (const Point& x : vertices)
+  {
+    lowest = std::min(lowest, x.dot(u));
+    highest = std::max(highest, x.dot(u));
+  }
+  return moved.norm() >= highest - lowest;
+}
+
 FallVerdict keyblock_fell(const KeyblockMotion& motion, const Vector2& down, double threshold,
                           double gravity)
 {

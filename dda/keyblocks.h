@@ -69,6 +69,11 @@ struct FallCriterion
   double loosen_fraction = 1e-4;
 };
 
+/// Whether a block translated by `moved` [m] from its place has left it: along the direction it
+/// moved it has travelled at least its own width (the extent of `vertices` [m] along it), so
+/// that no part of it is still where it was. Rotation is ignored.
+bool left_its_place(const std::vector<Point>& vertices, const Vector2& moved);
+
 /// The state of a keyblock that keyblock_fell judges, in SI units.
 struct KeyblockMotion
 {

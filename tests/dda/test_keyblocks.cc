@@ -122,3 +122,19 @@ TEST(Keyblocks, FallVerdicts)
   // carried it 0.2 m: no (the free field moves it, not a fall).
   EXPECT_EQ(verdict({0.2, 0.0}, {0.05, 0.0}, zero, false), FallVerdict::no);
 }
+
+// A 0.45 m x 0.35 m block (keyblock 50 of the default tunnel, in the invert): it has left its
+// place once it has moved its own width along its motion, 0.45 m sideways, 0.35 m up, or
+// 0.45 + 0.35 = 0.8 m along the diagonal (the extent of a rectangle along (1, 1)/sqrt(2) is
+// (0.45 + 0.35)/sqrt(2), and the move's length along it is |d| = sqrt(2) d).
+TEST(Keyblocks, LeftItsPlace)
+{
+  const std::vector<Point> block = {{-1.48, -2.94}, {-1.03, -2.94}, {-1.03, -2.59}, {-1.48, -2.59}};
+  EXPECT_FALSE(left_its_place(block, {0.449, 0.0}));
+  EXPECT_TRUE(left_its_place(block, {0.451, 0.0}));
+  EXPECT_FALSE(left_its_place(block, {0.0, 0.349}));
+  EXPECT_TRUE(left_its_place(block, {0.0, -0.351}));
+  EXPECT_FALSE(left_its_place(block, {0.399, 0.399}));
+  EXPECT_TRUE(left_its_place(block, {0.401, 0.401}));
+  EXPECT_FALSE(left_its_place(block, {0.0, 0.0}));
+}
