@@ -15,6 +15,7 @@ and writes, next to them:
   report_velocity.png           monitor velocities against time;
   report_energy.png             the energy balance (blocks, and far field in coupled runs);
   report_keyblocks.png          |u| of the keyblocks against time (the largest peaks);
+  report_bolts.png              the bolts' axial forces against time (runs with bolts);
   report_map.png                the blocks at the end, coloured by |u| over the dynamic stage
                                 (from its start; the whole run when there is no dynamic stage),
                                 keyblocks outlined and numbered; the openings are the holes.
@@ -152,6 +153,30 @@ def plot_keyblocks(time_ms, h5, keyblocks, top, path):
     figure.tight_layout()
     figure.savefig(path, dpi=150)
     plt.close(figure)
+
+
+def plot_bolt_forces(time_ms, h5, path):
+    """Every bolt's axial force against time (histories bolts/<name>/axial_force [N]), in kN;
+    False if the run has no bolts."""
+    group = h5.get("bolts")
+    if group is None or not len(group):
+        return False
+    figure, ax = plt.subplots(figsize=(8.0, 4.5))
+    for name in sorted(group):
+        if "axial_force" not in group[name]:
+            continue
+        force = np.asarray(group[name]["axial_force"][...], dtype=float).reshape(-1)
+        n = min(len(time_ms), len(force))
+        ax.plot(time_ms[:n], 1e-3 * force[:n], label=name)
+    ax.set_xlabel("time [ms]")
+    ax.set_ylabel("axial force N [kN] (tension positive)")
+    ax.set_title("Bolts", fontsize="medium")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize="small", ncol=2)
+    figure.tight_layout()
+    figure.savefig(path, dpi=150)
+    plt.close(figure)
+    return True
 
 
 def plot_map(run_dir, summary, path):
@@ -523,6 +548,9 @@ def main(argv):
                 path = os.path.join(run_dir, "report_keyblocks.png")
                 plot_keyblocks(time_ms, h5, keyblocks, args.top, path)
                 figures.append(("Keyblock displacement", path))
+            path = os.path.join(run_dir, "report_bolts.png")
+            if plot_bolt_forces(time_ms, h5, path):
+                figures.append(("Bolt forces", path))
     map_path = os.path.join(run_dir, "report_map.png")
     caption = plot_map(run_dir, summary, map_path)
     if caption:
