@@ -272,7 +272,7 @@ def lining_lines(linings):
 
     def when(t):
         return "-" if t is None else "%.4g" % t
-    lines = ["", "Linings (docs/support.md, \"Lining\"): frame elements on the blocks' surface; "
+    lines = ["Linings (docs/support.md, \"Lining\"): frame elements on the blocks' surface; "
              "utilisation = the largest of the extreme-fibre stress N/t +- 6M/t^2 over f_t or f_c "
              "(and 1.5 V/t over f_v if given); an element beyond 1 breaks for good.", "",
              "| lining | t [m] | E [GPa] | f_c [MPa] | f_t [MPa] | elements (between blocks) | "
@@ -511,8 +511,8 @@ def write_report(run_dir, summary, figures, path):
     if stages:
         lines += ["## Stages", ""] + stages + [""]
     if summary.get("bolts") or summary.get("linings"):
-        lines += ["## Support", ""] + support_lines(summary.get("bolts")) + \
-            lining_lines(summary.get("linings")) + [""]
+        bolts, linings = support_lines(summary.get("bolts")), lining_lines(summary.get("linings"))
+        lines += ["## Support", ""] + bolts + ([""] if bolts and linings else []) + linings + [""]
     if summary.get("warnings"):
         lines += ["## Warnings", ""] + ["- " + w for w in summary["warnings"]] + [""]
     lines += ["## Keyblocks", "",
