@@ -1,6 +1,7 @@
 #include "app/run_outputs.h"
 
 #include "app/checkpoint_types.h"
+#include "app/lining_outputs.h"
 #include "app/run_support.h"
 
 #include "common/stopwatch.h"
@@ -24,6 +25,7 @@ std::vector<double> history_row(const dda::System& system, const LastStep& last)
   for (const dda::Bolt& b : system.get_bolts())
     row.insert(row.end(), {b.forces.axial_force, b.length() - b.law.free_length,
                            static_cast<double>(b.forces.state)});
+  add_lining_row(row, system);
   const dda::EnergyBalance e = system.energy();
   row.insert(row.end(), {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
                          e.work_of_boundaries, e.work_of_ties, e.removed, e.dissipated});
@@ -61,6 +63,7 @@ std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
     channels.push_back(
         {"bolts/" + b.name + "/state", 1, "", "0 elastic, 1 yielding, 2 slack, 3 ruptured"});
   }
+  add_lining_channels(channels, model);
   channels.push_back({"energy/kinetic", 1, "J", "sum of v^T M v / 2"});
   channels.push_back({"energy/strain", 1, "J", "elastic energy of the blocks"});
   channels.push_back({"energy/spring", 1, "J", "joint and fixed-point penalty springs"});
@@ -94,7 +97,7 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir_, const std::string& sce
       vtu_compression(vtu_compression_),
       history((dir / "histories.h5").string(), all_channels(system.get_model(), tied, keyblocks)),
       blocks_vtu(dir.string(), "blocks"), contacts_vtu(dir.string(), "contacts"),
-      ties_vtu(dir.string(), "ties")
+      ties_vtu(dir.string(), "ties"), lining_vtu(dir.string(), "lining")
 {
   history.set_attribute("scene", scene_file);
   history.set_attribute("version", DDAFEM_VERSION);
@@ -135,6 +138,8 @@ void RunOutputs::write_snapshot()
     time_far_field += seconds_since(far_field_start);
     files.push_back(name(ties_vtu.write(system.time(), tied->tie_snapshot())));
   }
+  if (!system.get_linings().empty())
+    lining_vtu.write(system.time(), dda::lining_snapshot(system.get_linings()));
   for (std::size_t part = 0; part < files.size(); ++part)
     model_data_sets.push_back({system.time(), static_cast<unsigned>(part), files[part]});
   write_model_pvd();
@@ -153,6 +158,8 @@ void RunOutputs::save(CheckpointOut& a) const
   blocks_vtu.save(a);
   contacts_vtu.save(a);
   ties_vtu.save(a);
+  if (!system.get_linings().empty()) // the same scene resumes: the same linings
+    lining_vtu.save(a);
   a << model_data_sets << time_output << time_far_field;
   transfer_optional(a, const_cast<std::optional<double>&>(last_row_time));
   transfer_optional(a, const_cast<std::optional<double>&>(last_snapshot_time));
@@ -166,11 +173,13 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir_, const dda::System& sys
       history((dir / "histories.h5").string(), all_channels(system.get_model(), tied, keyblocks),
               HistoryWriter::Reopen{load_history_rows(a, "outputs")}),
       blocks_vtu(dir.string(), "blocks"), contacts_vtu(dir.string(), "contacts"),
-      ties_vtu(dir.string(), "ties")
+      ties_vtu(dir.string(), "ties"), lining_vtu(dir.string(), "lining")
 {
   blocks_vtu.load(a);
   contacts_vtu.load(a);
   ties_vtu.load(a);
+  if (!system.get_linings().empty())
+    lining_vtu.load(a);
   a >> model_data_sets >> time_output >> time_far_field;
   transfer_optional(a, last_row_time);
   transfer_optional(a, last_snapshot_time);

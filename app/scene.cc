@@ -54,6 +54,7 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   read_time(top, model.time);
   read_contacts(top, model.contacts);
   read_stages(top, model);
+  read_linings(top, scene.rock_mass, model);
   complete_far_field(top, names.joint_materials, scene);
   model.solver = read_solver(top);
   scene.output = read_output(top);

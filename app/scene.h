@@ -42,6 +42,8 @@ struct RockMassReport
   /// into the model's joint materials; none: `joints.default` (or `joints.pairs`).
   std::vector<std::optional<std::size_t>> joint_set_materials;
   std::vector<std::optional<std::size_t>> joint_materials;
+  /// The openings as excavated: polygons, anticlockwise [m] (`linings[i].opening`).
+  std::vector<std::vector<dda::Point>> openings;
 };
 
 /// A scene file, read and validated.

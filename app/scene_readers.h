@@ -110,6 +110,10 @@ void read_point_loads(const MapReader& top, const BlockBoxes& boxes, dda::ModelD
 void read_fixed_points(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescription& model);
 /// `bolts`: each end in a block, the two ends in different blocks, pretension below yield.
 void read_bolts(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescription& model);
+/// `linings`: every node on or in a block, `installed_after` a stage's name (after `stages`);
+/// `opening` an index into the rock mass's openings.
+void read_linings(const MapReader& top, const std::optional<RockMassReport>& rock_mass,
+                  dda::ModelDescription& model);
 /// `monitors`: in a coupled scene a monitor belongs to the block it lies in, else to the far
 /// field.
 void read_monitors(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescription& model,

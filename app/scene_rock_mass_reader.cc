@@ -167,6 +167,7 @@ RockMassReport read_rock_mass(const MapReader& r, const SceneNames& names,
   report.statistics = result.statistics;
   report.joint_sets = d.joint_sets;
   report.joints = d.joints;
+  report.openings = result.openings;
   for (std::size_t i = 0; i < result.blocks.size(); ++i)
   {
     dda::BlockDescription block;

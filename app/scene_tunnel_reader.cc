@@ -182,7 +182,8 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
     require_no_within_record_under_surface(r, velocity, plan);
     write_tunnel_sections(t, plan,
                           {child(tunnel_node, "opening"), child(tunnel_node, "joint_sets"),
-                           child(tunnel_node, "joints"), nested(tunnel_node, {"wave", "velocity"})},
+                           child(tunnel_node, "joints"), nested(tunnel_node, {"wave", "velocity"}),
+                           child(tunnel_node, "lining")},
                           root);
     return plan;
   }

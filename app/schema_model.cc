@@ -130,6 +130,10 @@ std::vector<Key> top_level_run_keys()
               .section("bolts[i]")
               .default_note("none")
               .meaning("end-anchored rock bolts between two blocks"),
+          key("linings", T::section_list)
+              .section("linings[i]")
+              .default_note("none")
+              .meaning("shotcrete or concrete linings on the blocks' surface (frame elements)"),
           key("gravity", T::vector2)
               .unit("m/s^2")
               .default_yaml("[0, 0]")

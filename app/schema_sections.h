@@ -43,6 +43,9 @@ Section output_section();
 
 // rock support: bolts (app/schema_support.cc)
 Section bolts_section();
+// the lining (app/schema_lining.cc)
+Section linings_section();
+Section tunnel_lining_section();
 
 // the generated rock mass: region, joint sets, explicit joints, openings (app/schema_rock_mass.cc)
 Section rock_mass_section();

@@ -113,7 +113,11 @@ Section tunnel_section()
        key("settle", T::section)
            .section("tunnel.settle")
            .default_note("see `tunnel.settle`")
-           .meaning("the settle stage after the wave: until every block is at rest or fell")}};
+           .meaning("the settle stage after the wave: until every block is at rest or fell"),
+       key("lining", T::section)
+           .section("tunnel.lining")
+           .default_note("none")
+           .meaning("shotcrete or concrete around the opening, installed after the excavation")}};
 }
 
 Section tunnel_settle_section()

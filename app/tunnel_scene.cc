@@ -253,6 +253,25 @@ void write_monitors(const TunnelPlan& plan, double center_y, YAML::Node& root)
   root["monitors"] = monitors;
 }
 
+/// `linings`: the user's, and tunnel.lining's around the opening (rock_mass.openings[0]),
+/// installed after the static excavation stage (it carries the dynamic increment).
+void write_lining(const YAML::Node& lining, YAML::Node& root)
+{
+  const YAML::Node& given = root; // lookups without creating keys
+  YAML::Node linings =
+      given["linings"] ? YAML::Clone(given["linings"]) : YAML::Node(YAML::NodeType::Sequence);
+  for (const YAML::Node& l : given["linings"])
+    if (l["name"] && l["name"].as<std::string>() == "lining")
+      throw InputError("the lining name `lining` is taken: the tunnel names its lining so; "
+                       "expected another name for yours");
+  YAML::Node l = YAML::Clone(lining);
+  l["name"] = "lining";
+  l["opening"] = 0;
+  l["installed_after"] = "excavate";
+  linings.push_back(l);
+  root["linings"] = linings;
+}
+
 /// `stages`: excavate (static), shake (dynamic) and, if planned, settle.
 void write_stages(const TunnelDescription& t, const TunnelPlan& plan, YAML::Node& root)
 {
@@ -341,6 +360,8 @@ void write_tunnel_sections(const TunnelDescription& t, const TunnelPlan& plan,
 
   write_monitors(plan, center_y, root);
   write_stages(t, plan, root);
+  if (nodes.lining)
+    write_lining(nodes.lining, root);
   write_time_and_output(plan, root);
 }
 

@@ -25,6 +25,7 @@ struct TunnelNodes
   YAML::Node joint_sets; ///< tunnel.joint_sets (may be undefined)
   YAML::Node joints;     ///< tunnel.joints (may be undefined)
   YAML::Node velocity;   ///< tunnel.wave.velocity
+  YAML::Node lining;     ///< tunnel.lining (may be undefined)
 };
 
 /// Writes the generated sections into the scene's root: rock_mass, gravity, in_situ_stress,
@@ -32,8 +33,9 @@ struct TunnelNodes
 /// and for the hybrid and reference a far-field material `rock_mass_equivalent`, far_field and
 /// interface; for vb1 and dashpot the block boundaries; for blocks the outer grids (`blocks`),
 /// their material `outer_rock` and joint material `outer_bond` (with `joints.pairs` entries)
-/// and the block boundaries. Throws InputError (without a location)
-/// if the scene already has a section the tunnel generates.
+/// and the block boundaries; with tunnel.lining a `linings` entry `lining` around the opening,
+/// installed after the excavation (after the user's linings). Throws InputError (without a
+/// location) if the scene already has a section the tunnel generates.
 void write_tunnel_sections(const TunnelDescription& tunnel, const TunnelPlan& plan,
                            const TunnelNodes& nodes, YAML::Node& root);
 

@@ -76,6 +76,20 @@ void serialize(Archive& a, BoltRecord& r, const unsigned int /*version*/)
 }
 
 template <class Archive>
+void serialize(Archive& a, LiningNode& n, const unsigned int /*version*/)
+{
+  transfer_all(a, n.point, n.installed, n.rotation);
+}
+
+template <class Archive>
+void serialize(Archive& a, LiningElement& e, const unsigned int /*version*/)
+{
+  transfer_all(a, e.a, e.b, e.length0, e.state, e.forces.axial_force, e.forces.shear_force);
+  transfer_all(a, e.forces.end_moment_a, e.forces.end_moment_b, e.check.utilisation, e.check.mode,
+               e.max_utilisation, e.break_time);
+}
+
+template <class Archive>
 void serialize(Archive& a, JointPoint& p, const unsigned int /*version*/)
 {
   transfer_all(a, p.on_a, p.on_b, p.normal_force, p.shear_force, p.normal_preload, p.shear_preload);

@@ -86,6 +86,12 @@ void System::refresh_joint_lists()
   for (const Bolt& b : bolts)
     joint_lists.joined.emplace_back(std::min(b.head.block, b.anchor.block),
                                     std::max(b.head.block, b.anchor.block));
+  // So does a lining's element between two blocks.
+  for (const Lining& l : linings)
+    for (const LiningElement& e : l.elements)
+      if (e.state != LiningElementState::on_one_block)
+        joint_lists.joined.emplace_back(
+            std::minmax(l.nodes[e.a].point.block, l.nodes[e.b].point.block));
   std::sort(joint_lists.bonded_pairs.begin(), joint_lists.bonded_pairs.end());
   std::sort(joint_lists.joined.begin(), joint_lists.joined.end());
   std::stable_sort(

@@ -120,6 +120,24 @@ struct BoltDescription
   std::string origin;            ///< for messages, e.g. "bolts[0]"
 };
 
+/// A lining (dda/lining.h): frame elements between nodes along a polyline on the blocks'
+/// surfaces, each node a material point of the block it lies on.
+struct LiningDescription
+{
+  std::string name;                  ///< for outputs; unique
+  std::vector<Point> points;         ///< the polyline [m], each node on or inside a block
+  bool closed = false;               ///< the last point joins the first (a ring)
+  double segment_length = 0.0;       ///< largest element length [m], > 0
+  double thickness = 0.0;            ///< [m], > 0
+  double youngs_modulus = 0.0;       ///< [Pa], > 0
+  double compressive_strength = 0.0; ///< [Pa], > 0
+  double tensile_strength = 0.0;     ///< [Pa], > 0
+  double shear_strength = 0.0;       ///< [Pa]; 0: not checked
+  /// Installed at the start of this stage (index into `stages`; 0: from the start).
+  std::size_t install_stage = 0;
+  std::string origin; ///< for messages, e.g. "linings[0]"
+};
+
 /// A measurement point: the history of the material point and of its block's stress.
 struct Monitor
 {
@@ -407,6 +425,7 @@ struct ModelDescription
   std::vector<PointLoad> point_loads;
   std::vector<FixedPoint> fixed_points;
   std::vector<BoltDescription> bolts;
+  std::vector<LiningDescription> linings;
   std::vector<Monitor> monitors;
   std::vector<BoundaryDescription> boundaries;
   Vector2 gravity = Vector2::Zero(); ///< body acceleration [m/s^2], e.g. (0, -9.81)

@@ -42,6 +42,7 @@ System::System(const ModelDescription& model_)
   solution.setZero(static_cast<Eigen::Index>(n_dofs()));
   set_default_fixed_stiffness();
   attach_points();
+  attach_linings();
   select_boundaries(size);
   apply_in_situ_stress();
   // The step's matrix structure: joints now, contacts once found.
@@ -356,6 +357,11 @@ void System::begin_stage(StageMode new_mode)
   matrix_dt = 0.0; // the boundary terms change with the stage: assemble the matrix anew
   ++geometry_epoch;
   held.assign(blocks.size(), false);
+  // A lining installed at the start of this stage carries what happens from now on.
+  for (Lining& l : linings)
+    if (!l.installed && l.install_stage == stages_begun)
+      l.install(current_time);
+  ++stages_begun;
   if (tied_body)
     tied_body->begin_stage(mode);
   if (mode == StageMode::dynamic && !after_static)

@@ -12,6 +12,7 @@
 #include "dda/contact/narrow_phase.h"
 #include "dda/joints.h"
 #include "dda/linear_solver.h"
+#include "dda/lining.h"
 #include "dda/model_description.h"
 #include "dda/snapshot.h"
 #include "dda/step_solver.h"
@@ -251,6 +252,8 @@ public:
   std::size_t n_broken_joints() const { return broken_joint_count; }
   /// The bolts, with their state at the last accepted step.
   const std::vector<Bolt>& get_bolts() const { return bolts; }
+  /// The linings, with their elements' state at the last accepted step (system_lining.cc).
+  const std::vector<Lining>& get_linings() const { return linings; }
   /// The contacts of the last accepted step, ordered by (vertex block, vertex, edge block, edge).
   const std::vector<Contact>& get_contacts() const { return contacts; }
   ContactCounts contact_counts() const;
@@ -541,6 +544,12 @@ private:
   /// Bolts: their force at the step start, and k e e^T on the ends' relative displacement
   /// while elastic (bolt_tangent_stiffness).
   void add_bolt_terms(bool with_matrix);
+  /// Linings: the intact elements' frame stiffness on their nodes' blocks, and their forces.
+  void add_lining_terms(bool with_matrix);
+  /// The linings' nodes onto their blocks; those of install_stage 0 installed.
+  void attach_linings();
+  /// Each installed lining's elements from the moved nodes (update_lining_element).
+  void update_linings();
   /// The blocks and everything on them take the step's displacements d (6 per block).
   void update_blocks(double dt, const Eigen::VectorXd& d);
   /// Adds the step's work of loads and gravity, boundaries and moving supports [J] (before the
@@ -577,6 +586,8 @@ private:
   std::vector<AttachedFixedPoint> fixed_points;
   std::vector<MaterialPoint> monitors;
   std::vector<Bolt> bolts;
+  std::vector<Lining> linings;
+  std::size_t stages_begun = 0;       ///< begin_stage calls: when linings are installed
   std::vector<Point> monitor_origins; ///< where each monitor's displacement is measured from
   std::vector<BoundaryEdge> boundary_edges;
   /// Each boundary edge's stiffness and force in the current step (set by assemble, used for

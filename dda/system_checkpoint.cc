@@ -27,7 +27,15 @@ void System::transfer_state(Archive& a)
                     [&a](AttachedFixedPoint& p) { transfer_all(a, p.point); });
   transfer_in_place(a, bolts, "bolts",
                     [&a](Bolt& b) { transfer_all(a, b.head, b.anchor, b.forces, b.record); });
-  transfer_all(a, monitors, monitor_origins);
+  transfer_in_place(a, linings, "linings",
+                    [&a](Lining& l)
+                    {
+                      transfer_all(a, l.nodes, l.elements, l.installed, l.install_time);
+                      transfer_all(a, l.max_utilisation, l.max_utilisation_time,
+                                   l.max_utilisation_element, l.first_break_time,
+                                   l.first_break_element);
+                    });
+  transfer_all(a, stages_begun, monitors, monitor_origins);
   transfer_in_place(a, boundary_edges, "boundary edges",
                     [&a](BoundaryEdge& e) { transfer_all(a, e.midpoint); });
   transfer_all(a, boundary_steps);

@@ -17,6 +17,14 @@ double System::stored_spring_energy() const
   }
   for (const Bolt& b : bolts)
     e += bolt_energy(b.law, b.forces);
+  for (const Lining& l : linings)
+    for (const LiningElement& el : l.elements)
+      if (l.installed && el.state == LiningElementState::intact)
+        e += frame_energy(l.section, el.length0,
+                          frame_deformation(l.nodes[el.a].installed, l.nodes[el.b].installed,
+                                            l.nodes[el.a].point.position,
+                                            l.nodes[el.b].point.position, l.nodes[el.a].rotation,
+                                            l.nodes[el.b].rotation));
   for (const AttachedFixedPoint& f : fixed_points)
     e += 0.5 * f.stiffness * (f.point.position - f.target(current_time)).squaredNorm();
   for (const Contact& c : contacts)

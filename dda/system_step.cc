@@ -115,9 +115,9 @@ bool System::assemble_step(double dt)
   // With updated geometry every step has its own matrix; a small-displacement analysis (no
   // contacts) keeps the matrix of the initial configuration while dt is unchanged.
   const auto start = Clock::now();
-  // Bolts change their stiffness with their state: assembled anew every step.
-  const bool new_matrix = !small_displacement() || !bolts.empty() || dt != matrix_dt ||
-                          step_integration.mass_factor(dt) != matrix_mass_factor;
+  // Bolts and linings change their stiffness with their state: assembled anew every step.
+  const bool new_matrix = !small_displacement() || !bolts.empty() || !linings.empty() ||
+                          dt != matrix_dt || step_integration.mass_factor(dt) != matrix_mass_factor;
   assemble(dt, new_matrix);
   if (new_matrix)
     add_hold_terms();
@@ -275,6 +275,13 @@ void System::measure_balance(StepStatus& status)
     add(b.head.block, b.forces.axial_force);
     add(b.anchor.block, b.forces.axial_force);
   }
+  for (const Lining& l : linings)
+    for (const LiningElement& e : l.elements)
+    {
+      const double f = std::hypot(e.forces.axial_force, e.forces.shear_force);
+      add(l.nodes[e.a].point.block, f);
+      add(l.nodes[e.b].point.block, f);
+    }
   for (const Joint& j : joints)
     for (const JointPoint& p : j.points)
     {

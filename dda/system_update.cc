@@ -17,6 +17,7 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
   advance_block_states(dt, d);
   update_joint_forces();
   update_bolts();
+  update_linings();
 }
 
 void System::add_work_of_step(double dt, const Eigen::VectorXd& d)
@@ -89,6 +90,12 @@ void System::move_material_points(const Eigen::VectorXd& d)
     move(b.head);
     move(b.anchor);
   }
+  for (Lining& l : linings) // a node turns with its block: r0
+    for (LiningNode& n : l.nodes)
+    {
+      move(n.point);
+      n.rotation += d[static_cast<Eigen::Index>(6 * n.point.block + 2)];
+    }
 }
 
 void System::advance_block_states(double dt, const Eigen::VectorXd& d)

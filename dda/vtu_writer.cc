@@ -21,6 +21,7 @@ namespace fs = std::filesystem;
 /// VTK cell types (vtkCellType.h): a simple polygon, convex or not, and a single point.
 constexpr int vtk_polygon = 7;
 constexpr int vtk_vertex = 1;
+constexpr int vtk_line = 3;
 
 /// Appends the shortest decimal text that reads back as exactly `value` (std::to_chars).
 void append_number(std::string& out, double value)
@@ -268,6 +269,67 @@ std::string contact_vtu_text(double time, const std::vector<ContactSnapshot>& co
   return out;
 }
 
+std::string lining_vtu_text(double time, const std::vector<LiningElementSnapshot>& elements)
+{
+  using E = LiningElementSnapshot;
+  std::string out;
+  out.reserve(512 + 256 * elements.size());
+  open_piece(out, time, 2 * elements.size(), elements.size());
+  out += "      <Points>\n"
+         "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const E& e : elements)
+  {
+    append_vector(out, e.a);
+    append_vector(out, e.b);
+  }
+  out += close_array;
+  out += "      </Points>\n"
+         "      <Cells>\n";
+  // One line cell per element with its own two points: connectivity 2k, 2k + 1.
+  open_array(out, "Int64", "connectivity", 1);
+  for (std::size_t k = 0; k < elements.size(); ++k)
+  {
+    out += "          ";
+    append_integer(out, 2 * k);
+    out += ' ';
+    append_integer(out, 2 * k + 1);
+    out += '\n';
+  }
+  out += close_array;
+  open_array(out, "Int64", "offsets", 1);
+  for (std::size_t k = 0; k < elements.size(); ++k)
+  {
+    out += "          ";
+    append_integer(out, 2 * k + 2);
+    out += '\n';
+  }
+  out += close_array;
+  append_column<int>(out, elements, "UInt8", "types", [](const E&) { return vtk_line; });
+  out += "      </Cells>\n"
+         "      <CellData Scalars=\"utilisation\">\n";
+  append_column<std::size_t>(out, elements, "Int64", "lining", [](const E& e) { return e.lining; });
+  append_column<std::size_t>(out, elements, "Int64", "element",
+                             [](const E& e) { return e.element; });
+  append_column<int>(out, elements, "Int32", "state",
+                     [](const E& e) { return static_cast<int>(e.state); });
+  append_column<double>(out, elements, "Float64", "axial_force",
+                        [](const E& e) { return e.forces.axial_force; });
+  append_column<double>(out, elements, "Float64", "shear_force",
+                        [](const E& e) { return e.forces.shear_force; });
+  append_column<double>(out, elements, "Float64", "moment",
+                        [](const E& e)
+                        {
+                          const double a = e.forces.bending_moment_a();
+                          const double b = e.forces.bending_moment_b();
+                          return std::abs(a) >= std::abs(b) ? a : b;
+                        });
+  append_column<double>(out, elements, "Float64", "utilisation",
+                        [](const E& e) { return e.utilisation; });
+  out += "      </CellData>\n";
+  out += close_piece;
+  return out;
+}
+
 } // namespace
 
 VtuSeriesWriter::VtuSeriesWriter(std::string directory_name, std::string file_basename)
@@ -286,6 +348,11 @@ std::string VtuSeriesWriter::write(double time, const std::vector<BlockSnapshot>
 std::string VtuSeriesWriter::write(double time, const std::vector<ContactSnapshot>& contacts)
 {
   return write_text(time, contact_vtu_text(time, contacts));
+}
+
+std::string VtuSeriesWriter::write(double time, const std::vector<LiningElementSnapshot>& elements)
+{
+  return write_text(time, lining_vtu_text(time, elements));
 }
 
 std::string VtuSeriesWriter::write_text(double time, const std::string& text)

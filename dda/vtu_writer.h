@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/checkpoint_fwd.h"
+#include "dda/lining.h"
 #include "dda/snapshot.h"
 
 #include <string>
@@ -29,6 +30,11 @@ public:
   /// 1 slide, 2 lock, 3 bonded joint end), normal (3-component), normal_force [N, compression
   /// positive], shear_force [N], gap [m, negative: penetration] and slip [m].
   std::string write(double time, const std::vector<ContactSnapshot>& contacts);
+  /// Writes one snapshot of linings' elements: one VTK_LINE cell per element with cell data
+  /// lining, element, state (Int32: 0 intact, 1 broken, 2 on one block), axial_force and
+  /// shear_force [N/m], moment (the end moment of larger magnitude, M(0) or M(L)) [N m/m] and
+  /// utilisation [-].
+  std::string write(double time, const std::vector<LiningElementSnapshot>& elements);
 
   std::size_t n_written() const { return entries.size(); }
 

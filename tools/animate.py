@@ -8,7 +8,8 @@ to the rock around the opening since the wave's stage began (the keyblocks' meas
 `keyblocks`: a block's centroid displacement minus the mean of the blocks 0.75 to 1.5 opening
 sizes from the opening's centre), with the contacts that slide (orange) and the joints that are
 open (grey) as dots, the blocks that fell outlined in red and their ids, bolts as lines if the
-run has any (RUN_DIR/bolts.pvd). Right, the motion at the near field's base (monitor
+run has any (RUN_DIR/bolts.pvd), the lining if it has one (RUN_DIR/lining.pvd: blue, its broken
+elements red). Right, the motion at the near field's base (monitor
 near_field_base, histories.h5) and the bonded joints left, with a cursor at the frame's time.
 Frames are the run's snapshots (output.interval). report.md links the file when it exists.
 """
@@ -117,9 +118,11 @@ def load(run_dir):
         sys.exit("animate.py: %s has no blocks.pvd: nothing to animate" % run_dir)
     contacts = dict(series(run_dir, "contacts"))
     bolts = dict(series(run_dir, "bolts"))
+    linings = dict(series(run_dir, "lining"))
     for frame in frames:
         frame["contacts"] = contacts.get(frame["time"])
         frame["bolts"] = bolts.get(frame["time"])
+        frame["lining"] = linings.get(frame["time"])
     with h5py.File(os.path.join(run_dir, "histories.h5"), "r") as h:
         history = {"time": h["time"][:]}
         if "monitors/near_field_base/velocity" in h:
@@ -210,6 +213,12 @@ def draw(run_dir, out, fps, force_gif):
             bp, bc, _ = read_vtu(frame["bolts"])
             for c in bc:
                 bolt_lines.extend(ax.plot(bp[c, 0], bp[c, 1], "-", color="k", lw=1.2))
+        if frame["lining"]:
+            lp, lc, ld = read_vtu(frame["lining"])
+            broken = ld.get("state", np.zeros(len(lc))) == 1
+            for c, b in zip(lc, broken):
+                bolt_lines.extend(ax.plot(lp[c, 0], lp[c, 1], "-", color="red" if b else "C0",
+                                          lw=2.0))
         stage = "excavation" if k < start else "wave and settling"
         title.set_text("%s: t = %.3f s (%s)" % (summary.get("name", ""), frame["time"], stage))
         for c in cursors:

@@ -289,6 +289,47 @@ def support_lines(bolts):
     return lines
 
 
+def lining_lines(linings):
+    """The linings of summary.json: section, largest utilisation and where, first break, and
+    the final forces of the elements between two blocks (the others move with their block)."""
+    if not linings:
+        return []
+
+    def when(t):
+        return "-" if t is None else "%.4g" % t
+    lines = ["Linings (docs/support.md, \"Lining\"): frame elements on the blocks' surface; "
+             "utilisation = the largest of the extreme-fibre stress N/t +- 6M/t^2 over f_t or f_c "
+             "(and 1.5 V/t over f_v if given); an element beyond 1 breaks for good.", "",
+             "| lining | t [m] | E [GPa] | f_c [MPa] | f_t [MPa] | elements (between blocks) | "
+             "installed at [s] | max utilisation | at [s] | element | broken | first break [s] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for l in linings:
+        installed = "-" if l["install_time_s"] is None else "%.4g" % l["install_time_s"]
+        lines.append("| %s | %.4g | %.4g | %.4g | %.4g | %d (%d) | %s | %.4g | %s | %d | %d | %s |"
+                     % (l["name"], l["thickness_m"], l["youngs_modulus_pa"] / 1e9,
+                        l["compressive_strength_pa"] / 1e6, l["tensile_strength_pa"] / 1e6,
+                        l["elements"], len(l["coupling_elements"]), installed,
+                        l["max_utilisation"], when(l["max_utilisation_time_s"]),
+                        l["max_utilisation_element"], l["broken_elements"],
+                        when(l["first_break_time_s"])))
+    worst = sorted(((e, l["name"]) for l in linings for e in l["coupling_elements"]),
+                   key=lambda p: -p[0]["max_utilisation"])[:10]
+    lines += ["", "Elements between two blocks at the end (the 10 most used), N tension "
+              "positive, per metre:", "",
+              "| lining | element | from [m] | to [m] | blocks | state | N [kN/m] | V [kN/m] | "
+              "M_a [kN m/m] | M_b [kN m/m] | utilisation | governing | max utilisation | "
+              "broke at [s] |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for e, name in worst:
+        lines.append("| %s | %d | (%.4g, %.4g) | (%.4g, %.4g) | %d-%d | %s | %.4g | %.4g | %.4g | "
+                     "%.4g | %.4g | %s | %.4g | %s |"
+                     % (name, e["index"], *e["from_m"], *e["to_m"], *e["blocks"], e["state"],
+                        e["axial_force_n_per_m"] / 1e3, e["shear_force_n_per_m"] / 1e3,
+                        e["moment_a_nm_per_m"] / 1e3, e["moment_b_nm_per_m"] / 1e3,
+                        e["utilisation"], e["governing"], e["max_utilisation"],
+                        when(e["break_time_s"])))
+    return lines
+
+
 def stage_lines(summary):
     stages = summary.get("stages", [])
     if not stages:
@@ -494,8 +535,9 @@ def write_report(run_dir, summary, figures, path):
     stages = stage_lines(summary)
     if stages:
         lines += ["## Stages", ""] + stages + [""]
-    if summary.get("bolts"):
-        lines += ["## Support", ""] + support_lines(summary["bolts"]) + [""]
+    if summary.get("bolts") or summary.get("linings"):
+        bolts, linings = support_lines(summary.get("bolts")), lining_lines(summary.get("linings"))
+        lines += ["## Support", ""] + bolts + ([""] if bolts and linings else []) + linings + [""]
     if summary.get("warnings"):
         lines += ["## Warnings", ""] + ["- " + w for w in summary["warnings"]] + [""]
     lines += ["## Keyblocks", "",

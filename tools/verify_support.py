@@ -33,6 +33,9 @@ elongation (vertical bolt: the sag itself, the anchor's block is held to 1e-7 m;
 elongation over cos 30); the wedge's motion in the dynamic stage from its monitor (measured from
 the static equilibrium); states and rupture from summary.json.
 
+The lining's cases (the roof wedge hanging on a shotcrete lining, examples/support/
+lined_wedge.yaml) are in tools/support_lining.py, with their own section of the table.
+
 Writes docs/verification/support.{md,json} (--out DIR elsewhere). Regenerated, never typed.
 """
 import concurrent.futures
@@ -47,7 +50,9 @@ import numpy as np
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(TOP, "bench"))
+sys.path.insert(0, os.path.join(TOP, "tools"))
 import speed_accuracy as SA  # noqa: E402
+import support_lining as LINING  # noqa: E402  (tools/: the lining's cases)
 
 G = 9.81
 WEIGHT = 2650 * G * 2.75  # N per metre: the wedge's area is 2.75 m^2
@@ -179,8 +184,21 @@ def write_markdown(path, data):
                      f" | {r['expected']} | {r['outcome']} | {ratio} | {sag} | "
                      f"{r['max_elongation_m']:.4f} | {r['dynamic_stage_uy_m']:.3g} | "
                      f"{'yes' if passed(r) else 'no'} |")
+    lines += LINING.markdown(data.get("lining_rows", []))
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
+
+
+def run_lining_cases(ddafem, jobs):
+    """The lining's cases (tools/support_lining.py), printed as they are judged."""
+    def run(scene, settings, out):
+        return SA.run(ddafem, {"scene": scene, "settings": settings, "allow_unstable": False}, out)
+
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        rows = list(pool.map(lambda c: LINING.case(run, *c), LINING.cases()))
+    for r in rows:
+        print(LINING.describe(r))
+    return rows
 
 
 def main():
@@ -196,11 +214,13 @@ def main():
               + (f", force error {r['force_error']:.2e}, sag error {r.get('sag_error', 0):.2e}"
                  if r.get("outcome") == "stays" else "")
               + ("" if passed(r) else "  FAIL"))
-    data = {"rows": rows, "elapsed_s": time.monotonic() - start}
+    lining_rows = run_lining_cases(ddafem, args.jobs)
+    data = {"rows": rows, "lining_rows": lining_rows, "elapsed_s": time.monotonic() - start}
     SA.write_verification(args.out, "support", data, write_markdown)
     if args.check:
-        return 0 if all(passed(r) for r in rows) else 1
-    return 0 if all(r["exit"] == 0 for r in rows) else 1
+        return 0 if all(passed(r) for r in rows) and \
+            all(LINING.passed(r) for r in lining_rows) else 1
+    return 0 if all(r["exit"] == 0 for r in rows + lining_rows) else 1
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@
 #include "dda/dynamic_stage.h"
 #include "dda/static_stage.h"
 #include "tests/dda/checkpoint_round_trip.h"
+#include "tests/dda/hanging_static_stage.h"
 
 #include <gtest/gtest.h>
 
@@ -54,17 +55,6 @@ ModelDescription hanging_block(double yield_force, double pretension = 0.0)
   return m;
 }
 
-Stage static_stage()
-{
-  Stage s;
-  s.name = "install";
-  s.mode = StageMode::static_equilibrium;
-  s.dt = 0.1;
-  s.max_steps = 3000;
-  s.tolerance = 1e-9;
-  return s;
-}
-
 std::vector<Vector2> no_displacement(const System& s)
 {
   return std::vector<Vector2>(s.get_blocks().size(), Vector2::Zero());
@@ -81,7 +71,7 @@ TEST(BoltSystem, StaticStageHangsTheBlockOnItsBolt)
   EXPECT_EQ(s.get_bolts()[0].anchor.block, 0u);
   EXPECT_DOUBLE_EQ(s.get_bolts()[0].law.stiffness, stiffness);
   s.begin_stage(StageMode::static_equilibrium);
-  const StaticStageResult r = run_static_stage(s, static_stage(), s.get_model().time);
+  const StaticStageResult r = run_static_stage(s, hanging_static_stage(), s.get_model().time);
   ASSERT_EQ(r.outcome, StaticOutcome::equilibrium);
   const Bolt& b = s.get_bolts()[0];
   EXPECT_EQ(b.forces.state, BoltState::elastic);
@@ -101,7 +91,7 @@ TEST(BoltSystem, PretensionTakesPartOfTheSag)
 {
   System s(hanging_block(2.0 * weight, 0.5 * weight));
   s.begin_stage(StageMode::static_equilibrium);
-  ASSERT_EQ(run_static_stage(s, static_stage(), s.get_model().time).outcome,
+  ASSERT_EQ(run_static_stage(s, hanging_static_stage(), s.get_model().time).outcome,
             StaticOutcome::equilibrium);
   const Bolt& b = s.get_bolts()[0];
   EXPECT_NEAR(b.forces.axial_force / weight, 1.0, 1e-6);
@@ -114,7 +104,7 @@ TEST(BoltSystem, TooWeakABoltYieldsRupturesAndReleasesTheBlock)
 {
   System s(hanging_block(0.98 * weight));
   s.begin_stage(StageMode::static_equilibrium);
-  const StaticStageResult r = run_static_stage(s, static_stage(), s.get_model().time);
+  const StaticStageResult r = run_static_stage(s, hanging_static_stage(), s.get_model().time);
   const Bolt& b = s.get_bolts()[0];
   EXPECT_EQ(b.forces.state, BoltState::ruptured);
   EXPECT_EQ(b.forces.axial_force, 0.0);

@@ -11,7 +11,10 @@ Cases, each against its uninterrupted run:
 2. a far field alone (examples/far_field/sv_column.yaml to t = 4 s), killed the same way;
 3. blocks in a far field after a static stage (examples/coupled/blocks_in_hole_static.yaml),
    killed the same way;
-4. the hybrid bar (examples/coupled/p_wave_bar_hybrid.yaml) stopped by --max-wall-time 1.2 (exit 3),
+4. a lined tunnel (examples/support/lined_tunnel.yaml: the lining installed after the static
+   stage, two of its elements broken at 32 ms), killed 5 s of wall time into the run (the
+   dynamic stage);
+5. the hybrid bar (examples/coupled/p_wave_bar_hybrid.yaml) stopped by --max-wall-time 1.2 (exit 3),
    which writes a checkpoint where it stops.
 Then what `resume` refuses with exit 2 and a message naming the file: a directory without a
 checkpoint (a completed run removes its own), and a scene file changed since the run started.
@@ -68,7 +71,8 @@ def run(ddafem, args, label, expect):
     return done
 
 
-def killed_and_resumed(ddafem, scene, work, label, pvd, extra=()):
+def killed_and_resumed(ddafem, scene, work, label, pvd, extra=(), after=0.0):
+    """`after` [s]: the kill waits that much longer after the first checkpoint."""
     reference = os.path.join(work, label + "_whole")
     resumed = os.path.join(work, label + "_resumed")
     for d in (reference, resumed):
@@ -80,7 +84,7 @@ def killed_and_resumed(ddafem, scene, work, label, pvd, extra=()):
     checkpoint = os.path.join(resumed, "checkpoint.bin")
     while not os.path.exists(checkpoint) and process.poll() is None:
         time.sleep(0.005)
-    time.sleep(random.uniform(0.0, 0.3))
+    time.sleep(after + random.uniform(0.0, 0.3))
     process.send_signal(signal.SIGKILL)
     if process.wait() != -signal.SIGKILL:
         fail(f"{label}: the run ended before the kill (exit {process.returncode}): expected a "
@@ -148,6 +152,10 @@ def main():
                        "far_field", "far_field.pvd", ["--set", "time.end_time=4"])
     killed_and_resumed(ddafem, os.path.join(examples, "coupled/blocks_in_hole_static.yaml"),
                        work, "coupled_static", "model.pvd")
+    # A lining installed after the static stage, killed in the dynamic stage (after 5 s of its
+    # 13) once two of its elements have broken (at 32 ms).
+    killed_and_resumed(ddafem, os.path.join(examples, "support/lined_tunnel.yaml"), work,
+                       "lined_tunnel", "model.pvd", after=5.0)
     completed = stopped_and_resumed(
         ddafem, os.path.join(examples, "coupled/p_wave_bar_hybrid.yaml"), work, "hybrid_bar")
     refusals(ddafem, source, work, completed)
