@@ -1,5 +1,6 @@
 #include "app/run_summary.h"
 
+#include "app/grouted_outputs.h"
 #include "app/run_support.h"
 
 #include "common/format.h"
@@ -114,6 +115,8 @@ void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
   summary["timings_detail_s"] = {{"output_far_field_vtu", outputs.far_field_vtu_seconds()}};
   if (!system.get_bolts().empty())
     summary["bolts"] = bolts_summary(system);
+  if (!system.get_grouted_bolts().empty())
+    summary["grouted_bolts"] = grouted_bolts_summary(system);
   const dda::EnergyBalance e = system.energy();
   summary["energy_J"] = {{"kinetic", e.kinetic},
                          {"strain", e.strain},

@@ -327,6 +327,7 @@ void read_bolts(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescrip
                                   " lies in the same block as the head (" +
                                   model.blocks[*head].origin +
                                   "): expected the anchor in another block");
+    read_bolt_type(r, b, model);
     model.bolts.push_back(b);
   }
 }

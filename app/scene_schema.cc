@@ -85,6 +85,7 @@ SceneSchema::SceneSchema()
                   tunnel_wave_section(),
                   tunnel_near_field_section(),
                   tunnel_static_section(),
+                  tunnel_bolts_section(),
                   rock_mass_joint_sets_section(),
                   rock_mass_joint_sets_perturbation_section(),
                   rock_mass_joints_section(),

@@ -20,6 +20,7 @@ void System::assemble(double dt, bool with_matrix)
   add_boundary_terms(dt, t1, with_matrix);
   add_joint_terms(with_matrix);
   add_bolt_terms(with_matrix);
+  add_grouted_bolt_terms(with_matrix);
 }
 
 void System::add_block_terms(double dt, bool with_matrix)

@@ -27,6 +27,14 @@ void System::transfer_state(Archive& a)
                     [&a](AttachedFixedPoint& p) { transfer_all(a, p.point); });
   transfer_in_place(a, bolts, "bolts",
                     [&a](Bolt& b) { transfer_all(a, b.head, b.anchor, b.forces, b.record); });
+  transfer_in_place(a, grouted_bolts, "grouted bolts",
+                    [&a](GroutedBolt& b)
+                    {
+                      transfer_all(a, b.head, b.anchor);
+                      transfer_in_place(a, b.crossings, "crossings",
+                                        [&a](GroutedCrossing& c)
+                                        { transfer_all(a, c.on_a, c.on_b, c.forces, c.record); });
+                    });
   transfer_all(a, monitors, monitor_origins);
   transfer_in_place(a, boundary_edges, "boundary edges",
                     [&a](BoundaryEdge& e) { transfer_all(a, e.midpoint); });

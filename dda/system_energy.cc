@@ -17,6 +17,9 @@ double System::stored_spring_energy() const
   }
   for (const Bolt& b : bolts)
     e += bolt_energy(b.law, b.forces);
+  for (const GroutedBolt& b : grouted_bolts)
+    for (const GroutedCrossing& c : b.crossings)
+      e += crossing_energy(b.law, c.forces);
   for (const AttachedFixedPoint& f : fixed_points)
     e += 0.5 * f.stiffness * (f.point.position - f.target(current_time)).squaredNorm();
   for (const Contact& c : contacts)

@@ -116,8 +116,8 @@ bool System::assemble_step(double dt)
   // contacts) keeps the matrix of the initial configuration while dt is unchanged.
   const auto start = Clock::now();
   // Bolts change their stiffness with their state: assembled anew every step.
-  const bool new_matrix = !small_displacement() || !bolts.empty() || dt != matrix_dt ||
-                          step_integration.mass_factor(dt) != matrix_mass_factor;
+  const bool new_matrix = !small_displacement() || !bolts.empty() || !grouted_bolts.empty() ||
+                          dt != matrix_dt || step_integration.mass_factor(dt) != matrix_mass_factor;
   assemble(dt, new_matrix);
   if (new_matrix)
     add_hold_terms();
@@ -275,6 +275,12 @@ void System::measure_balance(StepStatus& status)
     add(b.head.block, b.forces.axial_force);
     add(b.anchor.block, b.forces.axial_force);
   }
+  for (const GroutedBolt& b : grouted_bolts)
+    for (const GroutedCrossing& c : b.crossings)
+    {
+      add(c.on_a.block, std::hypot(c.forces.axial_force, c.forces.shear_force));
+      add(c.on_b.block, std::hypot(c.forces.axial_force, c.forces.shear_force));
+    }
   for (const Joint& j : joints)
     for (const JointPoint& p : j.points)
     {

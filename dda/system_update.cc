@@ -17,6 +17,7 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
   advance_block_states(dt, d);
   update_joint_forces();
   update_bolts();
+  update_grouted_bolts();
 }
 
 void System::add_work_of_step(double dt, const Eigen::VectorXd& d)
@@ -88,6 +89,16 @@ void System::move_material_points(const Eigen::VectorXd& d)
   {
     move(b.head);
     move(b.anchor);
+  }
+  for (GroutedBolt& b : grouted_bolts)
+  {
+    move(b.head);
+    move(b.anchor);
+    for (GroutedCrossing& c : b.crossings)
+    {
+      move(c.on_a);
+      move(c.on_b);
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/checkpoint_fwd.h"
+#include "dda/bolt_snapshot.h"
 #include "dda/snapshot.h"
 
 #include <string>
@@ -29,6 +30,12 @@ public:
   /// 1 slide, 2 lock, 3 bonded joint end), normal (3-component), normal_force [N, compression
   /// positive], shear_force [N], gap [m, negative: penetration] and slip [m].
   std::string write(double time, const std::vector<ContactSnapshot>& contacts);
+  /// Writes one snapshot of bolts: one VTK_POLY_LINE cell per bolt (BoltSnapshot's points),
+  /// cell data bolt_id, type (Int32: 0 end_anchored, 1 grouted), axial_force [N, tension
+  /// positive; grouted: the largest of its crossings], shear_force [N, grouted: the largest
+  /// |dowel force|] and state (Int32: 0 elastic, 1 yielding, 2 slack, 3 ruptured); point data
+  /// axial_force and shear_force [N] (a grouted bolt's crossings' own; 0 at its ends).
+  std::string write(double time, const std::vector<BoltSnapshot>& bolts);
 
   std::size_t n_written() const { return entries.size(); }
 

@@ -33,6 +33,9 @@ elongation (vertical bolt: the sag itself, the anchor's block is held to 1e-7 m;
 elongation over cos 30); the wedge's motion in the dynamic stage from its monitor (measured from
 the static equilibrium); states and rupture from summary.json.
 
+Then the grouted bolts' cases (tools/verify_grouted.py): a slider on a frictional joint steeper
+than its friction angle held by a grouted bolt, against the hand limit equilibrium.
+
 Writes docs/verification/support.{md,json} (--out DIR elsewhere). Regenerated, never typed.
 """
 import concurrent.futures
@@ -48,6 +51,7 @@ import numpy as np
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(TOP, "bench"))
 import speed_accuracy as SA  # noqa: E402
+import verify_grouted as VG  # noqa: E402  (tools/: this file's directory)
 
 G = 9.81
 WEIGHT = 2650 * G * 2.75  # N per metre: the wedge's area is 2.75 m^2
@@ -179,6 +183,7 @@ def write_markdown(path, data):
                      f" | {r['expected']} | {r['outcome']} | {ratio} | {sag} | "
                      f"{r['max_elongation_m']:.4f} | {r['dynamic_stage_uy_m']:.3g} | "
                      f"{'yes' if passed(r) else 'no'} |")
+    lines += VG.markdown(data.get("grouted_rows", []))
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
 
@@ -190,17 +195,22 @@ def main():
     cases = [(n, f, p) for n in SCENES for f in FACTORS for p in PRETENSIONS]
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         rows = list(pool.map(lambda c: case(ddafem, *c), cases))
+        grouted = list(pool.map(lambda c: VG.case(SA, ddafem, TOP, *c), VG.cases()))
     for r in rows:
         print(f"{r['scene']:10s} yield {r['yield_over_demand']} pretension "
               f"{r['pretension_over_demand']}: {r.get('outcome', r.get('message'))}"
               + (f", force error {r['force_error']:.2e}, sag error {r.get('sag_error', 0):.2e}"
                  if r.get("outcome") == "stays" else "")
               + ("" if passed(r) else "  FAIL"))
-    data = {"rows": rows, "elapsed_s": time.monotonic() - start}
+    for r in grouted:
+        print(f"grouted {r['scene']:14s} capacity {r['capacity_over_demand']}: "
+              f"{r.get('outcome', r.get('message'))}, N error {r.get('axial_error')}, "
+              f"S error {r.get('shear_error')}" + ("" if VG.passed(r) else "  FAIL"))
+    data = {"rows": rows, "grouted_rows": grouted, "elapsed_s": time.monotonic() - start}
     SA.write_verification(args.out, "support", data, write_markdown)
     if args.check:
-        return 0 if all(passed(r) for r in rows) else 1
-    return 0 if all(r["exit"] == 0 for r in rows) else 1
+        return 0 if all(passed(r) for r in rows) and all(VG.passed(r) for r in grouted) else 1
+    return 0 if all(r["exit"] == 0 for r in rows + grouted) else 1
 
 
 if __name__ == "__main__":
