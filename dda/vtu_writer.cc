@@ -303,9 +303,9 @@ void append_bolt_geometry(std::string& out, const std::vector<BoltSnapshot>& bol
   append_column<int>(out, bolts, "UInt8", "types",
                      [](const BoltSnapshot&) { return vtk_poly_line; });
   out += "      </Cells>\n"
-         "      <PointData Scalars=\"axial_force\">\n";
-  for (const auto& [name, values] : {std::pair{"axial_force", &BoltSnapshot::point_axial},
-                                     std::pair{"shear_force", &BoltSnapshot::point_shear}})
+         "      <PointData Scalars=\"point_axial_force\">\n";
+  for (const auto& [name, values] : {std::pair{"point_axial_force", &BoltSnapshot::point_axial},
+                                     std::pair{"point_shear_force", &BoltSnapshot::point_shear}})
   {
     open_array(out, "Float64", name, 1);
     for (const BoltSnapshot& b : bolts)

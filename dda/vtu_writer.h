@@ -34,7 +34,8 @@ public:
   /// cell data bolt_id, type (Int32: 0 end_anchored, 1 grouted), axial_force [N, tension
   /// positive; grouted: the largest of its crossings], shear_force [N, grouted: the largest
   /// |dowel force|] and state (Int32: 0 elastic, 1 yielding, 2 slack, 3 ruptured); point data
-  /// axial_force and shear_force [N] (a grouted bolt's crossings' own; 0 at its ends).
+  /// point_axial_force and point_shear_force [N] (a grouted bolt's crossings' own; 0 at its
+  /// ends).
   std::string write(double time, const std::vector<BoltSnapshot>& bolts);
 
   std::size_t n_written() const { return entries.size(); }

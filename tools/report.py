@@ -283,7 +283,7 @@ def grouted_lines(bolts):
         for k, c in enumerate(b["crossings"]):
             lines.append(
                 "| %s | %d | %d to %d | (%.4g, %.4g) | %.4g | %.4g | %.4g | %.4g | %.4g | %.4g | "
-                "%.4g | %.4g | %.4g | %s | %s | %s |"
+                "%.4g | %.4g | %s | %s | %s | %s |"
                 % (b["name"], k, *c["blocks"], *c["point_m"], b["axial_stiffness_n_per_m"],
                    b["shear_stiffness_n_per_m"], b["yield_force_n"], b["shear_capacity_n"],
                    c["max_axial_force_n"], c["max_shear_force_n"], c["final_axial_force_n"],
