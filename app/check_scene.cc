@@ -1,6 +1,7 @@
 // `ddafem check`: what a scene builds into (blocks, joints, boundaries, the far field and the
 // interface, or a far field alone), the engineering rules' findings and the suggested dt.
 #include "app/far_field_module.h"
+#include "app/grouted_outputs.h"
 #include "app/keyblocks.h"
 #include "app/lining_outputs.h"
 #include "app/rock_mass_scene.h"
@@ -135,6 +136,7 @@ void describe_stepping(const Scene& scene, const dda::System& system, std::ostre
         << format_significant(b.law.yield_force, 5) << " N, ruptures beyond "
         << format_significant(b.law.rupture_elongation, 5) << " m\n";
   describe_linings(system, out);
+  describe_grouted_bolts(system, out);
   const auto n_steps = static_cast<std::size_t>(std::llround(model.time.end_time / model.time.dt));
   out << "  time: dt " << format_significant(model.time.dt) << " s, end "
       << format_significant(model.time.end_time) << " s, " << n_steps << " steps, integrator "

@@ -1,6 +1,7 @@
 #include "app/run_outputs.h"
 
 #include "app/checkpoint_types.h"
+#include "app/grouted_outputs.h"
 #include "app/lining_outputs.h"
 #include "app/run_support.h"
 
@@ -26,6 +27,7 @@ std::vector<double> history_row(const dda::System& system, const LastStep& last)
     row.insert(row.end(), {b.forces.axial_force, b.length() - b.law.free_length,
                            static_cast<double>(b.forces.state)});
   add_lining_row(row, system);
+  append_grouted_bolt_row(row, system);
   const dda::EnergyBalance e = system.energy();
   row.insert(row.end(), {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
                          e.work_of_boundaries, e.work_of_ties, e.removed, e.dissipated});
@@ -58,12 +60,15 @@ std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
     run_support::add_monitor_channels(channels, m.name, "of the material point", "of its block");
   for (const dda::BoltDescription& b : model.bolts)
   {
+    if (b.type == dda::BoltType::grouted)
+      continue; // add_grouted_bolt_channels
     channels.push_back({"bolts/" + b.name + "/axial_force", 1, "N", "tension positive"});
     channels.push_back({"bolts/" + b.name + "/elongation", 1, "m", "L - L0"});
     channels.push_back(
         {"bolts/" + b.name + "/state", 1, "", "0 elastic, 1 yielding, 2 slack, 3 ruptured"});
   }
   add_lining_channels(channels, model);
+  add_grouted_bolt_channels(channels, model);
   channels.push_back({"energy/kinetic", 1, "J", "sum of v^T M v / 2"});
   channels.push_back({"energy/strain", 1, "J", "elastic energy of the blocks"});
   channels.push_back({"energy/spring", 1, "J", "joint and fixed-point penalty springs"});
@@ -97,7 +102,8 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir_, const std::string& sce
       vtu_compression(vtu_compression_),
       history((dir / "histories.h5").string(), all_channels(system.get_model(), tied, keyblocks)),
       blocks_vtu(dir.string(), "blocks"), contacts_vtu(dir.string(), "contacts"),
-      ties_vtu(dir.string(), "ties"), lining_vtu(dir.string(), "lining")
+      ties_vtu(dir.string(), "ties"), lining_vtu(dir.string(), "lining"),
+      bolts_vtu(dir.string(), "bolts")
 {
   history.set_attribute("scene", scene_file);
   history.set_attribute("version", DDAFEM_VERSION);
@@ -142,6 +148,10 @@ void RunOutputs::write_snapshot()
     lining_vtu.write(system.time(), dda::lining_snapshot(system.get_linings()));
   for (std::size_t part = 0; part < files.size(); ++part)
     model_data_sets.push_back({system.time(), static_cast<unsigned>(part), files[part]});
+  // Part 4 whether or not a far field and ties come before (tools/paraview_open.py's PARTS).
+  if (!system.get_model().bolts.empty())
+    model_data_sets.push_back(
+        {system.time(), 4u, name(bolts_vtu.write(system.time(), system.bolt_snapshot()))});
   write_model_pvd();
 }
 
@@ -160,6 +170,8 @@ void RunOutputs::save(CheckpointOut& a) const
   ties_vtu.save(a);
   if (!system.get_linings().empty()) // the same scene resumes: the same linings
     lining_vtu.save(a);
+  if (!system.get_model().bolts.empty())
+    bolts_vtu.save(a);
   a << model_data_sets << time_output << time_far_field;
   transfer_optional(a, const_cast<std::optional<double>&>(last_row_time));
   transfer_optional(a, const_cast<std::optional<double>&>(last_snapshot_time));
@@ -173,13 +185,16 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir_, const dda::System& sys
       history((dir / "histories.h5").string(), all_channels(system.get_model(), tied, keyblocks),
               HistoryWriter::Reopen{load_history_rows(a, "outputs")}),
       blocks_vtu(dir.string(), "blocks"), contacts_vtu(dir.string(), "contacts"),
-      ties_vtu(dir.string(), "ties"), lining_vtu(dir.string(), "lining")
+      ties_vtu(dir.string(), "ties"), lining_vtu(dir.string(), "lining"),
+      bolts_vtu(dir.string(), "bolts")
 {
   blocks_vtu.load(a);
   contacts_vtu.load(a);
   ties_vtu.load(a);
   if (!system.get_linings().empty())
     lining_vtu.load(a);
+  if (!system.get_model().bolts.empty())
+    bolts_vtu.load(a);
   a >> model_data_sets >> time_output >> time_far_field;
   transfer_optional(a, last_row_time);
   transfer_optional(a, last_snapshot_time);

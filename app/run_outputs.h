@@ -74,6 +74,8 @@ private:
   dda::VtuSeriesWriter blocks_vtu, contacts_vtu, ties_vtu;
   /// lining.pvd: the linings' elements as lines (docs/support.md), apart from model.pvd.
   dda::VtuSeriesWriter lining_vtu;
+  /// The bolts' polylines (part 4 of model.pvd), if the model has bolts.
+  dda::VtuSeriesWriter bolts_vtu;
   /// model.pvd's: every snapshot's parts (blocks, contacts, far field, ties) at their time, so
   /// that ParaView opens the whole model from one file.
   std::vector<CollectionDataSet> model_data_sets;

@@ -1,5 +1,6 @@
 #include "app/run_summary.h"
 
+#include "app/grouted_outputs.h"
 #include "app/lining_outputs.h"
 #include "app/run_support.h"
 
@@ -117,6 +118,8 @@ void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
     summary["bolts"] = bolts_summary(system);
   if (!system.get_linings().empty())
     summary["linings"] = linings_summary(system);
+  if (!system.get_grouted_bolts().empty())
+    summary["grouted_bolts"] = grouted_bolts_summary(system);
   const dda::EnergyBalance e = system.energy();
   summary["energy_J"] = {{"kinetic", e.kinetic},
                          {"strain", e.strain},

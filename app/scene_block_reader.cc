@@ -322,6 +322,7 @@ void read_bolts(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescrip
     const std::optional<std::size_t> anchor = block_containing(b.anchor, model, boxes);
     if (!anchor)
       check_point_in_blocks(r, "anchor", b.anchor, model, boxes);
+    read_bolt_type(r, b, model); // a grouted bolt's crossings: refused naming the bolt
     if (*head == *anchor)
       throw r.error("anchor", "the anchor " + format_point(b.anchor) +
                                   " lies in the same block as the head (" +

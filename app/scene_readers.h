@@ -114,6 +114,12 @@ void read_bolts(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescrip
 /// `opening` an index into the rock mass's openings.
 void read_linings(const MapReader& top, const std::optional<RockMassReport>& rock_mass,
                   dda::ModelDescription& model);
+/// `bolts[i].type` and, for a grouted bolt, its keys and its crossings (app/scene_bolt_reader.cc).
+void read_bolt_type(const MapReader& r, dda::BoltDescription& b,
+                    const dda::ModelDescription& model);
+/// A grouted bolt's crossings through the model's blocks (into b.crossings); empty, or what is
+/// wrong with its line ("does not reach a second block ...", "runs through a void ...").
+std::string find_grouted_crossings(dda::BoltDescription& b, const dda::ModelDescription& model);
 /// `monitors`: in a coupled scene a monitor belongs to the block it lies in, else to the far
 /// field.
 void read_monitors(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescription& model,

@@ -86,6 +86,7 @@ SceneSchema::SceneSchema()
                   tunnel_near_field_section(),
                   tunnel_static_section(),
                   tunnel_lining_section(),
+                  tunnel_bolts_section(),
                   rock_mass_joint_sets_section(),
                   rock_mass_joint_sets_perturbation_section(),
                   rock_mass_joints_section(),

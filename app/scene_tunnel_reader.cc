@@ -1,6 +1,7 @@
 // The `tunnel` section: read, planned (app/tunnel_scene.h) and expanded into the sections of a
 // scene, which is then read like any other.
 #include "app/scene_readers.h"
+#include "app/tunnel_bolts.h"
 #include "app/tunnel_scene.h"
 
 namespace ddafem::scene_reading
@@ -175,6 +176,9 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
   const TimeFunction velocity = read_tunnel_wave(r, t);
   read_tunnel_domain(r, t);
   read_tunnel_stages(r, t);
+  if (r.has("bolts"))
+    write_tunnel_bolts(r.section_reader("bolts"), t.rock_mass.openings[0],
+                       t.rock_mass.chord_tolerance, root);
 
   try
   {

@@ -129,7 +129,8 @@ std::vector<Key> top_level_run_keys()
           key("bolts", T::section_list)
               .section("bolts[i]")
               .default_note("none")
-              .meaning("end-anchored rock bolts between two blocks"),
+              .meaning("rock bolts: end-anchored between two blocks, or grouted through the "
+                       "blocks they cross"),
           key("linings", T::section_list)
               .section("linings[i]")
               .default_note("none")

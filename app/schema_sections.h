@@ -64,6 +64,8 @@ Section tunnel_settle_section();
 Section tunnel_wave_section();
 Section tunnel_near_field_section();
 Section tunnel_static_section();
+// radial bolt patterns (app/schema_tunnel_bolts.cc)
+Section tunnel_bolts_section();
 
 // the deal.II far field and its interface with the blocks (app/schema_far_field.cc)
 Section far_field_section();

@@ -36,6 +36,10 @@ Section tunnel_section()
            .section("rock_mass.joints[i]")
            .default_note("none")
            .meaning("single joints, as in `rock_mass`"),
+       key("bolts", T::section)
+           .section("tunnel.bolts")
+           .default_note("none")
+           .meaning("a pattern of radial rock bolts from the opening's surface"),
        key("seed", T::integer)
            .default_yaml("0")
            .at_least(0)

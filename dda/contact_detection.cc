@@ -92,6 +92,10 @@ void System::refresh_joint_lists()
       if (e.state != LiningElementState::on_one_block)
         joint_lists.joined.emplace_back(
             std::minmax(l.nodes[e.a].point.block, l.nodes[e.b].point.block));
+  for (const GroutedBolt& b : grouted_bolts)
+    for (const GroutedCrossing& c : b.crossings)
+      joint_lists.joined.emplace_back(std::min(c.on_a.block, c.on_b.block),
+                                      std::max(c.on_a.block, c.on_b.block));
   std::sort(joint_lists.bonded_pairs.begin(), joint_lists.bonded_pairs.end());
   std::sort(joint_lists.joined.begin(), joint_lists.joined.end());
   std::stable_sort(

@@ -4,6 +4,7 @@
 #include "common/elasticity.h"
 #include "common/time_function.h"
 #include "common/wave_type.h"
+#include "dda/grouted_bolt.h"
 #include "dda/integrator.h"
 #include "dda/types.h"
 
@@ -118,6 +119,12 @@ struct BoltDescription
   double rupture_strain = 0.1;   ///< total elongation over L0 at which it breaks [-], > 0
   double pretension = 0.0;       ///< force at L = L0 as installed [N], in [0, yield_force)
   std::string origin;            ///< for messages, e.g. "bolts[0]"
+  /// Grouted bolts (dda/grouted_bolt.h): bonded along their length, a spring at each crossing.
+  BoltType type = BoltType::end_anchored;
+  double grout_modulus = 10e9;         ///< foundation modulus K of grout and rock [Pa] (dowel)
+  double debonded_length = 0.3;        ///< L_d: the bar's deformable length at a joint [m]
+  double shear_capacity = 0.0;         ///< dowel capacity S_y [N], > 0
+  std::vector<BoltCrossing> crossings; ///< found at t = 0 by the scene reader, from the head
 };
 
 /// A lining (dda/lining.h): frame elements between nodes along a polyline on the blocks'

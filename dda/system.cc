@@ -177,6 +177,11 @@ void System::attach_points()
   }
   for (const BoltDescription& d : model.bolts)
   {
+    if (d.type == BoltType::grouted)
+    {
+      attach_grouted_bolt(d);
+      continue;
+    }
     Bolt b;
     b.name = d.name;
     const std::string what = d.origin.empty() ? "bolt " + d.name : d.origin;

@@ -8,8 +8,10 @@
 #include "common/parallel.h"
 #include "dda/block.h"
 #include "dda/bolt.h"
+#include "dda/bolt_snapshot.h"
 #include "dda/contact/contact.h"
 #include "dda/contact/narrow_phase.h"
+#include "dda/grouted_bolt.h"
 #include "dda/joints.h"
 #include "dda/linear_solver.h"
 #include "dda/lining.h"
@@ -254,6 +256,10 @@ public:
   const std::vector<Bolt>& get_bolts() const { return bolts; }
   /// The linings, with their elements' state at the last accepted step (system_lining.cc).
   const std::vector<Lining>& get_linings() const { return linings; }
+  /// The grouted bolts, with their crossings' state at the last accepted step.
+  const std::vector<GroutedBolt>& get_grouted_bolts() const { return grouted_bolts; }
+  /// Every bolt as a polyline for the bolts' VTU series (dda/system_grouted.cc).
+  std::vector<BoltSnapshot> bolt_snapshot() const;
   /// The contacts of the last accepted step, ordered by (vertex block, vertex, edge block, edge).
   const std::vector<Contact>& get_contacts() const { return contacts; }
   ContactCounts contact_counts() const;
@@ -550,6 +556,11 @@ private:
   void attach_linings();
   /// Each installed lining's elements from the moved nodes (update_lining_element).
   void update_linings();
+  /// Grouted bolts' crossings (dda/system_grouted.cc): their forces at the step start and
+  /// k_a e e^T + k_s t t^T on the relative displacement while elastic.
+  void add_grouted_bolt_terms(bool with_matrix);
+  /// A grouted bolt onto its blocks' material points at its crossings (InputError if none).
+  void attach_grouted_bolt(const BoltDescription& d);
   /// The blocks and everything on them take the step's displacements d (6 per block).
   void update_blocks(double dt, const Eigen::VectorXd& d);
   /// Adds the step's work of loads and gravity, boundaries and moving supports [J] (before the
@@ -564,6 +575,8 @@ private:
   void update_joint_forces();
   /// Each bolt's state and record from its moved ends (evaluate_bolt, record_bolt).
   void update_bolts();
+  /// Each grouted bolt's crossings' state and record (evaluate_crossing, record_crossing).
+  void update_grouted_bolts();
   double stored_spring_energy() const;
   /// Outward unit normal of a boundary edge in the configuration the step is linearised about.
   Vector2 boundary_normal(const BoundaryEdge& e) const;
@@ -587,7 +600,8 @@ private:
   std::vector<MaterialPoint> monitors;
   std::vector<Bolt> bolts;
   std::vector<Lining> linings;
-  std::size_t stages_begun = 0;       ///< begin_stage calls: when linings are installed
+  std::size_t stages_begun = 0; ///< begin_stage calls: when linings are installed
+  std::vector<GroutedBolt> grouted_bolts;
   std::vector<Point> monitor_origins; ///< where each monitor's displacement is measured from
   std::vector<BoundaryEdge> boundary_edges;
   /// Each boundary edge's stiffness and force in the current step (set by assemble, used for

@@ -21,6 +21,7 @@ void System::assemble(double dt, bool with_matrix)
   add_joint_terms(with_matrix);
   add_bolt_terms(with_matrix);
   add_lining_terms(with_matrix);
+  add_grouted_bolt_terms(with_matrix);
 }
 
 void System::add_block_terms(double dt, bool with_matrix)

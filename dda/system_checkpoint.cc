@@ -35,6 +35,14 @@ void System::transfer_state(Archive& a)
                                    l.max_utilisation_element, l.first_break_time,
                                    l.first_break_element);
                     });
+  transfer_in_place(a, grouted_bolts, "grouted bolts",
+                    [&a](GroutedBolt& b)
+                    {
+                      transfer_all(a, b.head, b.anchor);
+                      transfer_in_place(a, b.crossings, "crossings",
+                                        [&a](GroutedCrossing& c)
+                                        { transfer_all(a, c.on_a, c.on_b, c.forces, c.record); });
+                    });
   transfer_all(a, stages_begun, monitors, monitor_origins);
   transfer_in_place(a, boundary_edges, "boundary edges",
                     [&a](BoundaryEdge& e) { transfer_all(a, e.midpoint); });

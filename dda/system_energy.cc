@@ -25,6 +25,9 @@ double System::stored_spring_energy() const
                                             l.nodes[el.a].point.position,
                                             l.nodes[el.b].point.position, l.nodes[el.a].rotation,
                                             l.nodes[el.b].rotation));
+  for (const GroutedBolt& b : grouted_bolts)
+    for (const GroutedCrossing& c : b.crossings)
+      e += crossing_energy(b.law, c.forces);
   for (const AttachedFixedPoint& f : fixed_points)
     e += 0.5 * f.stiffness * (f.point.position - f.target(current_time)).squaredNorm();
   for (const Contact& c : contacts)

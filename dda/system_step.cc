@@ -116,8 +116,9 @@ bool System::assemble_step(double dt)
   // contacts) keeps the matrix of the initial configuration while dt is unchanged.
   const auto start = Clock::now();
   // Bolts and linings change their stiffness with their state: assembled anew every step.
-  const bool new_matrix = !small_displacement() || !bolts.empty() || !linings.empty() ||
-                          dt != matrix_dt || step_integration.mass_factor(dt) != matrix_mass_factor;
+  const bool new_matrix = !small_displacement() || !bolts.empty() || !grouted_bolts.empty() ||
+                          !linings.empty() || dt != matrix_dt ||
+                          step_integration.mass_factor(dt) != matrix_mass_factor;
   assemble(dt, new_matrix);
   if (new_matrix)
     add_hold_terms();
@@ -281,6 +282,12 @@ void System::measure_balance(StepStatus& status)
       const double f = std::hypot(e.forces.axial_force, e.forces.shear_force);
       add(l.nodes[e.a].point.block, f);
       add(l.nodes[e.b].point.block, f);
+    }
+  for (const GroutedBolt& b : grouted_bolts)
+    for (const GroutedCrossing& c : b.crossings)
+    {
+      add(c.on_a.block, std::hypot(c.forces.axial_force, c.forces.shear_force));
+      add(c.on_b.block, std::hypot(c.forces.axial_force, c.forces.shear_force));
     }
   for (const Joint& j : joints)
     for (const JointPoint& p : j.points)

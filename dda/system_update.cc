@@ -18,6 +18,7 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
   update_joint_forces();
   update_bolts();
   update_linings();
+  update_grouted_bolts();
 }
 
 void System::add_work_of_step(double dt, const Eigen::VectorXd& d)
@@ -96,6 +97,16 @@ void System::move_material_points(const Eigen::VectorXd& d)
       move(n.point);
       n.rotation += d[static_cast<Eigen::Index>(6 * n.point.block + 2)];
     }
+  for (GroutedBolt& b : grouted_bolts)
+  {
+    move(b.head);
+    move(b.anchor);
+    for (GroutedCrossing& c : b.crossings)
+    {
+      move(c.on_a);
+      move(c.on_b);
+    }
+  }
 }
 
 void System::advance_block_states(double dt, const Eigen::VectorXd& d)

@@ -22,6 +22,7 @@ namespace fs = std::filesystem;
 constexpr int vtk_polygon = 7;
 constexpr int vtk_vertex = 1;
 constexpr int vtk_line = 3;
+constexpr int vtk_poly_line = 4;
 
 /// Appends the shortest decimal text that reads back as exactly `value` (std::to_chars).
 void append_number(std::string& out, double value)
@@ -330,6 +331,82 @@ std::string lining_vtu_text(double time, const std::vector<LiningElementSnapshot
   return out;
 }
 
+/// Points, cells and point data of the bolts: one polyline per bolt through its points.
+void append_bolt_geometry(std::string& out, const std::vector<BoltSnapshot>& bolts)
+{
+  out += "      <Points>\n"
+         "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const BoltSnapshot& b : bolts)
+    for (const Point& p : b.points)
+      append_vector(out, p);
+  out += close_array;
+  out += "      </Points>\n"
+         "      <Cells>\n";
+  open_array(out, "Int64", "connectivity", 1);
+  std::size_t point = 0;
+  for (const BoltSnapshot& b : bolts)
+    for (std::size_t k = 0; k < b.points.size(); ++k, ++point)
+    {
+      out += "          ";
+      append_integer(out, point);
+      out += '\n';
+    }
+  out += close_array;
+  open_array(out, "Int64", "offsets", 1);
+  std::size_t offset = 0;
+  for (const BoltSnapshot& b : bolts)
+  {
+    offset += b.points.size();
+    out += "          ";
+    append_integer(out, offset);
+    out += '\n';
+  }
+  out += close_array;
+  append_column<int>(out, bolts, "UInt8", "types",
+                     [](const BoltSnapshot&) { return vtk_poly_line; });
+  out += "      </Cells>\n"
+         "      <PointData Scalars=\"point_axial_force\">\n";
+  for (const auto& [name, values] : {std::pair{"point_axial_force", &BoltSnapshot::point_axial},
+                                     std::pair{"point_shear_force", &BoltSnapshot::point_shear}})
+  {
+    open_array(out, "Float64", name, 1);
+    for (const BoltSnapshot& b : bolts)
+      for (const double v : b.*values)
+      {
+        out += "          ";
+        append_number(out, v);
+        out += '\n';
+      }
+    out += close_array;
+  }
+  out += "      </PointData>\n";
+}
+
+std::string bolt_vtu_text(double time, const std::vector<BoltSnapshot>& bolts)
+{
+  std::size_t n_points = 0;
+  for (const BoltSnapshot& b : bolts)
+    n_points += b.points.size();
+  std::string out;
+  out.reserve(512 + 160 * n_points + 160 * bolts.size());
+  open_piece(out, time, n_points, bolts.size());
+  append_bolt_geometry(out, bolts);
+  out += "      <CellData Scalars=\"axial_force\">\n";
+  append_column<std::size_t>(out, bolts, "Int64", "bolt_id",
+                             [](const BoltSnapshot& b) { return b.id; });
+  append_column<int>(out, bolts, "Int32", "type",
+                     [](const BoltSnapshot& b) { return static_cast<int>(b.type); });
+  append_column<double>(out, bolts, "Float64", "axial_force",
+                        [](const BoltSnapshot& b) { return b.axial_force; });
+  append_column<double>(out, bolts, "Float64", "shear_force",
+                        [](const BoltSnapshot& b) { return b.shear_force; });
+  append_column<int>(out, bolts, "Int32", "state",
+                     [](const BoltSnapshot& b) { return static_cast<int>(b.state); });
+  out += "      </CellData>\n";
+  out += close_piece;
+  return out;
+}
+
 } // namespace
 
 VtuSeriesWriter::VtuSeriesWriter(std::string directory_name, std::string file_basename)
@@ -353,6 +430,11 @@ std::string VtuSeriesWriter::write(double time, const std::vector<ContactSnapsho
 std::string VtuSeriesWriter::write(double time, const std::vector<LiningElementSnapshot>& elements)
 {
   return write_text(time, lining_vtu_text(time, elements));
+}
+
+std::string VtuSeriesWriter::write(double time, const std::vector<BoltSnapshot>& bolts)
+{
+  return write_text(time, bolt_vtu_text(time, bolts));
 }
 
 std::string VtuSeriesWriter::write_text(double time, const std::string& text)

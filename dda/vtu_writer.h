@@ -4,6 +4,7 @@
 #pragma once
 
 #include "common/checkpoint_fwd.h"
+#include "dda/bolt_snapshot.h"
 #include "dda/lining.h"
 #include "dda/snapshot.h"
 
@@ -35,6 +36,13 @@ public:
   /// shear_force [N/m], moment (the end moment of larger magnitude, M(0) or M(L)) [N m/m] and
   /// utilisation [-].
   std::string write(double time, const std::vector<LiningElementSnapshot>& elements);
+  /// Writes one snapshot of bolts: one VTK_POLY_LINE cell per bolt (BoltSnapshot's points),
+  /// cell data bolt_id, type (Int32: 0 end_anchored, 1 grouted), axial_force [N, tension
+  /// positive; grouted: the largest of its crossings], shear_force [N, grouted: the largest
+  /// |dowel force|] and state (Int32: 0 elastic, 1 yielding, 2 slack, 3 ruptured); point data
+  /// point_axial_force and point_shear_force [N] (a grouted bolt's crossings' own; 0 at its
+  /// ends).
+  std::string write(double time, const std::vector<BoltSnapshot>& bolts);
 
   std::size_t n_written() const { return entries.size(); }
 

@@ -12,7 +12,7 @@ tests/tools/check_paraview.py (CI test cli.paraview_pictures): the picture's pix
     #   open_run("/path/to/RUN_DIR")
 
 RUN_DIR/model.pvd holds every part at every snapshot time (part 0 blocks, 1 contacts, 2 far
-field, 3 ties). This script opens each part's own series (blocks.pvd, contacts.pvd,
+field, 3 ties, 4 bolts). This script opens each part's own series (blocks.pvd, contacts.pvd,
 far_field.pvd, ties.pvd: the same files) so that each gets its own colouring. Colour ranges
 cover every time step: |u| from 0 to its largest value over the run (the displacement since
 t = 0, static settling included); contact states are categories (0 open, 1 slide, 2 lock,
@@ -32,7 +32,7 @@ from paraview.simple import (AnnotateTimeFilter, ColorBy, GetActiveViewOrCreate,
                              Transform)
 
 # File name prefix of each part's VTU files in model.pvd, in part order (app/run_outputs.cc).
-PARTS = ("blocks", "contacts", "far_field", "ties")
+PARTS = ("blocks", "contacts", "far_field", "ties", "bolts")
 STATES = (("0", "open", (0.75, 0.75, 0.75)), ("1", "slide", (1.0, 0.55, 0.0)),
           ("2", "lock", (0.1, 0.45, 0.85)), ("3", "bonded", (0.1, 0.6, 0.2)))
 # Each part's colour map and the corner of its scalar bar (normalised view coordinates of the
@@ -43,7 +43,7 @@ MAPS = {"blocks": ("Viridis (matplotlib)", (0.89, 0.05)),
         "state": (None, (0.89, 0.62))}
 # Depth of each part [m along z, towards the viewer]: the blocks above the far field, the
 # contacts and ties above the blocks.
-DEPTH = {"far_field": -1.0, "blocks": 0.0, "contacts": 0.5, "ties": 0.5}
+DEPTH = {"far_field": -1.0, "blocks": 0.0, "contacts": 0.5, "ties": 0.5, "bolts": 0.6}
 
 
 def parts_of(run_dir):
@@ -158,6 +158,9 @@ def open_run(run_dir):
                                 "far field |u| [m]")
         elif name in ("contacts", "ties"):
             colour_by_state(display, view, titles["ties" if "ties" in sources else name])
+        elif name == "bolts":  # black polylines, head to anchor through the crossings
+            display.AmbientColor = display.DiffuseColor = [0.0, 0.0, 0.0]
+            display.LineWidth = 3.0
     if "blocks" in sources:
         time = Show(AnnotateTimeFilter(Input=sources["blocks"], Format="t = {time:.4f} s"), view)
         time.WindowLocation = "Upper Left Corner"

@@ -327,6 +327,33 @@ def lining_lines(linings):
                         e["moment_a_nm_per_m"] / 1e3, e["moment_b_nm_per_m"] / 1e3,
                         e["utilisation"], e["governing"], e["max_utilisation"],
                         when(e["break_time_s"])))
+
+
+def grouted_lines(bolts):
+    """The grouted bolts of summary.json: per crossing, its blocks, extremes, final forces and
+    state, yield and rupture times."""
+    if not bolts:
+        return []
+    lines = ["Grouted bolts (docs/support.md): at each crossing of a block boundary an axial "
+             "spring k_a = E_s A_s / L_d (N tension positive) and a dowel k_s = K / (4 beta) "
+             "(S across the bolt).", "",
+             "| bolt | crossing | blocks | at [m] | k_a [N/m] | k_s [N/m] | yield force [N] | "
+             "shear capacity [N] | max N [N] | max abs S [N] | final N [N] | final S [N] | "
+             "max slip [mm] | final state | yielded at [s] | ruptured at [s] |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+
+    def when(t):
+        return "-" if t is None else "%.4g" % t
+    for b in bolts:
+        for k, c in enumerate(b["crossings"]):
+            lines.append(
+                "| %s | %d | %d to %d | (%.4g, %.4g) | %.4g | %.4g | %.4g | %.4g | %.4g | %.4g | "
+                "%.4g | %.4g | %s | %s | %s | %s |"
+                % (b["name"], k, *c["blocks"], *c["point_m"], b["axial_stiffness_n_per_m"],
+                   b["shear_stiffness_n_per_m"], b["yield_force_n"], b["shear_capacity_n"],
+                   c["max_axial_force_n"], c["max_shear_force_n"], c["final_axial_force_n"],
+                   c["final_shear_force_n"], mm(c["max_slip_m"]), c["final_state"],
+                   when(c["yield_time_s"]), when(c["rupture_time_s"])))
     return lines
 
 
@@ -535,9 +562,12 @@ def write_report(run_dir, summary, figures, path):
     stages = stage_lines(summary)
     if stages:
         lines += ["## Stages", ""] + stages + [""]
-    if summary.get("bolts") or summary.get("linings"):
-        bolts, linings = support_lines(summary.get("bolts")), lining_lines(summary.get("linings"))
-        lines += ["## Support", ""] + bolts + ([""] if bolts and linings else []) + linings + [""]
+    if summary.get("bolts") or summary.get("grouted_bolts") or summary.get("linings"):
+        lines += ["## Support", ""]
+        for part in (support_lines(summary.get("bolts")),
+                     grouted_lines(summary.get("grouted_bolts")),
+                     lining_lines(summary.get("linings"))):
+            lines += part + [""] if part else []
     if summary.get("warnings"):
         lines += ["## Warnings", ""] + ["- " + w for w in summary["warnings"]] + [""]
     lines += ["## Keyblocks", "",

@@ -35,6 +35,8 @@ the static equilibrium); states and rupture from summary.json.
 
 The lining's cases (the roof wedge hanging on a shotcrete lining, examples/support/
 lined_wedge.yaml) are in tools/support_lining.py, with their own section of the table.
+Then the grouted bolts' cases (tools/verify_grouted.py): a slider on a frictional joint steeper
+than its friction angle held by a grouted bolt, against the hand limit equilibrium.
 
 Writes docs/verification/support.{md,json} (--out DIR elsewhere). Regenerated, never typed.
 """
@@ -53,6 +55,7 @@ sys.path.insert(0, os.path.join(TOP, "bench"))
 sys.path.insert(0, os.path.join(TOP, "tools"))
 import speed_accuracy as SA  # noqa: E402
 import support_lining as LINING  # noqa: E402  (tools/: the lining's cases)
+import verify_grouted as VG  # noqa: E402  (tools/: this file's directory)
 
 G = 9.81
 WEIGHT = 2650 * G * 2.75  # N per metre: the wedge's area is 2.75 m^2
@@ -185,6 +188,7 @@ def write_markdown(path, data):
                      f"{r['max_elongation_m']:.4f} | {r['dynamic_stage_uy_m']:.3g} | "
                      f"{'yes' if passed(r) else 'no'} |")
     lines += LINING.markdown(data.get("lining_rows", []))
+    lines += VG.markdown(data.get("grouted_rows", []))
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
 
@@ -208,19 +212,25 @@ def main():
     cases = [(n, f, p) for n in SCENES for f in FACTORS for p in PRETENSIONS]
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         rows = list(pool.map(lambda c: case(ddafem, *c), cases))
+        grouted = list(pool.map(lambda c: VG.case(SA, ddafem, TOP, *c), VG.cases()))
     for r in rows:
         print(f"{r['scene']:10s} yield {r['yield_over_demand']} pretension "
               f"{r['pretension_over_demand']}: {r.get('outcome', r.get('message'))}"
               + (f", force error {r['force_error']:.2e}, sag error {r.get('sag_error', 0):.2e}"
                  if r.get("outcome") == "stays" else "")
               + ("" if passed(r) else "  FAIL"))
+    for r in grouted:
+        print(f"grouted {r['scene']:14s} capacity {r['capacity_over_demand']}: "
+              f"{r.get('outcome', r.get('message'))}, N error {r.get('axial_error')}, "
+              f"S error {r.get('shear_error')}" + ("" if VG.passed(r) else "  FAIL"))
     lining_rows = run_lining_cases(ddafem, args.jobs)
-    data = {"rows": rows, "lining_rows": lining_rows, "elapsed_s": time.monotonic() - start}
+    data = {"rows": rows, "grouted_rows": grouted, "lining_rows": lining_rows,
+            "elapsed_s": time.monotonic() - start}
     SA.write_verification(args.out, "support", data, write_markdown)
     if args.check:
-        return 0 if all(passed(r) for r in rows) and \
+        return 0 if all(passed(r) for r in rows) and all(VG.passed(r) for r in grouted) and \
             all(LINING.passed(r) for r in lining_rows) else 1
-    return 0 if all(r["exit"] == 0 for r in rows + lining_rows) else 1
+    return 0 if all(r["exit"] == 0 for r in rows + grouted + lining_rows) else 1
 
 
 if __name__ == "__main__":

@@ -8,6 +8,7 @@
 #include "dda/dynamic_stage.h"
 #include "dda/static_stage.h"
 #include "tests/dda/checkpoint_round_trip.h"
+#include "tests/dda/hanging_block_model.h"
 #include "tests/dda/hanging_static_stage.h"
 
 #include <gtest/gtest.h>
@@ -26,19 +27,7 @@ constexpr double stiffness = 1e7;     // [N/m]
 
 ModelDescription hanging_block(double yield_force, double pretension = 0.0)
 {
-  ModelDescription m;
-  m.materials = {{"rock", 2650.0, 10e9, 0.25}};
-  m.joint_materials = {{"joint", 1e10, 0.4, 30.0, 0.0, 0.0, false}};
-  m.default_joint_material = 0;
-  BlockDescription top;
-  top.vertices = {{-2, 2}, {2, 2}, {2, 3}, {-2, 3}};
-  m.blocks.push_back(top);
-  BlockDescription hanging;
-  hanging.vertices = {{-0.5, 0}, {0.5, 0}, {0.5, 1}, {-0.5, 1}};
-  m.blocks.push_back(hanging);
-  for (const Point& x : {Point(-1.5, 2.5), Point(1.5, 2.5), Point(0, 2.8)})
-    m.fixed_points.push_back(
-        {x, 0.0, TimeFunction::constant(0.0), TimeFunction::constant(0.0), ""});
+  ModelDescription m = block_below_fixed_block(2.0);
   BoltDescription b;
   b.name = "bolt";
   b.head = {0.0, 0.5};
@@ -48,10 +37,6 @@ ModelDescription hanging_block(double yield_force, double pretension = 0.0)
   b.pretension = pretension;
   b.origin = "bolts[0]";
   m.bolts.push_back(b);
-  m.monitors.push_back({"block", {0.0, 0.5}});
-  m.gravity = {0.0, -g};
-  m.time.dt = 1e-3;
-  m.time.end_time = 0.06;
   return m;
 }
 
@@ -135,25 +120,13 @@ TEST(BoltSystem, SuddenlyLoadedBoltPeaksAtTwiceTheWeight)
 TEST(BoltSystem, ACheckpointKeepsTheBoltsBitForBit)
 {
   const ModelDescription m = hanging_block(1.5 * weight);
-  Stage stage;
-  stage.end_time = 0.06;
-  System whole(m);
-  whole.begin_stage(StageMode::dynamic);
-  run_dynamic_stage(whole, stage, m.time, no_displacement(whole));
-
-  System first(m);
-  first.begin_stage(StageMode::dynamic);
-  DynamicStageRun first_run(first, stage, m.time, no_displacement(first));
-  std::size_t calls = 0;
-  first_run.run([&](const TimeStepper&, const StepStatus&, bool) { return ++calls < 20; });
-  System resumed(m);
-  DynamicStageRun resumed_run(resumed, stage, m.time, no_displacement(first));
-  round_trip(first, first_run, resumed, resumed_run);
-  resumed_run.run();
+  const ResumedRun run = run_whole_and_resumed(m, 20);
+  const System& whole = *run.whole;
+  const System& resumed = *run.resumed;
 
   const Bolt& a = whole.get_bolts()[0];
   const Bolt& b = resumed.get_bolts()[0];
-  ASSERT_GT(a.record.yield_time, first.time()); // it yielded after the checkpoint
+  ASSERT_GT(a.record.yield_time, run.stop_time); // it yielded after the checkpoint
   EXPECT_EQ(b.forces.state, a.forces.state);
   EXPECT_EQ(b.forces.axial_force, a.forces.axial_force);
   EXPECT_EQ(b.forces.plastic_elongation, a.forces.plastic_elongation);

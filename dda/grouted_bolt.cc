@@ -1,0 +1,226 @@
+#include "dda/grouted_bolt.h"
+
+#include "dda/bolt_snapshot.h"
+
+#include "dda/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ddafem::dda
+{
+namespace
+{
+/// A stretch of the segment inside one polygon: its block and its distances from the head [m].
+struct Stretch
+{
+  std::size_t block = 0;
+  double start = 0.0;
+  double end = 0.0;
+};
+
+/// The parameters s in [0, 1] where the segment p + s (q - p) meets the polygon's edges (0 and 1
+/// included), sorted.
+std::vector<double> edge_parameters(const std::vector<Point>& polygon, const Point& p,
+                                    const Point& q)
+{
+  std::vector<double> s = {0.0, 1.0};
+  const Vector2 d = q - p;
+  for (std::size_t i = 0; i < polygon.size(); ++i)
+  {
+    const Point& a = polygon[i];
+    const Vector2 e = polygon[(i + 1) % polygon.size()] - a;
+    const double denominator = d.x() * e.y() - d.y() * e.x();
+    if (denominator == 0.0)
+      continue; // parallel: its ends are other edges' ends
+    const Vector2 w = a - p;
+    const double along = (w.x() * e.y() - w.y() * e.x()) / denominator;
+    const double on_edge = (w.x() * d.y() - w.y() * d.x()) / denominator;
+    if (along > 0.0 && along < 1.0 && on_edge >= 0.0 && on_edge <= 1.0)
+      s.push_back(along);
+  }
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+/// The stretches of the segment inside the polygon (sub-intervals between edge crossings whose
+/// midpoint is inside, merged when consecutive).
+void add_stretches(std::vector<Stretch>& out, std::size_t block, const std::vector<Point>& polygon,
+                   const Point& p, const Point& q, double tol)
+{
+  const std::vector<double> s = edge_parameters(polygon, p, q);
+  const double length = (q - p).norm();
+  bool open = false;
+  for (std::size_t i = 0; i + 1 < s.size(); ++i)
+  {
+    if (s[i + 1] - s[i] <= 0.0)
+      continue;
+    const Point mid = p + 0.5 * (s[i] + s[i + 1]) * (q - p);
+    const bool inside = locate_point(polygon, mid, tol) == PointLocation::inside;
+    if (inside && open)
+      out.back().end = s[i + 1] * length;
+    else if (inside)
+      out.push_back({block, s[i] * length, s[i + 1] * length});
+    open = inside;
+  }
+}
+} // namespace
+
+std::vector<BoltCrossing> find_bolt_crossings(const std::vector<std::vector<Point>>& polygons,
+                                              const Point& head, const Point& anchor, double tol,
+                                              std::array<double, 2>* gap)
+{
+  std::vector<Stretch> stretches;
+  for (std::size_t b = 0; b < polygons.size(); ++b)
+    add_stretches(stretches, b, polygons[b], head, anchor, tol);
+  std::sort(stretches.begin(), stretches.end(),
+            [](const Stretch& x, const Stretch& y) { return x.start < y.start; });
+  if (gap)
+    *gap = {0.0, 0.0};
+  std::vector<BoltCrossing> crossings;
+  const Vector2 e = (anchor - head).normalized();
+  for (std::size_t i = 0; i + 1 < stretches.size(); ++i)
+  {
+    const Stretch& a = stretches[i];
+    const Stretch& b = stretches[i + 1];
+    if (b.start - a.end > tol)
+    {
+      if (gap && (*gap)[1] == 0.0)
+        *gap = {a.end, b.start};
+      continue;
+    }
+    if (a.block == b.block)
+      continue;
+    const double at = 0.5 * (a.end + b.start);
+    crossings.push_back({a.block, b.block, head + at * e, at});
+  }
+  if (gap && (*gap)[1] == 0.0 && !stretches.empty())
+  {
+    // The segment's ends outside every block count as gaps too.
+    const double length = (anchor - head).norm();
+    if (stretches.front().start > tol)
+      *gap = {0.0, stretches.front().start};
+    else if (length - stretches.back().end > tol)
+      *gap = {stretches.back().end, length};
+  }
+  return crossings;
+}
+
+double dowel_shear_stiffness(double youngs_modulus, double area, double foundation_modulus)
+{
+  const double pi = std::acos(-1.0);
+  const double d = std::sqrt(4.0 * area / pi);
+  const double inertia = pi * std::pow(d, 4) / 64.0;
+  const double beta = std::pow(foundation_modulus / (4.0 * youngs_modulus * inertia), 0.25);
+  return foundation_modulus / (4.0 * beta);
+}
+
+GroutedBoltLaw make_grouted_bolt_law(double youngs_modulus, double area, double foundation_modulus,
+                                     double debonded_length, double pretension, double yield_force,
+                                     double shear_capacity, double rupture_strain)
+{
+  GroutedBoltLaw law;
+  law.axial_stiffness = youngs_modulus * area / debonded_length;
+  law.shear_stiffness = dowel_shear_stiffness(youngs_modulus, area, foundation_modulus);
+  law.pretension = pretension;
+  law.yield_force = yield_force;
+  law.shear_capacity = shear_capacity;
+  law.debonded_length = debonded_length;
+  law.rupture_elongation = rupture_strain * debonded_length;
+  return law;
+}
+
+CrossingForces evaluate_crossing(const GroutedBoltLaw& law, const CrossingForces& start,
+                                 double opening, double slip)
+{
+  CrossingForces out;
+  out.plastic_opening = start.plastic_opening;
+  out.plastic_slip = start.plastic_slip;
+  const double stretch =
+      std::hypot(law.debonded_length + opening, slip) - law.debonded_length; // [m]
+  if (start.state == BoltState::ruptured || stretch > law.rupture_elongation)
+  {
+    out.state = BoltState::ruptured;
+    out.axial_elastic = out.shear_elastic = false;
+    return out;
+  }
+  const double axial = law.pretension + law.axial_stiffness * (opening - start.plastic_opening);
+  bool axial_yield = false, slack = false;
+  if (axial > law.yield_force)
+  {
+    axial_yield = true;
+    out.axial_force = law.yield_force;
+    out.plastic_opening = opening - (law.yield_force - law.pretension) / law.axial_stiffness;
+  }
+  else if (axial < 0.0)
+    slack = true;
+  else
+    out.axial_force = axial;
+  const double shear = law.shear_stiffness * (slip - start.plastic_slip);
+  const bool shear_yield = std::abs(shear) > law.shear_capacity;
+  if (shear_yield)
+  {
+    out.shear_force = std::copysign(law.shear_capacity, shear);
+    out.plastic_slip = slip - out.shear_force / law.shear_stiffness;
+  }
+  else
+    out.shear_force = shear;
+  out.axial_elastic = !axial_yield && !slack;
+  out.shear_elastic = !shear_yield;
+  out.state = axial_yield || shear_yield        ? BoltState::yielding
+              : slack && out.shear_force == 0.0 ? BoltState::slack
+                                                : BoltState::elastic;
+  return out;
+}
+
+double crossing_energy(const GroutedBoltLaw& law, const CrossingForces& forces)
+{
+  return 0.5 * forces.axial_force * forces.axial_force / law.axial_stiffness +
+         0.5 * forces.shear_force * forces.shear_force / law.shear_stiffness;
+}
+
+CrossingRecord record_crossing(const CrossingRecord& before, const CrossingForces& forces,
+                               double opening, double slip, double t)
+{
+  if (!std::isnan(before.rupture_time))
+    return before;
+  CrossingRecord out = before;
+  out.max_axial_force = std::max(out.max_axial_force, forces.axial_force);
+  out.max_shear_force = std::max(out.max_shear_force, std::abs(forces.shear_force));
+  out.max_opening = std::max(out.max_opening, opening);
+  out.max_slip = std::max(out.max_slip, std::abs(slip));
+  if (forces.state == BoltState::yielding && std::isnan(out.yield_time))
+    out.yield_time = t;
+  if (forces.state == BoltState::ruptured && std::isnan(out.rupture_time))
+    out.rupture_time = t;
+  return out;
+}
+
+BoltState summary_state(const GroutedBolt& b)
+{
+  const auto any = [&b](BoltState s)
+  {
+    return std::any_of(b.crossings.begin(), b.crossings.end(),
+                       [s](const GroutedCrossing& c) { return c.forces.state == s; });
+  };
+  for (const BoltState s : {BoltState::ruptured, BoltState::yielding, BoltState::elastic})
+    if (any(s))
+      return s;
+  return BoltState::slack;
+}
+
+Vector2 GroutedBolt::direction(bool initial) const
+{
+  return initial ? (anchor.initial - head.initial).normalized()
+                 : (anchor.position - head.position).normalized();
+}
+
+std::array<double, 2> GroutedBolt::opening_and_slip(const GroutedCrossing& c, bool initial) const
+{
+  const Vector2 e = direction(initial);
+  const Vector2 t(-e.y(), e.x());
+  const Vector2 delta = c.relative_displacement();
+  return {delta.dot(e), delta.dot(t)};
+}
+
+} // namespace ddafem::dda
