@@ -327,6 +327,7 @@ def lining_lines(linings):
                         e["moment_a_nm_per_m"] / 1e3, e["moment_b_nm_per_m"] / 1e3,
                         e["utilisation"], e["governing"], e["max_utilisation"],
                         when(e["break_time_s"])))
+    return lines
 
 
 def grouted_lines(bolts):
