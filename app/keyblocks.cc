@@ -324,6 +324,20 @@ std::vector<bool> KeyblockRecorder::held_keyblocks(const dda::System& system) co
       hold(b.head.block);
       hold(b.anchor.block);
     }
+  for (const dda::GroutedBolt& b : system.get_grouted_bolts())
+    for (const dda::GroutedCrossing& c : b.crossings)
+      if (c.forces.state != dda::BoltState::ruptured)
+      {
+        hold(c.on_a.block);
+        hold(c.on_b.block);
+      }
+  for (const dda::Lining& l : system.get_linings())
+    for (const dda::LiningElement& e : l.elements)
+      if (l.installed && e.state == dda::LiningElementState::intact)
+      {
+        hold(l.nodes[e.a].point.block);
+        hold(l.nodes[e.b].point.block);
+      }
   return held;
 }
 
