@@ -425,11 +425,14 @@ def keyblock_lines(keyblocks, not_reached=None):
     for k, o in enumerate(keyblocks["openings"]):
         lines.append("- opening %d: %.3g m across (%.3g m^2), from (%.3g, %.3g) to (%.3g, %.3g) m;"
                      " a keyblock fell if it ended more than %s mm lower (or detached and still "
-                     "falling faster than %.3g m/s); one that did not fall loosened if it ended "
-                     "more than %s mm from its place relative to the rock around the opening"
+                     "falling faster than %.3g m/s, or detached and more than %s mm from its "
+                     "place relative to the rock: thrown out); one that did not fall loosened if "
+                     "it ended more than %s mm from its place relative to the rock around the "
+                     "opening"
                      % (k, o["size_m"], o["area_m2"], o["lower_m"][0], o["lower_m"][1],
                         o["upper_m"][0], o["upper_m"][1], mm(o["fall_threshold_m"]),
-                        o["fall_speed_m_s"], mm(o.get("loosen_threshold_m"))))
+                        o["fall_speed_m_s"], mm(o["fall_threshold_m"]),
+                        mm(o.get("loosen_threshold_m"))))
         if "fallen_blocks" in o and not not_reached:
             lines.append("  - fallen into it: %d blocks, %.3g m^3 per metre of tunnel%s"
                          % (len(o["fallen_blocks"]), o["fallen_area_m2"],
