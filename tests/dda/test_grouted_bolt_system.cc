@@ -11,6 +11,7 @@
 #include "dda/static_stage.h"
 #include "tests/dda/checkpoint_round_trip.h"
 #include "tests/dda/hanging_block_model.h"
+#include "tests/dda/hanging_static_stage.h"
 
 #include <gtest/gtest.h>
 
@@ -50,14 +51,8 @@ ModelDescription hanging_block(double yield_force, double side_load = 0.0)
 
 StaticStageResult settle(System& s)
 {
-  Stage stage;
-  stage.name = "install";
-  stage.mode = StageMode::static_equilibrium;
-  stage.dt = 0.1;
-  stage.max_steps = 3000;
-  stage.tolerance = 1e-9;
   s.begin_stage(StageMode::static_equilibrium);
-  return run_static_stage(s, stage, s.get_model().time);
+  return run_static_stage(s, hanging_static_stage(), s.get_model().time);
 }
 
 } // namespace
