@@ -21,6 +21,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <thread>
 
@@ -52,10 +53,8 @@ CaseVerdict judge_case(const nlohmann::json& summary, SweepCriterion criterion, 
 }
 
 CriticalValueSearch::CriticalValueSearch(double start_, std::optional<double> low_,
-                                         std::optional<double> high_, double tolerance_,
-                                         unsigned parallel_)
-    : start(start_), tolerance(tolerance_), low(low_), high(high_),
-      parallel(std::max(parallel_, 1u))
+                                         std::optional<double> high_, double tolerance_)
+    : start(start_), tolerance(tolerance_), low(low_), high(high_)
 {
 }
 
@@ -108,39 +107,68 @@ std::string CriticalValueSearch::conclusion() const
   return "";
 }
 
-std::vector<double> CriticalValueSearch::next() const
+bool CriticalValueSearch::worth_running(double value) const
+{
+  const std::optional<double> exceeding = lowest_exceeding(), holding = highest_holding();
+  return conclusion().empty() && !(exceeding && value >= *exceeding) &&
+         !(holding && value <= *holding);
+}
+
+std::optional<double> CriticalValueSearch::next(const std::vector<double>& running) const
 {
   if (!conclusion().empty())
-    return {};
-  std::vector<double> values;
-  const std::optional<double> exceeding = lowest_exceeding(), holding = highest_holding();
-  if (cases.empty() && low && high)
-    return {*low, *high};
-  if (cases.empty())
+    return std::nullopt;
+  const auto known = [&](double v)
   {
-    for (unsigned k = 0; k < parallel; ++k)
-      values.push_back(
-          start * std::pow(2.0, static_cast<double>(k) - static_cast<double>((parallel - 1) / 2)));
-    return values;
-  }
-  if (!exceeding) // everything held: up by doubling, to the top
+    return std::find(running.begin(), running.end(), v) != running.end() ||
+           std::any_of(cases.begin(), cases.end(), [v](const auto& c) { return c.first == v; });
+  };
+  for (const std::optional<double>& bound : {low, high}) // given bounds are run first
+    if (bound && !known(*bound))
+      return bound;
+  // The bracket (a, b]: a held (or is the given low), b exceeded (or is the given high).
+  const std::optional<double> a = highest_holding() ? highest_holding() : low;
+  const std::optional<double> b = lowest_exceeding() ? lowest_exceeding() : high;
+  if (!a || !b)
+    return next_outward(running);
+  std::vector<double> points = {*a, *b}; // cut by the values running inside it
+  for (const double v : running)
+    if (v > *a && v < *b)
+      points.push_back(v);
+  std::sort(points.begin(), points.end());
+  // The widest part relative to its upper end, as the tolerance measures; of equal parts the
+  // upper one, whose run is the likelier to exceed and so to end early.
+  std::size_t widest = 1;
+  for (std::size_t i = 1; i < points.size(); ++i)
+    if ((points[i] - points[i - 1]) / points[i] >=
+        (points[widest] - points[widest - 1]) / points[widest] * (1.0 - 1e-12))
+      widest = i;
+  return 0.5 * (points[widest - 1] + points[widest]);
+}
+
+std::optional<double> CriticalValueSearch::next_outward(const std::vector<double>& running) const
+{
+  const std::optional<double> exceeding = lowest_exceeding(), holding = highest_holding();
+  if (!exceeding) // nothing exceeded yet: up by doubling, to the top
   {
     const double top = high.value_or(start * max_factor);
-    for (unsigned k = 1; k <= parallel && (values.empty() || values.back() < top); ++k)
-      values.push_back(std::min(*holding * std::pow(2.0, k), top));
-    return values;
+    double from = holding.value_or(0.0);
+    for (const double v : running)
+      from = std::max(from, v);
+    if (from == 0.0)
+      return start;
+    if (from >= top * (1.0 - 1e-12))
+      return std::nullopt;
+    return std::min(2.0 * from, top);
   }
-  if (!holding) // everything exceeded: down by halving, to the bottom
-  {
-    const double bottom = low.value_or(start / max_factor);
-    for (unsigned k = 1; k <= parallel && (values.empty() || values.back() > bottom); ++k)
-      values.push_back(std::max(*exceeding / std::pow(2.0, k), bottom));
-    return values;
-  }
-  const double width = *exceeding - *holding;
-  for (unsigned k = 1; k <= parallel; ++k)
-    values.push_back(*holding + width * k / (parallel + 1.0));
-  return values;
+  // nothing held below the lowest that exceeded: down by halving, to the bottom
+  const double bottom = low.value_or(start / max_factor);
+  double from = *exceeding;
+  for (const double v : running)
+    from = std::min(from, v);
+  if (from <= bottom * (1.0 + 1e-12))
+    return std::nullopt;
+  return std::max(0.5 * from, bottom);
 }
 
 namespace
@@ -186,7 +214,9 @@ struct Case
   double value = 0.0;
   std::filesystem::path directory;
   pid_t pid = 0;
+  std::chrono::steady_clock::time_point started;
   int exit_code = -1;
+  bool cancelled = false; ///< stopped once its verdict could no longer narrow the bracket
   double wall_s = 0.0;
   std::string status;
   CaseVerdict verdict;
@@ -263,78 +293,140 @@ void stop_running(const std::vector<Case>& cases)
     }
 }
 
-/// Runs the values of one round, `jobs` at a time, each with `threads` threads.
-void run_round(const SweepOptions& o, const std::vector<double>& values, unsigned jobs,
-               unsigned threads, std::vector<Case>& cases, std::ostream& log)
+/// The progress line of a case that ended.
+void log_case(const SweepOptions& o, const Case& c, std::ostream& log)
 {
-  std::size_t next = cases.size();
-  for (const double v : values)
+  if (o.quiet)
+    return;
+  log << "sweep: " << o.key << " = " << value_text(c.value) << ": ";
+  if (c.cancelled)
+    log << "stopped, no longer able to narrow the bracket";
+  else
+    log << (c.verdict.failed ? "failed (counted as exceeded)"
+            : c.verdict.exceeded
+                ? (o.find == SweepCriterion::first_fall ? "a keyblock fell" : "exceeded")
+                : "held")
+        << ", largest relative residual " << format_significant(1e3 * c.verdict.max_relative_m, 3)
+        << " mm";
+  log << ", " << format_significant(c.wall_s, 3) << " s (" << c.directory.filename().string() << ")"
+      << std::endl;
+}
+
+/// Starts values of the search while fewer than `jobs` run; `running` indexes `cases`.
+void start_cases(const SweepOptions& o, const CriticalValueSearch& search, unsigned jobs,
+                 unsigned threads, std::vector<Case>& cases, std::vector<std::size_t>& running)
+{
+  while (running.size() < jobs)
   {
+    std::vector<double> values;
+    for (const std::size_t i : running)
+      values.push_back(cases[i].value);
+    const std::optional<double> v = search.next(values);
+    if (!v)
+      return;
     Case c;
-    c.value = std::stod(value_text(v)); // the value the run is given
+    c.value = std::stod(value_text(*v)); // the value the run is given
     const std::string number = std::to_string(cases.size() + 1);
     c.directory = std::filesystem::path(o.directory) /
                   ("case_" + std::string(number.size() < 2 ? 1 : 0, '0') + number);
+    c.started = std::chrono::steady_clock::now();
+    c.pid = start_case(o, c, threads);
+    running.push_back(cases.size());
     cases.push_back(c);
   }
-  std::vector<std::chrono::steady_clock::time_point> started(cases.size());
-  std::size_t running = 0;
-  while (next < cases.size() || running > 0)
+}
+
+/// Waits for one of the running cases to end; returns its index in `cases`.
+std::size_t wait_for_case(std::vector<Case>& cases, std::vector<std::size_t>& running)
+{
+  while (true)
   {
-    for (; next < cases.size() && running < jobs; ++next, ++running)
-    {
-      cases[next].pid = start_case(o, cases[next], threads);
-      started[next] = std::chrono::steady_clock::now();
-    }
     int status = 0;
     const pid_t pid = waitpid(-1, &status, 0);
     if (pid < 0)
       throw std::runtime_error("waiting for the sweep's runs: " + std::string(strerror(errno)));
-    for (std::size_t i = 0; i < cases.size(); ++i)
-      if (cases[i].pid == pid && cases[i].exit_code < 0)
-      {
-        Case& c = cases[i];
-        c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-        c.wall_s = seconds_since(started[i]);
-        --running;
-        try
-        {
-          finish_case(o, c);
-        }
-        catch (...)
-        {
-          stop_running(cases);
-          throw;
-        }
-        if (!o.quiet)
-          log << "sweep: " << o.key << " = " << value_text(c.value) << ": "
-              << (c.verdict.failed ? "failed (counted as exceeded)"
-                  : c.verdict.exceeded
-                      ? (o.find == SweepCriterion::first_fall ? "a keyblock fell" : "exceeded")
-                      : "held")
-              << ", largest relative residual "
-              << format_significant(1e3 * c.verdict.max_relative_m, 3) << " mm, "
-              << format_significant(c.wall_s, 3) << " s (" << c.directory.filename().string() << ")"
-              << std::endl;
-      }
+    const auto it = std::find_if(running.begin(), running.end(),
+                                 [&](std::size_t i) { return cases[i].pid == pid; });
+    if (it == running.end())
+      continue; // not a run of this sweep
+    Case& c = cases[*it];
+    c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    c.wall_s = seconds_since(c.started);
+    const std::size_t index = *it;
+    running.erase(it);
+    return index;
+  }
+}
+
+/// Stops the running cases whose verdict can no longer narrow the bracket.
+void cancel_cases(const SweepOptions& o, const CriticalValueSearch& search,
+                  std::vector<Case>& cases, std::vector<std::size_t>& running, std::ostream& log)
+{
+  for (auto it = running.begin(); it != running.end();)
+  {
+    Case& c = cases[*it];
+    if (search.worth_running(c.value))
+    {
+      ++it;
+      continue;
+    }
+    kill(c.pid, SIGTERM);
+    int status = 0;
+    waitpid(c.pid, &status, 0);
+    c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    c.wall_s = seconds_since(c.started);
+    c.cancelled = true;
+    log_case(o, c, log);
+    it = running.erase(it);
+  }
+}
+
+/// Runs the search to its end, `jobs` runs at a time, each with `threads` threads: a run that
+/// ends frees its core for the next value at once, and runs that can no longer narrow the
+/// bracket are stopped. After every run, `after_each` (which writes sweep.json and sweep.md).
+void run_search(const SweepOptions& o, CriticalValueSearch& search, unsigned jobs, unsigned threads,
+                std::vector<Case>& cases, std::ostream& log,
+                const std::function<void()>& after_each)
+{
+  std::vector<std::size_t> running;
+  try
+  {
+    for (start_cases(o, search, jobs, threads, cases, running); !running.empty();
+         start_cases(o, search, jobs, threads, cases, running))
+    {
+      Case& c = cases[wait_for_case(cases, running)];
+      finish_case(o, c);
+      search.add(c.value, c.verdict.exceeded);
+      log_case(o, c, log);
+      cancel_cases(o, search, cases, running, log);
+      after_each();
+    }
+  }
+  catch (...)
+  {
+    stop_running(cases);
+    throw;
   }
 }
 
 /// sweep.json: the question, every case and the answer.
 nlohmann::json sweep_json(const SweepOptions& o, const std::vector<Case>& cases,
-                          const CriticalValueSearch& search, double wall_s)
+                          const CriticalValueSearch& search,
+                          std::chrono::steady_clock::time_point sweep_start)
 {
   nlohmann::json list = nlohmann::json::array();
   for (const Case& c : cases)
     list.push_back({{"value", c.value},
                     {"directory", c.directory.filename().string()},
                     {"exit_code", c.exit_code},
+                    {"cancelled", c.cancelled},
                     {"status", c.status},
                     {"exceeded", c.verdict.exceeded},
                     {"failed", c.verdict.failed},
                     {"fallen_keyblocks", c.verdict.fallen},
                     {"max_relative_residual_m", c.verdict.max_relative_m},
                     {"keyblock_peak_m", c.verdict.keyblock_peak_m},
+                    {"started_s", std::chrono::duration<double>(c.started - sweep_start).count()},
                     {"wall_s", c.wall_s}});
   const auto optional = [](std::optional<double> v)
   { return v ? nlohmann::json(*v) : nlohmann::json(); };
@@ -349,7 +441,7 @@ nlohmann::json sweep_json(const SweepOptions& o, const std::vector<Case>& cases,
           {"highest_holding", optional(search.highest_holding())},
           {"lowest_exceeding", optional(search.lowest_exceeding())},
           {"non_monotonic", search.non_monotonic()},
-          {"wall_s", wall_s}};
+          {"wall_s", seconds_since(sweep_start)}};
 }
 
 /// sweep.md: the answer, then the cases in the order of their values.
@@ -384,8 +476,10 @@ std::string sweep_markdown(const nlohmann::json& j)
             [](const auto& a, const auto& b) { return a["value"] < b["value"]; });
   for (const nlohmann::json& c : cases)
     md << "| " << c["value"].get<double>() << " | "
-       << (c["exceeded"].get<bool>() ? "**exceeded**" : "held") << " | "
-       << c["fallen_keyblocks"].dump() << " | "
+       << (c["cancelled"].get<bool>()  ? "stopped: no longer needed"
+           : c["exceeded"].get<bool>() ? "**exceeded**"
+                                       : "held")
+       << " | " << c["fallen_keyblocks"].dump() << " | "
        << format_significant(1e3 * c["max_relative_residual_m"].get<double>(), 3) << " | "
        << format_significant(1e3 * c["keyblock_peak_m"].get<double>(), 3) << " | "
        << c["status"].get<std::string>() << " | "
@@ -424,20 +518,17 @@ int run_sweep(const SweepOptions& o, std::ostream& log)
   const unsigned jobs = o.jobs > 0 ? o.jobs : cores;
   const unsigned threads = std::max(1u, cores / jobs);
   run_support::create_output_directory(o.directory);
-  CriticalValueSearch search(start, o.low, o.high, o.tolerance, jobs);
+  CriticalValueSearch search(start, o.low, o.high, o.tolerance);
   std::vector<Case> cases;
-  for (std::vector<double> values = search.next(); !values.empty(); values = search.next())
-  {
-    const std::size_t first = cases.size();
-    run_round(o, values, jobs, threads, cases, log);
-    for (std::size_t i = first; i < cases.size(); ++i)
-      search.add(cases[i].value, cases[i].verdict.exceeded);
-    const nlohmann::json j = sweep_json(o, cases, search, seconds_since(wall_start));
-    run_support::write_text_file(std::filesystem::path(o.directory) / "sweep.json",
-                                 j.dump(2) + "\n");
-    run_support::write_text_file(std::filesystem::path(o.directory) / "sweep.md",
-                                 sweep_markdown(j));
-  }
+  run_search(o, search, jobs, threads, cases, log,
+             [&]
+             {
+               const nlohmann::json j = sweep_json(o, cases, search, wall_start);
+               run_support::write_text_file(std::filesystem::path(o.directory) / "sweep.json",
+                                            j.dump(2) + "\n");
+               run_support::write_text_file(std::filesystem::path(o.directory) / "sweep.md",
+                                            sweep_markdown(j));
+             });
   log << "sweep: " << search.conclusion();
   if (search.conclusion() == "bracketed")
     log << ": the critical " << o.key << " lies above " << *search.highest_holding()

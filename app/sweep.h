@@ -44,18 +44,23 @@ struct CaseVerdict
 /// The verdict of a run's summary.json; `threshold` [m] for the displacement criterion.
 CaseVerdict judge_case(const nlohmann::json& summary, SweepCriterion criterion, double threshold);
 
-/// The search for the smallest value that exceeds, with `parallel` runs at a time: it brackets
-/// the value by doubling or halving from `start` (or runs `low` and `high` if given), then cuts
-/// the bracket (largest value held, smallest exceeded] into parallel + 1 equal parts a round
-/// until its width is at most `tolerance` x its upper end. Values are > 0.
+/// The search for the smallest value that exceeds, asynchronous: the caller asks for a value
+/// whenever a core is free, giving the values still running. It brackets the value by doubling or
+/// halving from `start` (or runs `low` and `high` first if given), then splits the widest part of
+/// the bracket (largest value held, smallest exceeded], cut by the values still running, at its
+/// middle, until the bracket's width is at most `tolerance` x its upper end. Values are > 0.
 class CriticalValueSearch
 {
 public:
   CriticalValueSearch(double start, std::optional<double> low, std::optional<double> high,
-                      double tolerance, unsigned parallel);
+                      double tolerance);
 
-  /// The values of the next round; empty when the search is over.
-  std::vector<double> next() const;
+  /// The value to start next while `running` run; none when the search is over or no value
+  /// would add to those running (the bounds of the bracketing reached).
+  std::optional<double> next(const std::vector<double>& running) const;
+  /// Whether a run of `value` can still narrow the bracket: false once the search is over, or a
+  /// value at or below it exceeded, or one at or above it held.
+  bool worth_running(double value) const;
   /// Records the verdict of a value.
   void add(double value, bool exceeded);
 
@@ -72,9 +77,12 @@ public:
   static constexpr double max_factor = 1024.0;
 
 private:
+  /// The next value while nothing is bracketed on one side: doubling up from the highest value
+  /// held or running, or halving down from the lowest exceeded or running.
+  std::optional<double> next_outward(const std::vector<double>& running) const;
+
   double start, tolerance;
   std::optional<double> low, high;
-  unsigned parallel;
   std::vector<std::pair<double, bool>> cases;
 };
 

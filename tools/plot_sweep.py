@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Plot a `ddafem sweep` (DIR/sweep.json): each run's largest keyblock residual displacement
 relative to the rock against the swept value, the runs that exceeded in red, the bracket of the
-critical value shaded. Writes DIR/sweep.png and links it from DIR/sweep.md.
+critical value shaded; beside it, when each run ran (the asynchronous schedule). Writes DIR/sweep.png and links it from DIR/sweep.md.
 
     /usr/bin/python3 tools/plot_sweep.py results/sweep
 """
@@ -15,13 +15,30 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def plot_schedule(ax, sweep):
+    """Each run as a bar from its start to its end, at its value."""
+    for c in sweep["cases"]:
+        color = "0.6" if c.get("cancelled") else "C3" if c["exceeded"] else "C0"
+        start = c.get("started_s", 0.0)
+        ax.plot([start, start + c["wall_s"]], [c["value"]] * 2, "-", color=color, lw=5,
+                solid_capstyle="butt")
+    ax.plot([], [], "-", color="0.6", lw=5, label="stopped: no longer needed")
+    ax.set_xlabel("time into the sweep [s] (%d runs, %.0f s)" % (len(sweep["cases"]),
+                                                                 sweep["wall_s"]))
+    ax.set_ylabel(sweep["key"].split(".")[-1])
+    ax.set_title("when each run ran", fontsize=10)
+    ax.legend(fontsize=8)
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
     directory = sys.argv[1]
     sweep = json.load(open(os.path.join(directory, "sweep.json")))
-    cases = sorted(sweep["cases"], key=lambda c: c["value"])
-    fig, ax = plt.subplots(figsize=(7, 4.2))
+    every = sweep["cases"]
+    cases = sorted([c for c in every if not c.get("cancelled")], key=lambda c: c["value"])
+    fig, (ax, schedule) = plt.subplots(1, 2, figsize=(11, 4.2),
+                                       gridspec_kw={"width_ratios": [3, 2]})
     x = [c["value"] for c in cases]
     y = [max(1e3 * c["max_relative_residual_m"], 1e-4) for c in cases]
     ax.semilogy(x, y, "-", color="0.6", lw=1)
@@ -40,6 +57,7 @@ def main():
     ax.set_ylabel("largest keyblock residual relative displacement [mm]")
     ax.set_title(os.path.basename(sweep["scene"]) + ": " + sweep["find"], fontsize=10)
     ax.legend(fontsize=8)
+    plot_schedule(schedule, sweep)
     fig.tight_layout()
     png = os.path.join(directory, "sweep.png")
     fig.savefig(png, dpi=110)
