@@ -19,7 +19,7 @@ def plot_schedule(ax, sweep):
     """Each run as a bar from its start to its end, at its value."""
     for c in sweep["cases"]:
         color = "0.6" if c.get("cancelled") else "C3" if c["exceeded"] else "C0"
-        start = c.get("started_s", 0.0)
+        start = c["started_s"]
         ax.plot([start, start + c["wall_s"]], [c["value"]] * 2, "-", color=color, lw=5,
                 solid_capstyle="butt")
     ax.plot([], [], "-", color="0.6", lw=5, label="stopped: no longer needed")
@@ -37,8 +37,12 @@ def main():
     sweep = json.load(open(os.path.join(directory, "sweep.json")))
     every = sweep["cases"]
     cases = sorted([c for c in every if not c.get("cancelled")], key=lambda c: c["value"])
-    fig, (ax, schedule) = plt.subplots(1, 2, figsize=(11, 4.2),
-                                       gridspec_kw={"width_ratios": [3, 2]})
+    timed = all("started_s" in c for c in every)  # sweeps before the asynchronous search: not
+    if timed:
+        fig, (ax, schedule) = plt.subplots(1, 2, figsize=(11, 4.2),
+                                           gridspec_kw={"width_ratios": [3, 2]})
+    else:
+        fig, ax = plt.subplots(figsize=(7, 4.2))
     x = [c["value"] for c in cases]
     y = [max(1e3 * c["max_relative_residual_m"], 1e-4) for c in cases]
     ax.semilogy(x, y, "-", color="0.6", lw=1)
@@ -57,7 +61,8 @@ def main():
     ax.set_ylabel("largest keyblock residual relative displacement [mm]")
     ax.set_title(os.path.basename(sweep["scene"]) + ": " + sweep["find"], fontsize=10)
     ax.legend(fontsize=8)
-    plot_schedule(schedule, sweep)
+    if timed:
+        plot_schedule(schedule, sweep)
     fig.tight_layout()
     png = os.path.join(directory, "sweep.png")
     fig.savefig(png, dpi=110)
