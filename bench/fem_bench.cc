@@ -5,6 +5,7 @@
 //
 // --cells N: N x N elements of 4 m (Q2: about 8 N^2 DOFs); --solver klu | umfpack | cg;
 // --steps S: timed steps after 5 warm-up steps; --hole: a graded circular hole in the middle.
+#include "bench/bench_support.h"
 #include "fem/elastic_wave_model.h"
 
 #include <chrono>
@@ -19,20 +20,8 @@ namespace
 using namespace ddafem;
 using namespace ddafem::fem;
 
-double peak_memory_mb()
-{
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("VmHWM:", 0) == 0)
-      return std::stod(line.substr(6)) / 1024.0;
-  return 0.0;
-}
-
-double seconds(std::chrono::steady_clock::time_point start)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+using bench::peak_memory_mb;
+using bench::seconds;
 } // namespace
 
 int main(int argc, char** argv)

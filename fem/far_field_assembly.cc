@@ -3,6 +3,7 @@
 #include "fem/elastic_wave_model_impl.h"
 
 #include "common/newmark.h"
+#include "fem/far_field_kernels.h"
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -18,39 +19,6 @@
 namespace ddafem::fem
 {
 using namespace far_field_detail;
-
-namespace
-{
-/// scale (normal n n^T + tangential (I - n n^T)) for a unit normal n: Lysmer dashpots
-/// (scale rho, normal a VP, tangential b VS) [N s/m^3] and boundary springs (scale G / R,
-/// normal alpha_n, tangential alpha_t) [N/m^3].
-using Matrix2 = std::array<std::array<double, 2>, 2>;
-Matrix2 normal_tangential(const double scale, const double normal, const double tangential,
-                          const Tensor<1, 2>& n)
-{
-  Matrix2 T;
-  for (unsigned int r = 0; r < 2; ++r)
-    for (unsigned int c = 0; c < 2; ++c)
-      T[r][c] = scale * (normal * n[r] * n[c] + tangential * ((r == c ? 1.0 : 0.0) - n[r] * n[c]));
-  return T;
-}
-
-/// cell(i, j) += N_i T[c_i][c_j] N_j JxW at face quadrature point q.
-void add_face_coupling(const FEFaceValues<2>& values, const unsigned int q, const Matrix2& T,
-                       FullMatrix<double>& cell)
-{
-  const FiniteElement<2>& fe = values.get_fe();
-  for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
-  {
-    const unsigned int ci = fe.system_to_component_index(i).first;
-    for (unsigned int j = 0; j < fe.n_dofs_per_cell(); ++j)
-    {
-      const unsigned int cj = fe.system_to_component_index(j).first;
-      cell(i, j) += values.shape_value(i, q) * T[ci][cj] * values.shape_value(j, q) * values.JxW(q);
-    }
-  }
-}
-} // namespace
 
 void ElasticWaveModel::Impl::assemble_matrices()
 {
@@ -82,30 +50,7 @@ void ElasticWaveModel::Impl::assemble_domain()
   for (const auto& cell : dof_handler.active_cell_iterators())
   {
     fe_values.reinit(cell);
-    cell_mass = 0.0;
-    cell_stiffness = 0.0;
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      const unsigned int ci = fe.system_to_component_index(i).first;
-      for (unsigned int j = 0; j < n; ++j)
-      {
-        const unsigned int cj = fe.system_to_component_index(j).first;
-        for (const unsigned int q : fe_values.quadrature_point_indices())
-        {
-          const Tensor<1, 2> gi = fe_values.shape_grad(i, q);
-          const Tensor<1, 2> gj = fe_values.shape_grad(j, q);
-          double k = lambda * gi[ci] * gj[cj] + mu * gi[cj] * gj[ci];
-          double m = 0.0;
-          if (ci == cj)
-          {
-            k += mu * (gi * gj);
-            m = rho * fe_values.shape_value(i, q) * fe_values.shape_value(j, q);
-          }
-          cell_stiffness(i, j) += k * fe_values.JxW(q);
-          cell_mass(i, j) += m * fe_values.JxW(q);
-        }
-      }
-    }
+    elastic_cell_matrices(fe_values, rho, lambda, mu, cell_mass, cell_stiffness);
     cell->get_dof_indices(dofs);
     mass.add(dofs, cell_mass);
     stiffness.add(dofs, cell_stiffness);

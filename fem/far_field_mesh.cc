@@ -1,6 +1,8 @@
 // Far-field meshes (issue 5): the rectangle, the rectangle with a graded hole, Gmsh files.
 #include "fem/far_field_mesh.h"
 
+#include "fem/far_field_kernels.h"
+
 #include "common/format.h"
 #include "common/input_error.h"
 
@@ -143,11 +145,6 @@ std::vector<double> subdivide(const double a, const double b, const unsigned int
     x[i] = a + (b - a) * i / n;
   x[n] = b;
   return x;
-}
-
-unsigned int intervals(const double length, const double size)
-{
-  return static_cast<unsigned int>(std::max(1.0, std::ceil(length / size - 1e-9)));
 }
 
 void check_hole(const FarFieldDescription& d)
@@ -328,8 +325,8 @@ HoleRing make_ring(const FarFieldDescription& d, const double far_size,
   HoleRing ring;
   set_ring_box(d, polygon, c, ring);
   const unsigned int n_min = d.hole.shape == HoleShape::circle ? 4 : 2;
-  ring.nx = std::max(n_min, intervals(ring.x1 - ring.x0, far_size));
-  ring.ny = std::max(n_min, intervals(ring.y1 - ring.y0, far_size));
+  ring.nx = std::max(n_min, element_intervals(ring.x1 - ring.x0, far_size));
+  ring.ny = std::max(n_min, element_intervals(ring.y1 - ring.y0, far_size));
   for (unsigned int attempt = 0;; ++attempt)
   {
     set_ring_nodes(d.hole, polygon, c, ring);
@@ -405,14 +402,14 @@ std::vector<double> grid_axis(const double lo, const double b0, const std::vecto
   std::vector<double> x;
   if (b0 > lo)
   {
-    const std::vector<double> band = subdivide(lo, b0, intervals(b0 - lo, far_size));
+    const std::vector<double> band = subdivide(lo, b0, element_intervals(b0 - lo, far_size));
     x.insert(x.end(), band.begin(), band.end() - 1);
   }
   offset = static_cast<unsigned int>(x.size());
   x.insert(x.end(), inside.begin(), inside.end());
   if (hi > b1)
   {
-    const std::vector<double> band = subdivide(b1, hi, intervals(hi - b1, far_size));
+    const std::vector<double> band = subdivide(b1, hi, element_intervals(hi - b1, far_size));
     x.insert(x.end(), band.begin() + 1, band.end());
   }
   return x;
@@ -604,8 +601,8 @@ void make_far_field_mesh(const FarFieldDescription& d, const double far_size,
     const double lx = d.upper[0] - d.lower[0];
     const double ly = d.upper[1] - d.lower[1];
     GridGenerator::subdivided_hyper_rectangle(
-        mesh, {intervals(lx, far_size), intervals(ly, far_size)}, Point<2>(d.lower[0], d.lower[1]),
-        Point<2>(d.upper[0], d.upper[1]), true);
+        mesh, {element_intervals(lx, far_size), element_intervals(ly, far_size)},
+        Point<2>(d.lower[0], d.lower[1]), Point<2>(d.upper[0], d.upper[1]), true);
     return;
   }
   check_hole(d);

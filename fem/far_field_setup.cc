@@ -1,6 +1,8 @@
 // ElasticWaveModel setup: input checks, the mesh and its element sizes, constraints, monitors.
 #include "fem/elastic_wave_model_impl.h"
 
+#include "fem/far_field_kernels.h"
+
 #include <deal.II/base/quadrature.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/component_mask.h>
@@ -97,14 +99,7 @@ void ElasticWaveModel::Impl::validate() const
 void ElasticWaveModel::Impl::make_mesh()
 {
   const auto& d = description;
-  double target = d.element_size;
-  if (target == 0.0 && d.mesh_file.file.empty())
-  {
-    const double f =
-        d.max_frequency > 0.0 ? d.max_frequency : d.incident.velocity.characteristic_frequency();
-    // points_per_wavelength counts nodes; an FE_Q(p) element spans p node intervals.
-    target = vs / (f * d.points_per_wavelength) * d.degree;
-  }
+  const double target = d.mesh_file.file.empty() ? target_element_size(d, vs) : d.element_size;
   make_far_field_mesh(d, target, mesh);
   h = 0.0;
   h_min = std::numeric_limits<double>::infinity();
@@ -122,21 +117,7 @@ void ElasticWaveModel::Impl::make_constraints()
 {
   constraints.clear();
   DoFTools::make_hanging_node_constraints(dof_handler, constraints);
-  // Roller: fix the component the incident wave does not move (see BoundaryKind::roller).
-  const unsigned int roller_component = description.incident.type == IncidentWave::Type::sv ? 1 : 0;
-  std::vector<bool> only(2, false);
-  only[roller_component] = true;
-  const ComponentMask roller_mask(only);
-  for (const auto& bc : description.boundaries)
-  {
-    if (bc.kind == BoundaryKind::fixed)
-      VectorTools::interpolate_boundary_values(dof_handler, boundary_id_of(bc.part),
-                                               Functions::ZeroFunction<2>(2), constraints);
-    else if (bc.kind == BoundaryKind::roller)
-      VectorTools::interpolate_boundary_values(dof_handler, boundary_id_of(bc.part),
-                                               Functions::ZeroFunction<2>(2), constraints,
-                                               roller_mask);
-  }
+  add_support_constraints(dof_handler, description, constraints);
   constraints.close();
 }
 

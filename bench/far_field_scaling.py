@@ -1,0 +1,116 @@
+#!/usr/bin/python3
+"""The distributed far field's cost against its size and its ranks (issue 22): runs
+bench/far_field_scaling.cc under `mpirun -np 1` and `-np 2` from 10k to 2M DOFs with CG preconditioned by
+its diagonal and by ML AMG (and MUMPS up to 500k), and writes docs/performance/far_field_scaling/{results.json, table.md,
+scaling.png}: median ms per step, set-up, CG iterations, peak memory per rank, and the strong
+scaling (speed-up from 1 to 2 ranks) at each size.
+
+usage: /usr/bin/python3 bench/far_field_scaling.py [--build build] [--quick]
+Not a test: timings depend on the machine and on its load (2 shared cores here).
+"""
+import argparse
+import json
+import os
+import platform
+import subprocess
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+OUT = os.path.join(TOP, "docs", "performance", "far_field_scaling")
+# (label, cells per side, timed steps, solvers): Q2 on N x N cells has 2 (2N + 1)^2 DOFs.
+SIZES = [
+    ("10k", 36, 100, ["cg_jacobi", "cg_amg", "mumps"]),
+    ("100k", 112, 100, ["cg_jacobi", "cg_amg", "mumps"]),
+    ("500k", 250, 100, ["cg_jacobi", "cg_amg", "mumps"]),
+    ("1M", 352, 100, ["cg_jacobi"]),
+    ("1M", 352, 30, ["cg_amg"]),
+    ("2M", 500, 30, ["cg_jacobi"]),
+]
+QUICK = [("10k", 36, 20, ["cg_jacobi", "cg_amg", "mumps"]),
+         ("100k", 112, 20, ["cg_jacobi", "cg_amg"])]
+ENVIRONMENT = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def run(driver, ranks, cells, steps, solver):
+    cmd = ["mpirun", "-np", str(ranks), "--oversubscribe", "--bind-to", "none", driver,
+           "--cells", str(cells), "--steps", str(steps), "--solver", solver]
+    out = subprocess.run(cmd, capture_output=True, text=True, timeout=3600, env=ENVIRONMENT)
+    if out.returncode != 0:
+        raise SystemExit(f"failed: {' '.join(cmd)}\n{out.stdout}\n{out.stderr}")
+    result = json.loads(out.stdout.strip().splitlines()[-1])
+    result["load_average"] = os.getloadavg()[0]
+    return result
+
+
+def table(rows):
+    lines = ["| size | DOFs | solver | ranks | ms/step (median) | solve ms | CG its/step | "
+             "set-up s | memory/rank MB | speed-up 1 to 2 |", "|" + "---|" * 10]
+    by_key = {(r["label"], r["solver"], r["ranks"]): r for r in rows}
+    for r in rows:
+        one = by_key.get((r["label"], r["solver"], 1))
+        speedup = ("%.2f" % (one["median_step_ms"] / r["median_step_ms"])
+                   if one and r["ranks"] == 2 else "")
+        lines.append("| %s | %d | %s | %d | %.1f | %.1f | %.1f | %.1f | %.0f | %s |" % (
+            r["label"], r["dofs"], r["solver"], r["ranks"], r["median_step_ms"],
+            r["solve_ms_per_step"], r["iterations_per_step"], r["setup_s"] + r["warm_up_s"],
+            r["peak_memory_mb_per_rank"], speedup))
+    return "\n".join(lines) + "\n"
+
+
+def chart(rows, png):
+    fig, (cost, memory) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for solver, marker in (("cg_jacobi", "^"), ("cg_amg", "o"), ("mumps", "s")):
+        for ranks, color in ((1, "C0"), (2, "C3")):
+            pts = [r for r in rows if r["solver"] == solver and r["ranks"] == ranks]
+            if not pts:
+                continue
+            label = "%s, %d rank%s" % (solver, ranks, "s" if ranks > 1 else "")
+            cost.loglog([p["dofs"] for p in pts], [p["median_step_ms"] for p in pts],
+                        marker + "-", color=color, label=label, mfc="none" if solver == "mumps"
+                        else color)
+            memory.loglog([p["dofs"] for p in pts], [p["peak_memory_mb_per_rank"] for p in pts],
+                          marker + "-", color=color, label=label,
+                          mfc="none" if solver == "mumps" else color)
+    dofs = [1e4, 2e6]
+    cost.loglog(dofs, [1e3 * d / 2e7 for d in dofs], "k:", lw=1,
+                label="2e7 DOF-updates/s (step-48, explicit)")
+    cost.set_xlabel("far-field DOFs")
+    cost.set_ylabel("ms per step (median, slowest rank)")
+    memory.set_xlabel("far-field DOFs")
+    memory.set_ylabel("peak memory per rank [MB]")
+    cost.legend(fontsize=8)
+    memory.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--build", default=os.path.join(TOP, "build"))
+    parser.add_argument("--quick", action="store_true")
+    args = parser.parse_args()
+    driver = os.path.join(args.build, "bench", "far_field_scaling")
+    rows = []
+    for label, cells, steps, solvers in QUICK if args.quick else SIZES:
+        for solver in solvers:
+            for ranks in (1, 2):
+                r = run(driver, ranks, cells, steps, solver)
+                r["label"] = label
+                rows.append(r)
+                print("%s %s np%d: %.1f ms/step, %.0f MB/rank" % (
+                    label, solver, ranks, r["median_step_ms"], r["peak_memory_mb_per_rank"]),
+                    flush=True)
+    os.makedirs(OUT, exist_ok=True)
+    json.dump({"machine": platform.node(), "cores": os.cpu_count(), "rows": rows},
+              open(os.path.join(OUT, "results.json"), "w"), indent=1)
+    open(os.path.join(OUT, "table.md"), "w").write(table(rows))
+    chart(rows, os.path.join(OUT, "scaling.png"))
+    print(table(rows))
+
+
+if __name__ == "__main__":
+    main()

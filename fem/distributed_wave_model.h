@@ -1,0 +1,90 @@
+// The far field distributed over MPI ranks (issue 22): the rectangle of ElasticWaveModel (no
+// hole, no static stage, no point springs yet) on deal.II's parallel::distributed::Triangulation
+// (p4est) with Trilinos (Epetra) matrices and vectors. Every rank owns a part of the cells and
+// of the degrees of freedom; the effective matrix is solved by CG preconditioned with ML's
+// algebraic multigrid or with its diagonal (warm-started from Newmark's predictor), or by
+// Amesos (MUMPS) factorized once per dt. The same physics as ElasticWaveModel: consistent mass,
+// plane elasticity, Lysmer dashpots, the Joyner-Chen input of a vertically incident wave, Newmark
+// (trapezoidal or DDA's), so that both give the same histories
+// (tests/fem/test_distributed_wave_model.cc).
+#pragma once
+
+#include "common/enum_names.h"
+#include "fem/elastic_wave_model.h"
+#include "fem/far_field_description.h"
+
+#include <mpi.h>
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <string>
+
+namespace ddafem::fem
+{
+/// Solver of the distributed effective matrix K + gamma/(beta dt) C + 1/(beta dt^2) M.
+enum class DistributedSolver
+{
+  cg_amg,    ///< CG preconditioned by ML AMG (set up once per dt), warm-started
+  cg_jacobi, ///< CG preconditioned by the diagonal, warm-started: for a mass-dominated matrix
+  mumps      ///< Amesos_Mumps: distributed LU factorized once per dt, two substitutions a step
+};
+
+constexpr std::array<EnumName<DistributedSolver>, 3> enum_names(DistributedSolver)
+{
+  return {{{DistributedSolver::cg_amg, "cg_amg"},
+           {DistributedSolver::cg_jacobi, "cg_jacobi"},
+           {DistributedSolver::mumps, "mumps"}}};
+}
+
+/// Wall time and sizes of one rank.
+struct DistributedTimings
+{
+  double setup = 0.0;     ///< mesh, dofs, matrices [s]
+  double factorize = 0.0; ///< effective matrix, AMG set-up or LU [s]
+  double assemble = 0.0;  ///< right-hand sides [s]
+  double solve = 0.0;     ///< [s]
+  double update = 0.0;    ///< velocities, accelerations, work [s]
+  std::size_t n_steps = 0;
+  std::size_t linear_iterations = 0; ///< CG iterations summed over steps (0 for MUMPS)
+};
+
+/// The far field of a FarFieldDescription distributed over the ranks of `comm`. Every call is
+/// collective (all ranks call it, in the same order) unless it says otherwise.
+class DistributedWaveModel
+{
+public:
+  /// Builds the mesh, distributes it and assembles the constant matrices. Throws InputError
+  /// for a description it cannot honour: a hole, a mesh file, a static stage, a free-field
+  /// column, Rayleigh damping or boundary springs (not distributed yet), and the checks of
+  /// ElasticWaveModel.
+  DistributedWaveModel(const FarFieldDescription& description, MPI_Comm comm,
+                       DistributedSolver solver);
+  ~DistributedWaveModel();
+  DistributedWaveModel(const DistributedWaveModel&) = delete;
+  DistributedWaveModel& operator=(const DistributedWaveModel&) = delete;
+
+  /// Advances by dt [s] from rest at t = 0 (a dt other than the last one sets the solver up
+  /// again).
+  StepStatus advance(double dt);
+  double time() const;                       ///< not collective
+  std::size_t n_dofs() const;                ///< of the whole model; not collective
+  std::size_t n_locally_owned_dofs() const;  ///< of this rank; not collective
+  std::size_t n_cells() const;               ///< active cells of the whole model; not collective
+  double element_size() const;               ///< longest element edge [m]; not collective
+  const DistributedTimings& timings() const; ///< this rank's; not collective
+  /// The sample at a monitor, from the rank that owns its cell, on every rank.
+  MonitorSample sample_monitor(std::size_t monitor) const;
+  /// The energy budget (EnergyBalance; work_of_springs and work_of_rayleigh are 0).
+  EnergyBalance energy() const;
+  /// Writes DIRECTORY/BASENAME_NNNNN.pvtu with one DIRECTORY/BASENAME_NNNNN.K.vtu piece per
+  /// rank K (deal.II's write_vtu_with_pvtu_record: displacement, velocity, subdomain) and
+  /// rewrites DIRECTORY/BASENAME.pvd (rank 0); returns the PVTU's file name.
+  std::string write_snapshot(const std::string& directory, const std::string& basename);
+
+private:
+  class Impl;
+  std::unique_ptr<Impl> impl;
+};
+
+} // namespace ddafem::fem

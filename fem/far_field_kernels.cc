@@ -1,0 +1,115 @@
+#include "fem/far_field_kernels.h"
+
+#include "common/format.h"
+#include "common/input_error.h"
+#include "fem/far_field_mesh.h"
+
+#include <deal.II/base/function.h>
+#include <deal.II/fe/component_mask.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace ddafem::fem
+{
+using namespace dealii;
+
+double target_element_size(const FarFieldDescription& d, const double vs)
+{
+  if (d.element_size > 0.0)
+    return d.element_size;
+  const double f =
+      d.max_frequency > 0.0 ? d.max_frequency : d.incident.velocity.characteristic_frequency();
+  if (!(f > 0.0 && d.points_per_wavelength > 0.0))
+    throw InputError("far field: element_size = 0 needs max_frequency > 0 (or an incident wave "
+                     "with a frequency) and points_per_wavelength > 0 to choose the element "
+                     "size");
+  // points_per_wavelength counts nodes; an FE_Q(p) element spans p node intervals.
+  return vs / (f * d.points_per_wavelength) * d.degree;
+}
+
+unsigned int element_intervals(const double length, const double size)
+{
+  return static_cast<unsigned int>(std::max(1.0, std::ceil(length / size - 1e-9)));
+}
+
+void add_support_constraints(const DoFHandler<2>& dof_handler, const FarFieldDescription& d,
+                             AffineConstraints<double>& constraints)
+{
+  // Roller: fix the component the incident wave does not move (see BoundaryKind::roller).
+  const unsigned int roller_component = d.incident.type == IncidentWave::Type::sv ? 1 : 0;
+  std::vector<bool> only(2, false);
+  only[roller_component] = true;
+  const ComponentMask roller_mask(only);
+  for (const auto& bc : d.boundaries)
+  {
+    if (bc.kind == BoundaryKind::fixed)
+      VectorTools::interpolate_boundary_values(dof_handler, boundary_id_of(bc.part),
+                                               Functions::ZeroFunction<2>(2), constraints);
+    else if (bc.kind == BoundaryKind::roller)
+      VectorTools::interpolate_boundary_values(dof_handler, boundary_id_of(bc.part),
+                                               Functions::ZeroFunction<2>(2), constraints,
+                                               roller_mask);
+  }
+}
+
+void elastic_cell_matrices(const FEValues<2>& values, const double rho, const double lambda,
+                           const double mu, FullMatrix<double>& cell_mass,
+                           FullMatrix<double>& cell_stiffness)
+{
+  const FiniteElement<2>& fe = values.get_fe();
+  const unsigned int n = fe.n_dofs_per_cell();
+  cell_mass = 0.0;
+  cell_stiffness = 0.0;
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    const unsigned int ci = fe.system_to_component_index(i).first;
+    for (unsigned int j = 0; j < n; ++j)
+    {
+      const unsigned int cj = fe.system_to_component_index(j).first;
+      for (const unsigned int q : values.quadrature_point_indices())
+      {
+        const Tensor<1, 2> gi = values.shape_grad(i, q);
+        const Tensor<1, 2> gj = values.shape_grad(j, q);
+        double k = lambda * gi[ci] * gj[cj] + mu * gi[cj] * gj[ci];
+        double m = 0.0;
+        if (ci == cj)
+        {
+          k += mu * (gi * gj);
+          m = rho * values.shape_value(i, q) * values.shape_value(j, q);
+        }
+        cell_stiffness(i, j) += k * values.JxW(q);
+        cell_mass(i, j) += m * values.JxW(q);
+      }
+    }
+  }
+}
+
+Matrix2 normal_tangential(const double scale, const double normal, const double tangential,
+                          const Tensor<1, 2>& n)
+{
+  Matrix2 t;
+  for (unsigned int r = 0; r < 2; ++r)
+    for (unsigned int c = 0; c < 2; ++c)
+      t[r][c] = scale * (normal * n[r] * n[c] + tangential * ((r == c ? 1.0 : 0.0) - n[r] * n[c]));
+  return t;
+}
+
+void add_face_coupling(const FEFaceValues<2>& values, const unsigned int q, const Matrix2& t,
+                       FullMatrix<double>& cell)
+{
+  const FiniteElement<2>& fe = values.get_fe();
+  for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+  {
+    const unsigned int ci = fe.system_to_component_index(i).first;
+    for (unsigned int j = 0; j < fe.n_dofs_per_cell(); ++j)
+    {
+      const unsigned int cj = fe.system_to_component_index(j).first;
+      cell(i, j) += values.shape_value(i, q) * t[ci][cj] * values.shape_value(j, q) * values.JxW(q);
+    }
+  }
+}
+
+} // namespace ddafem::fem
