@@ -12,6 +12,7 @@ packages=(
   libcli11-dev            # the command line (subcommands, --help, repeatable --set)
   libhdf5-dev             # HDF5 (the OpenMPI build, the one deal.II links) for histories.h5
   mpi-default-dev         # mpi.h, which the OpenMPI build's hdf5.h includes
+  mpi-default-bin         # mpirun: the distributed far field (tests fem.distributed_np*, bench)
   libsuitesparse-dev      # KLU (blocks and far field), CHOLMOD (far field)
   libtbb-dev              # threads (common/parallel)
   libboost-serialization-dev  # checkpoints (common/checkpoint_archive.h; deal.II's needs it too)
