@@ -18,6 +18,10 @@ public:
   {
     return make_far_field_simulation(scene);
   }
+  std::unique_ptr<Simulation> distributed_far_field_simulation(const Scene& scene) const override
+  {
+    return make_distributed_far_field_simulation(scene);
+  }
   std::string check_far_field(const Scene& scene) const override
   {
     return ddafem::check_far_field(scene);

@@ -61,6 +61,10 @@ public:
   virtual std::unique_ptr<TiedFarField> tie(const Scene& scene, dda::System& system) const = 0;
   /// A run of a far field alone.
   virtual std::unique_ptr<Simulation> far_field_simulation(const Scene& scene) const = 0;
+  /// A run of a far field alone distributed over the MPI ranks the process was started on by
+  /// mpirun (issue 22): starts MPI. Every rank runs it; rank 0 writes the run's files.
+  virtual std::unique_ptr<Simulation>
+  distributed_far_field_simulation(const Scene& scene) const = 0;
   /// `check` of a far field alone.
   virtual std::string check_far_field(const Scene& scene) const = 0;
 };

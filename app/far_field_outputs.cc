@@ -14,9 +14,6 @@
 
 namespace ddafem
 {
-namespace
-{
-/// The far field's channels in a run of it alone: its monitors and energies.
 std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& d)
 {
   std::vector<HistoryChannel> channels;
@@ -32,7 +29,6 @@ std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& d
   channels.push_back({"energy/dissipated", 1, "J", "initial + work - stored: the integrator's"});
   return channels;
 }
-} // namespace
 
 void append_far_field_monitors(std::vector<double>& row, const fem::ElasticWaveModel& far_field,
                                std::size_t n_monitors)

@@ -23,6 +23,10 @@ namespace ddafem
 std::unique_ptr<TiedFarField> make_tied_far_field(const Scene& scene, dda::System& system);
 /// A far field alone behind the driver's interface (app/far_field_simulation.cc).
 std::unique_ptr<Simulation> make_far_field_simulation(const Scene& scene);
+/// The same distributed over the MPI ranks (app/distributed_far_field.cc).
+std::unique_ptr<Simulation> make_distributed_far_field_simulation(const Scene& scene);
+/// The channels of a run of a far field alone: its monitors and energies.
+std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& description);
 /// `check` of a far-field-only scene: mesh, wave speeds, elements per wavelength, boundaries
 /// (app/far_field_outputs.cc).
 std::string check_far_field(const Scene& scene);

@@ -11,14 +11,17 @@
 // budget (--max-wall-time, --max-memory).
 #include "app/checkpoint.h"
 #include "app/run.h"
+#include "app/run_support.h"
 #include "app/scene.h"
 #include "app/sweep.h"
 #include "common/input_error.h"
 
 #include <CLI/CLI.hpp>
 
+#include <fstream>
 #include <iostream>
 #include <malloc.h>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -95,7 +98,12 @@ int check_or_run(const CommandLine& cl, bool run)
       std::cout << ddafem::check_scene(scene);
       return 0;
     }
-    return ddafem::run_scene(scene, options, std::cout);
+    // Under mpirun the other ranks run quietly beside rank 0 (app/distributed_far_field.cc).
+    const std::optional<unsigned int> rank = ddafem::run_support::mpi_rank_from_environment();
+    std::ofstream nowhere; // never opened: what the other ranks would print is dropped
+    if (rank && *rank > 0)
+      options.quiet = true;
+    return ddafem::run_scene(scene, options, rank && *rank > 0 ? nowhere : std::cout);
   }
   catch (const ddafem::InputError& e)
   {

@@ -5,6 +5,7 @@
 #include "common/vtk_collection.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <regex>
@@ -21,6 +22,14 @@ double peak_memory_mb()
     if (line.rfind("VmHWM:", 0) == 0)
       return std::stod(line.substr(6)) / 1024.0; // kB -> MB
   return 0.0;
+}
+
+std::optional<unsigned int> mpi_rank_from_environment()
+{
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (const char* value = std::getenv(name); value != nullptr && *value != '\0')
+      return static_cast<unsigned int>(std::strtoul(value, nullptr, 10));
+  return std::nullopt;
 }
 
 double resident_memory_bytes()
@@ -60,7 +69,8 @@ std::size_t clear_earlier_results(const std::filesystem::path& dir)
   static const std::regex ours(
       R"((summary\.json|histories\.h5|checkpoint\.bin|expanded_scene\.yaml|report\.md|)"
       R"(report_[a-z_]+\.png|)"
-      R"((model|blocks|contacts|ties|far_field)\.pvd|(blocks|contacts|ties|far_field)_[0-9]+\.vtu)"
+      R"((model|blocks|contacts|ties|far_field)\.pvd|(blocks|contacts|ties|far_field)_[0-9]+\.vtu|)"
+      R"(far_field_[0-9]+\.pvtu|far_field_[0-9]+\.[0-9]+\.vtu)"
       R"()(\.tmp)?)");
   std::size_t n_removed = 0;
   std::error_code ec;

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -20,6 +21,10 @@ double peak_memory_mb();
 /// Resident memory of this process now [bytes]: VmRSS from /proc/self/status; 0 where /proc is
 /// not available.
 double resident_memory_bytes();
+
+/// This process's rank when mpirun started it (Open MPI's OMPI_COMM_WORLD_RANK, or PMIX_RANK,
+/// PMI_RANK); none otherwise: ddafem touches MPI only when started by mpirun.
+std::optional<unsigned int> mpi_rank_from_environment();
 
 /// Creates the output directory (and parents); InputError naming it on failure.
 void create_output_directory(const std::filesystem::path& directory);
