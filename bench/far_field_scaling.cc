@@ -100,6 +100,8 @@ int run(const Options& o)
   const double memory_max = dealii::Utilities::MPI::max(memory, comm);
   const double memory_sum = dealii::Utilities::MPI::sum(memory, comm);
   const double solve = dealii::Utilities::MPI::max(t.solve, comm);
+  const double solve_fastest = dealii::Utilities::MPI::min(t.solve, comm); // imbalance
+  const std::size_t owned_max = dealii::Utilities::MPI::max(model.n_locally_owned_dofs(), comm);
   const double assemble = dealii::Utilities::MPI::max(t.assemble, comm);
   if (dealii::Utilities::MPI::this_mpi_process(comm) == 0)
     std::cout << "{\"ranks\": " << dealii::Utilities::MPI::n_mpi_processes(comm)
@@ -109,6 +111,9 @@ int run(const Options& o)
               << ", \"steps\": " << o.steps
               << ", \"median_step_ms\": " << 1e3 * step_s[step_s.size() / 2]
               << ", \"solve_ms_per_step\": " << 1e3 * solve / t.n_steps
+              << ", \"solve_ms_per_step_fastest_rank\": " << 1e3 * solve_fastest / t.n_steps
+              << ", \"owned_dofs_per_rank_max\": "
+              << owned_max
               << ", \"assemble_ms_per_step\": " << 1e3 * assemble / t.n_steps
               << ", \"iterations_per_step\": "
               << static_cast<double>(t.linear_iterations) / t.n_steps
