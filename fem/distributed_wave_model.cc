@@ -92,7 +92,9 @@ DistributedWaveModel::Impl::Impl(const FarFieldDescription& d, MPI_Comm comm_,
   make_constraints();
   assemble();
   locate_monitors();
-  for (TrilinosWrappers::MPI::Vector* x : {&u, &v, &a, &a_previous, &force})
+  for (TrilinosWrappers::MPI::Vector* x :
+       {&u, &v, &a, &a_previous, &force, &scratch.force_new, &scratch.rhs, &scratch.combination,
+        &scratch.product, &scratch.u_new, &scratch.a_new, &scratch.v_new})
     x->reinit(owned, comm);
   timings.setup += seconds_since(start);
 }

@@ -75,6 +75,11 @@ public:
   double solver_dt = 0.0; ///< the dt the solver is set up for [s]; 0: none
 
   TrilinosWrappers::MPI::Vector u, v, a, a_previous, force; ///< owned entries
+  /// A step's work vectors, made once: a vector made in a step would make its Epetra map too.
+  struct Scratch
+  {
+    TrilinosWrappers::MPI::Vector force_new, rhs, combination, product, u_new, a_new, v_new;
+  } scratch;
   double t = 0.0;
   bool initial_acceleration_done = false;
   EnergyBalance energies;

@@ -78,9 +78,8 @@ StepStatus DistributedWaveModel::Impl::step(const double dt)
   const double c_v = gamma / beta - 1.0, c_a = dt * (gamma / (2.0 * beta) - 1.0);
   auto start = Clock::now();
   // rhs = f(t + dt) + M (m_u u + m_v v + m_a a) + C (c_u u + c_v v + c_a a)
-  TrilinosWrappers::MPI::Vector force_new(input_shape), rhs(owned, comm), combination(owned, comm),
-      product(owned, comm);
-  force_new *= input_scale * description.incident.velocity.value(t + dt);
+  auto& [force_new, rhs, combination, product, u_new, a_new, v_new] = scratch;
+  force_new.equ(input_scale * description.incident.velocity.value(t + dt), input_shape);
   rhs = force_new;
   combination.equ(newmark.mass_u, u);
   combination.add(newmark.mass_v, v, m_a, a);
@@ -95,9 +94,9 @@ StepStatus DistributedWaveModel::Impl::step(const double dt)
 
   start = Clock::now();
   // The guess: Newmark's predictor with the acceleration extrapolated linearly.
-  if (a_previous.size() != a.size() || timings.n_steps == 0)
+  if (timings.n_steps == 0)
     a_previous = a;
-  TrilinosWrappers::MPI::Vector u_new(u);
+  u_new = u;
   u_new.add(dt, v, dt * dt * (0.5 + beta), a);
   u_new.add(-dt * dt * beta, a_previous);
   constraints.set_zero(u_new);
@@ -105,16 +104,16 @@ StepStatus DistributedWaveModel::Impl::step(const double dt)
   timings.solve += seconds_since(start);
 
   start = Clock::now();
-  TrilinosWrappers::MPI::Vector a_new(owned, comm), v_new(v);
   a_new.equ(newmark.mass_u, u_new);
   a_new.add(-newmark.mass_u, u, -newmark.mass_v, v);
   a_new.add(-m_a, a);
+  v_new = v;
   v_new.add(dt * (1.0 - gamma), a, dt * gamma, a_new);
   add_work_of_step(u_new, v_new, force_new);
-  a_previous = a;
-  u = u_new;
-  v = v_new;
-  a = a_new;
+  a_previous.swap(a);
+  a.swap(a_new);
+  u.swap(u_new);
+  v.swap(v_new);
   force = force_new;
   t += dt;
   ++timings.n_steps;
@@ -130,8 +129,12 @@ void DistributedWaveModel::Impl::add_work_of_step(const TrilinosWrappers::MPI::V
                                                   const TrilinosWrappers::MPI::Vector& force_new)
 {
   // Mid-step forces: an exact balance for the trapezoidal rule, whose du = dt (v0 + v1) / 2.
-  TrilinosWrappers::MPI::Vector du(u_new), mid(v), product(owned, comm);
+  TrilinosWrappers::MPI::Vector& du = scratch.rhs; // free once the step is solved
+  TrilinosWrappers::MPI::Vector& mid = scratch.combination;
+  TrilinosWrappers::MPI::Vector& product = scratch.product;
+  du = u_new;
   du -= u;
+  mid = v;
   mid += v_new;
   mid *= 0.5;
   damping.vmult(product, mid);
