@@ -112,8 +112,7 @@ int run(const Options& o)
               << ", \"median_step_ms\": " << 1e3 * step_s[step_s.size() / 2]
               << ", \"solve_ms_per_step\": " << 1e3 * solve / t.n_steps
               << ", \"solve_ms_per_step_fastest_rank\": " << 1e3 * solve_fastest / t.n_steps
-              << ", \"owned_dofs_per_rank_max\": "
-              << owned_max
+              << ", \"owned_dofs_per_rank_max\": " << owned_max
               << ", \"assemble_ms_per_step\": " << 1e3 * assemble / t.n_steps
               << ", \"iterations_per_step\": "
               << static_cast<double>(t.linear_iterations) / t.n_steps
