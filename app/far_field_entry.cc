@@ -2,6 +2,7 @@
 // ddafem_far_field_module(), which the core looks up after dlopen; the test programs link these
 // objects and reach it directly.
 #include "app/far_field_parts.h"
+#include "common/input_error.h"
 
 namespace ddafem
 {
@@ -20,7 +21,12 @@ public:
   }
   std::unique_ptr<Simulation> distributed_far_field_simulation(const Scene& scene) const override
   {
+#ifdef DDAFEM_WITHOUT_DISTRIBUTED_FAR_FIELD
+    throw InputError(scene.file + ": this build (the sanitizer build) has no distributed far "
+                                  "field: run it without mpirun, or with the release build");
+#else
     return make_distributed_far_field_simulation(scene);
+#endif
   }
   std::string check_far_field(const Scene& scene) const override
   {
