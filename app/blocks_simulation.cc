@@ -56,7 +56,10 @@ public:
   bool run_stage(std::size_t k, const std::function<bool()>& report) override;
   void close_outputs() override;
   void flush_outputs() override { outputs->flush(); }
-  bool can_checkpoint() const override { return stage_run || static_run; }
+  bool can_checkpoint() const override
+  {
+    return (stage_run || static_run) && (!tied || tied->can_checkpoint());
+  }
   void save_checkpoint(CheckpointOut& archive) const override;
   std::size_t resume(CheckpointIn& archive, const std::filesystem::path& dir) override;
   std::optional<std::size_t> fallen_keyblock() const override { return keyblocks.first_fallen(); }
@@ -151,10 +154,16 @@ bool BlocksSimulation::run_stage(std::size_t k, const std::function<bool()>& rep
 {
   current_stage = k;
   const dda::Stage& stage = plan[k];
+  // Across MPI ranks a budget one rank reaches stops every rank after the same step.
+  const std::function<bool()> agreed = [&]
+  {
+    const bool go = report();
+    return tied ? tied->all_go_on(go) : go;
+  };
   if (stage.mode == dda::StageMode::static_equilibrium)
-    run_static_stage(stage, report);
+    run_static_stage(stage, agreed);
   else
-    run_dynamic_stage(stage, report);
+    run_dynamic_stage(stage, agreed);
   return !stages.failed() && !stopped;
 }
 

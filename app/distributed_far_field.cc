@@ -4,6 +4,7 @@
 // in the output directory (histories.h5, summary.json, far_field.pvd and the .pvtu records);
 // every rank writes its .vtu piece of each snapshot there, and the driver's files of rank K > 0
 // go to DIR/ranks/rank_K (app/run.cc).
+#include "app/distributed_support.h"
 #include "app/far_field_parts.h"
 #include "app/run_summary.h"
 #include "app/run_support.h"
@@ -23,27 +24,11 @@ namespace ddafem
 {
 namespace
 {
-/// MPI_COMM_WORLD, with MPI (and p4est) started on first use and finished at exit.
-MPI_Comm world()
-{
-  static int argc = 0;
-  static char** argv = nullptr;
-  static dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  return MPI_COMM_WORLD;
-}
-
-/// The scene's far_field.solver on the ranks: direct as MUMPS, cg as CG with Jacobi.
-fem::DistributedSolver distributed_solver(const fem::FarFieldDescription& d)
-{
-  return d.solver == fem::LinearSolver::direct ? fem::DistributedSolver::mumps
-                                               : fem::DistributedSolver::cg_jacobi;
-}
-
 class DistributedFarFieldSimulation : public Simulation
 {
 public:
   explicit DistributedFarFieldSimulation(const Scene& scene_)
-      : scene(scene_), description(*scene.far_field), comm(world()),
+      : scene(scene_), description(*scene.far_field), comm(mpi_world()),
         rank(dealii::Utilities::MPI::this_mpi_process(comm)),
         model(description, comm, distributed_solver(description))
   {
@@ -120,12 +105,7 @@ void DistributedFarFieldSimulation::write_state(const bool snapshot)
   if (last_row_time != model.time())
   {
     std::vector<double> row;
-    for (std::size_t k = 0; k < description.monitors.size(); ++k)
-    {
-      const fem::MonitorSample s = model.sample_monitor(k);
-      row.insert(row.end(), {s.displacement[0], s.displacement[1], s.velocity[0], s.velocity[1],
-                             s.stress[0], s.stress[1], s.stress[2]});
-    }
+    append_far_field_monitors(row, model, description.monitors.size());
     const fem::EnergyBalance e = model.energy();
     row.insert(row.end(), {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots,
                            e.work_of_rayleigh, e.dissipated});
@@ -196,6 +176,20 @@ nlohmann::json DistributedFarFieldSimulation::summary(const std::vector<std::str
   return s;
 }
 } // namespace
+
+MPI_Comm mpi_world()
+{
+  static int argc = 0;
+  static char** argv = nullptr;
+  static dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  return MPI_COMM_WORLD;
+}
+
+fem::DistributedSolver distributed_solver(const fem::FarFieldDescription& d)
+{
+  return d.solver == fem::LinearSolver::direct ? fem::DistributedSolver::mumps
+                                               : fem::DistributedSolver::cg_jacobi;
+}
 
 std::unique_ptr<Simulation> make_distributed_far_field_simulation(const Scene& scene)
 {

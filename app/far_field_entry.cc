@@ -2,6 +2,7 @@
 // ddafem_far_field_module(), which the core looks up after dlopen; the test programs link these
 // objects and reach it directly.
 #include "app/far_field_parts.h"
+#include "app/run_support.h"
 #include "common/input_error.h"
 
 namespace ddafem
@@ -13,7 +14,14 @@ class FarFieldModuleImpl : public FarFieldModule
 public:
   std::unique_ptr<TiedFarField> tie(const Scene& scene, dda::System& system) const override
   {
-    return make_tied_far_field(scene, system);
+    if (!run_support::mpi_rank_from_environment())
+      return make_tied_far_field(scene, system);
+#ifdef DDAFEM_WITHOUT_DISTRIBUTED_FAR_FIELD
+    throw InputError(scene.file + ": this build (the sanitizer build) has no distributed far "
+                                  "field: run it without mpirun, or with the release build");
+#else
+    return make_distributed_tied_far_field(scene, system);
+#endif
   }
   std::unique_ptr<Simulation> far_field_simulation(const Scene& scene) const override
   {

@@ -49,6 +49,12 @@ public:
   /// Checkpoints: the far field's and the ties' state between two steps.
   virtual void save(CheckpointOut& archive) const = 0;
   virtual void load(CheckpointIn& archive) = 0;
+  /// Whether save() can write the far field (not yet across MPI ranks).
+  virtual bool can_checkpoint() const { return true; }
+  /// Whether the run goes on after this step: on one process `go` itself; across MPI ranks
+  /// (collective) false if any rank's `go` is, so that a budget one rank reaches stops every
+  /// rank after the same step.
+  virtual bool all_go_on(bool go) const { return go; }
 };
 
 /// What the module offers.

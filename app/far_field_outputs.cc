@@ -30,17 +30,6 @@ std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& d
   return channels;
 }
 
-void append_far_field_monitors(std::vector<double>& row, const fem::ElasticWaveModel& far_field,
-                               std::size_t n_monitors)
-{
-  for (std::size_t k = 0; k < n_monitors; ++k)
-  {
-    const fem::MonitorSample s = far_field.sample_monitor(k);
-    row.insert(row.end(), {s.displacement[0], s.displacement[1], s.velocity[0], s.velocity[1],
-                           s.stress[0], s.stress[1], s.stress[2]});
-  }
-}
-
 nlohmann::json far_field_timings(const fem::Timings& t)
 {
   return {{"setup", t.setup}, {"assemble", t.assemble}, {"solve", t.solve}, {"update", t.update}};

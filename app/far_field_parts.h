@@ -6,6 +6,7 @@
 #include "app/far_field_module.h"
 #include "app/run_outputs.h"
 
+#include "coupling/far_field_ties.h"
 #include "fem/elastic_wave_model.h"
 
 #include <nlohmann/json.hpp>
@@ -25,6 +26,30 @@ std::unique_ptr<TiedFarField> make_tied_far_field(const Scene& scene, dda::Syste
 std::unique_ptr<Simulation> make_far_field_simulation(const Scene& scene);
 /// The same distributed over the MPI ranks (app/distributed_far_field.cc).
 std::unique_ptr<Simulation> make_distributed_far_field_simulation(const Scene& scene);
+/// The scene's far field distributed over the MPI ranks, tied to `system`, which every rank
+/// runs (app/distributed_tied_far_field.cc).
+std::unique_ptr<TiedFarField> make_distributed_tied_far_field(const Scene& scene,
+                                                              dda::System& system);
+
+// ---- the parts of a tied far field's outputs its serial and distributed kinds share
+// (app/tied_far_field.cc) ----
+
+/// Why the interface reflects more than 1 % of a normally incident wave; empty below.
+std::string tied_impedance_warning(const Scene& scene, const dda::System& system,
+                                   const coupling::FarFieldTies& ties);
+/// The far field's monitors and energies and the interface's channels.
+void add_tied_channels(std::vector<HistoryChannel>& channels,
+                       const fem::FarFieldDescription& description);
+/// Their values after the monitors' (append_far_field_monitors).
+void append_tied_energies(std::vector<double>& row, const fem::EnergyBalance& energy,
+                          const coupling::FarFieldTies& ties);
+/// The ties as contact points for VTU.
+std::vector<dda::ContactSnapshot> tie_contacts(const coupling::FarFieldTies& ties,
+                                               const dda::System& system);
+/// summary.json's "interface", and the far field's energies for its "far_field".
+nlohmann::json interface_summary(const coupling::FarFieldTies& ties,
+                                 const fem::EnergyBalance& energy);
+nlohmann::json far_field_energy_summary(const fem::EnergyBalance& energy);
 /// The channels of a run of a far field alone: its monitors and energies.
 std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& description);
 /// `check` of a far-field-only scene: mesh, wave speeds, elements per wavelength, boundaries
@@ -32,9 +57,19 @@ std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& d
 std::string check_far_field(const Scene& scene);
 
 /// Appends the displacement, velocity and stress of the far field's first `n_monitors` monitors
-/// to a history row (the channels of run_support::add_monitor_channels).
-void append_far_field_monitors(std::vector<double>& row, const fem::ElasticWaveModel& far_field,
-                               std::size_t n_monitors);
+/// to a history row (the channels of run_support::add_monitor_channels); Model is
+/// fem::ElasticWaveModel or fem::DistributedWaveModel (collective).
+template <class Model>
+void append_far_field_monitors(std::vector<double>& row, const Model& far_field,
+                               std::size_t n_monitors)
+{
+  for (std::size_t k = 0; k < n_monitors; ++k)
+  {
+    const fem::MonitorSample s = far_field.sample_monitor(k);
+    row.insert(row.end(), {s.displacement[0], s.displacement[1], s.velocity[0], s.velocity[1],
+                           s.stress[0], s.stress[1], s.stress[2]});
+  }
+}
 /// The far field's timings for summary.json [s]: setup, assemble, solve, update.
 nlohmann::json far_field_timings(const fem::Timings& timings);
 

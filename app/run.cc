@@ -144,15 +144,17 @@ void SceneRun::setup()
 {
   const std::optional<unsigned int> rank = run_support::mpi_rank_from_environment();
   const bool far_field_alone = scene.far_field && !scene.coupled();
-  if (rank && !far_field_alone)
-    throw InputError(scene.file + ": started by mpirun, but only a far field alone is distributed "
-                                  "yet (issue 22): expected a scene with a far field and no "
-                                  "blocks, or a run without mpirun");
+  if (rank && !scene.far_field)
+    throw InputError(scene.file + ": started by mpirun, but the scene has no far field: only a "
+                                  "far field is distributed (issue 22), the blocks run on every "
+                                  "rank; expected a scene with a far field, or a run without "
+                                  "mpirun");
   if (rank && resume_from)
     throw InputError("a run distributed with mpirun cannot be resumed yet: run it again");
-  simulation = rank              ? far_field_module().distributed_far_field_simulation(scene)
-               : far_field_alone ? far_field_module().far_field_simulation(scene)
-                                 : make_blocks_simulation(scene);
+  // Under mpirun a coupled scene's far field is distributed (FarFieldModule::tie).
+  simulation = !far_field_alone ? make_blocks_simulation(scene)
+               : rank           ? far_field_module().distributed_far_field_simulation(scene)
+                                : far_field_module().far_field_simulation(scene);
   warnings = simulation->collect_warnings(options.allow_unstable);
   dir = options.output_directory.empty() ? scene.output.directory : options.output_directory;
   if (rank && *rank > 0) // the driver's own files of the other ranks (app/distributed_far_field.cc)

@@ -36,17 +36,26 @@ public:
 
   std::string impedance_warning() const override
   {
-    const auto z = impedance();
-    return z && z->reflection > 0.01 ? impedance_message(*z) : std::string();
+    return tied_impedance_warning(scene, system, ties);
   }
-  void add_channels(std::vector<HistoryChannel>& channels) const override;
-  void append_row(std::vector<double>& row) const override;
+  void add_channels(std::vector<HistoryChannel>& channels) const override
+  {
+    add_tied_channels(channels, *scene.far_field);
+  }
+  void append_row(std::vector<double>& row) const override
+  {
+    append_far_field_monitors(row, far_field, scene.far_field->monitors.size());
+    append_tied_energies(row, far_field.energy(), ties);
+  }
   std::string write_snapshot(const std::filesystem::path& dir,
                              fem::VtuCompression compression) override
   {
     return far_field.write_snapshot(dir.string(), "far_field", compression);
   }
-  std::vector<dda::ContactSnapshot> tie_snapshot() const override;
+  std::vector<dda::ContactSnapshot> tie_snapshot() const override
+  {
+    return tie_contacts(ties, system);
+  }
   void add_to_summary(nlohmann::json& summary) const override;
   void describe(std::ostream& out) const override
   {
@@ -79,9 +88,20 @@ private:
   coupling::FarFieldTies ties; ///< after far_field: it holds a reference to it
 };
 
-void TiedFarFieldModel::add_channels(std::vector<HistoryChannel>& channels) const
+} // namespace
+
+std::string tied_impedance_warning(const Scene& scene, const dda::System& system,
+                                   const coupling::FarFieldTies& ties)
 {
-  for (const fem::Monitor& m : scene.far_field->monitors)
+  const auto z =
+      coupling::interface_impedance(scene.model, system, ties, scene.far_field->youngs_modulus);
+  return z && z->reflection > 0.01 ? impedance_message(*z) : std::string();
+}
+
+void add_tied_channels(std::vector<HistoryChannel>& channels,
+                       const fem::FarFieldDescription& description)
+{
+  for (const fem::Monitor& m : description.monitors)
     run_support::add_monitor_channels(channels, m.name, "of the far field at the point",
                                       "of the far field at the point");
   const std::string ff = "far_field/energy/";
@@ -102,10 +122,9 @@ void TiedFarFieldModel::add_channels(std::vector<HistoryChannel>& channels) cons
   channels.push_back({"interface/ties", 4, "", "number of ties (intact, locked, sliding, open)"});
 }
 
-void TiedFarFieldModel::append_row(std::vector<double>& row) const
+void append_tied_energies(std::vector<double>& row, const fem::EnergyBalance& e,
+                          const coupling::FarFieldTies& ties)
 {
-  append_far_field_monitors(row, far_field, scene.far_field->monitors.size());
-  const fem::EnergyBalance e = far_field.energy();
   row.insert(row.end(), {e.kinetic, e.strain, e.work_of_input, e.work_of_dashpots,
                          e.work_of_rayleigh, e.work_of_springs, e.dissipated, ties.tie_energy()});
   const coupling::TieCounts n = ties.counts();
@@ -113,7 +132,8 @@ void TiedFarFieldModel::append_row(std::vector<double>& row) const
                          static_cast<double>(n.slide), static_cast<double>(n.open)});
 }
 
-std::vector<dda::ContactSnapshot> TiedFarFieldModel::tie_snapshot() const
+std::vector<dda::ContactSnapshot> tie_contacts(const coupling::FarFieldTies& ties,
+                                               const dda::System& system)
 {
   std::vector<dda::ContactSnapshot> out;
   const std::vector<dda::MaterialPoint>& points = system.get_tie_points();
@@ -147,6 +167,31 @@ std::vector<dda::ContactSnapshot> TiedFarFieldModel::tie_snapshot() const
   return out;
 }
 
+nlohmann::json far_field_energy_summary(const fem::EnergyBalance& fe)
+{
+  return {{"kinetic", fe.kinetic},
+          {"strain", fe.strain},
+          {"work_of_input", fe.work_of_input},
+          {"work_of_dashpots", fe.work_of_dashpots},
+          {"work_of_rayleigh", fe.work_of_rayleigh},
+          {"work_of_ties", fe.work_of_springs},
+          {"dissipated", fe.dissipated}};
+}
+
+nlohmann::json interface_summary(const coupling::FarFieldTies& ties, const fem::EnergyBalance& fe)
+{
+  const coupling::TieCounts n = ties.counts();
+  return {
+      {"ties", {{"intact", n.intact}, {"lock", n.lock}, {"slide", n.slide}, {"open", n.open}}},
+      {"work_into_blocks_J", ties.work_on_blocks()},
+      {"work_into_far_field_J", fe.work_of_springs},
+      {"tie_energy_J", ties.tie_energy()},
+      {"condensations", ties.n_condensations()},
+      {"timings_s", {{"condensation", ties.condensation_seconds()}, {"ties", ties.tie_seconds()}}}};
+}
+
+namespace
+{
 void TiedFarFieldModel::add_to_summary(nlohmann::json& summary) const
 {
   const fem::Timings& ft = far_field.timings();
@@ -160,22 +205,8 @@ void TiedFarFieldModel::add_to_summary(nlohmann::json& summary) const
   summary["far_field"] = {{"solver", far_field.solver_name()},
                           {"factorizations", ft.n_factorizations},
                           {"timings_s", far_field_timings(ft)},
-                          {"energy_J",
-                           {{"kinetic", fe.kinetic},
-                            {"strain", fe.strain},
-                            {"work_of_input", fe.work_of_input},
-                            {"work_of_dashpots", fe.work_of_dashpots},
-                            {"work_of_rayleigh", fe.work_of_rayleigh},
-                            {"work_of_ties", fe.work_of_springs},
-                            {"dissipated", fe.dissipated}}}};
-  const coupling::TieCounts n = ties.counts();
-  summary["interface"] = {
-      {"ties", {{"intact", n.intact}, {"lock", n.lock}, {"slide", n.slide}, {"open", n.open}}},
-      {"work_into_blocks_J", ties.work_on_blocks()},
-      {"work_into_far_field_J", fe.work_of_springs},
-      {"tie_energy_J", ties.tie_energy()},
-      {"condensations", ties.n_condensations()},
-      {"timings_s", {{"condensation", ties.condensation_seconds()}, {"ties", ties.tie_seconds()}}}};
+                          {"energy_J", far_field_energy_summary(fe)}};
+  summary["interface"] = interface_summary(ties, fe);
 }
 
 /// The far field (mesh, solver, material, resolution).

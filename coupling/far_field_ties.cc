@@ -94,7 +94,7 @@ Eigen::MatrixXd congruence(const std::vector<Eigen::Matrix2d>& d, const Eigen::M
 }
 } // namespace
 
-FarFieldTies::FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field_,
+FarFieldTies::FarFieldTies(dda::System& system, fem::PointSpringField& far_field_,
                            const InterfaceDescription& d)
     : far_field(far_field_)
 {

@@ -7,7 +7,7 @@
 #include "dda/contact/contact_law.h"
 #include "dda/system.h"
 #include "dda/tied_body.h"
-#include "fem/elastic_wave_model.h"
+#include "fem/point_spring_field.h"
 
 #include <Eigen/Core>
 
@@ -91,7 +91,7 @@ class FarFieldTies final : public dda::TiedBody
 public:
   /// Finds the block edges on the part, places the ties, attaches the springs to the far field
   /// and ties the points to the system. Throws InputError if the blocks do not fill the part.
-  FarFieldTies(dda::System& system, fem::ElasticWaveModel& far_field,
+  FarFieldTies(dda::System& system, fem::PointSpringField& far_field,
                const InterfaceDescription& description);
 
   void begin_stage(dda::StageMode mode) override;
@@ -162,7 +162,7 @@ private:
   template <class Archive>
   void transfer_state(Archive& archive);
 
-  fem::ElasticWaveModel& far_field;
+  fem::PointSpringField& far_field;
   std::vector<Tie> ties;
   std::size_t tied_edges = 0;
   double length_tied = 0.0, length_of_part = 0.0;

@@ -3,6 +3,7 @@
 // ghosted copies for evaluation).
 #include "fem/distributed_wave_model_impl.h"
 
+#include "common/elasticity.h"
 #include "common/format.h"
 #include "common/input_error.h"
 #include "common/stopwatch.h"
@@ -40,19 +41,14 @@ void require(const bool condition, const std::string& message)
 /// The features ElasticWaveModel has that the distributed model does not have yet.
 void check_distributable(const FarFieldDescription& d)
 {
-  require(d.hole.shape == HoleShape::none && d.mesh_file.file.empty(),
-          "a hole or a mesh file is not distributed yet: expected the plain rectangle");
+  require(d.mesh_file.file.empty(),
+          "a mesh file is not distributed yet: expected the rectangle, with or without a hole");
   require(!d.static_stage.enabled, "a static stage is not distributed yet");
   require(d.rayleigh.alpha == 0.0 && d.rayleigh.beta == 0.0,
           "Rayleigh damping is not distributed yet: expected alpha = beta = 0");
   for (const BoundaryCondition& bc : d.boundaries)
-  {
-    require(bc.kind != BoundaryKind::free_field,
-            std::string("boundary part '") + name_of(bc.part) +
-                "': a free-field column is not distributed yet");
     require(!bc.springs.enabled, std::string("boundary part '") + name_of(bc.part) +
                                      "': boundary springs are not distributed yet");
-  }
 }
 
 /// The largest k with 2^k dividing both counts and at least `minimum` coarse cells left.
@@ -72,7 +68,10 @@ unsigned int common_refinements(unsigned int nx, unsigned int ny, const unsigned
 
 DistributedWaveModel::Impl::Impl(const FarFieldDescription& d, MPI_Comm comm_,
                                  DistributedSolver solver_kind_)
-    : description(d), comm(comm_), solver_kind(solver_kind_), mesh(comm_),
+    : description(d), comm(comm_), solver_kind(solver_kind_),
+      mesh(comm_, d.hole.shape == HoleShape::none
+                      ? Triangulation<2>::none
+                      : Triangulation<2>::limit_level_difference_at_vertices),
       fe(FE_Q<2>(std::max(1u, d.degree)), 2), dof_handler(mesh)
 {
   const auto start = Clock::now();
@@ -92,19 +91,21 @@ DistributedWaveModel::Impl::Impl(const FarFieldDescription& d, MPI_Comm comm_,
   make_constraints();
   assemble();
   locate_monitors();
+  make_free_field_column();
   for (TrilinosWrappers::MPI::Vector* x :
        {&u, &v, &a, &a_previous, &force, &scratch.force_new, &scratch.rhs, &scratch.combination,
         &scratch.product, &scratch.u_new, &scratch.a_new, &scratch.v_new})
     x->reinit(owned, comm);
+  distributed.reinit(owned, comm);
+  ghosted.reinit(owned, relevant, comm);
   timings.setup += seconds_since(start);
 }
 
 void DistributedWaveModel::Impl::set_material()
 {
   const FarFieldDescription& d = description;
-  const double e = d.youngs_modulus, nu = d.poisson_ratio;
-  mu = e / (2.0 * (1.0 + nu));
-  lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  mu = shear_modulus(d.youngs_modulus, d.poisson_ratio);
+  lambda = lame_lambda(d.youngs_modulus, d.poisson_ratio);
   if (d.plane_mode == PlaneMode::stress)
     lambda = 2.0 * lambda * mu / (lambda + 2.0 * mu);
   vp = std::sqrt((lambda + 2.0 * mu) / d.density);
@@ -120,6 +121,19 @@ void DistributedWaveModel::Impl::make_mesh()
 {
   const FarFieldDescription& d = description;
   const double size = target_element_size(d, vs);
+  if (d.hole.shape != HoleShape::none)
+  {
+    // The serial model's graded mesh: its O-grid and Cartesian cells are the coarse mesh on
+    // every rank; each rank grades its own.
+    make_far_field_mesh(d, size, mesh);
+    double longest = 0.0;
+    for (const auto& cell : mesh.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          longest = std::max(longest, cell->face(f)->diameter());
+    h = Utilities::MPI::max(longest, comm);
+    return;
+  }
   const unsigned int nx = element_intervals(d.upper[0] - d.lower[0], size);
   const unsigned int ny = element_intervals(d.upper[1] - d.lower[1], size);
   // p4est keeps the coarse mesh on every rank: coarsest cells that refine to the serial mesh
@@ -136,13 +150,16 @@ void DistributedWaveModel::Impl::make_constraints()
 {
   constraints.clear();
   constraints.reinit(relevant);
+  DoFTools::make_hanging_node_constraints(dof_handler, constraints);
   add_support_constraints(dof_handler, description, constraints);
   constraints.close();
 }
 
-// M, K and C are assembled with the constrained (fixed, roller) rows and columns eliminated: the
-// constrained entries of u, v and a stay zero, so products and energies are those of the
-// unconstrained matrices, as in ElasticWaveModel, and the effective matrix needs no condensing.
+// M, K and C are assembled with the constrained (fixed, roller, hanging) rows and columns
+// eliminated: the algebra runs on the unconstrained DOFs, the constrained entries of u, v and a
+// stay zero, products and energies are those of ElasticWaveModel's, and the effective matrix
+// needs no condensing. Evaluating the field (monitors, springs, output) distributes the
+// constraints first (Impl::ghosted_field).
 void DistributedWaveModel::Impl::assemble()
 {
   DynamicSparsityPattern dsp(relevant);
@@ -156,7 +173,6 @@ void DistributedWaveModel::Impl::assemble()
   for (TrilinosWrappers::SparseMatrix* m : {&mass, &stiffness, &damping})
     m->compress(VectorOperation::add);
   input_shape.compress(VectorOperation::add);
-  sparsity_of_effective = std::move(dsp);
 }
 
 void DistributedWaveModel::Impl::assemble_domain()
@@ -180,10 +196,12 @@ void DistributedWaveModel::Impl::assemble_domain()
 
 void DistributedWaveModel::Impl::assemble_boundary()
 {
-  // Lysmer dashpots on lysmer and input parts; the input traction's shape on input parts.
+  // Lysmer dashpots on lysmer, input and free_field parts; the input traction's shape on input
+  // parts.
   std::map<types::boundary_id, const BoundaryCondition*> absorbing;
   for (const BoundaryCondition& bc : description.boundaries)
-    if (bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input)
+    if (bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input ||
+        bc.kind == BoundaryKind::free_field)
       absorbing[boundary_id_of(bc.part)] = &bc;
   const bool sv = description.incident.type == IncidentWave::Type::sv;
   const unsigned int input_component = sv ? 0 : 1;
@@ -229,10 +247,12 @@ void DistributedWaveModel::Impl::set_up_solver(const double dt)
   const double c_mass = 1.0 / (beta * dt * dt), c_damping = gamma / (beta * dt);
   // P = K + c_damping C + c_mass M; the three were assembled with the constrained rows and
   // columns eliminated, and so is P.
-  effective.reinit(owned, owned, sparsity_of_effective, comm);
+  effective.reinit(stiffness); // the layout
   effective.copy_from(stiffness);
   effective.add(c_mass, mass);
   effective.add(c_damping, damping);
+  if (!springs.empty())
+    effective.add(1.0, springs_matrix);
   if (solver_kind == DistributedSolver::mumps)
   {
     direct = std::make_unique<TrilinosWrappers::SolverDirect>(

@@ -1,5 +1,7 @@
-// The far field distributed over MPI ranks (issue 22): the rectangle of ElasticWaveModel (no
-// hole, no static stage, no point springs yet) on deal.II's parallel::distributed::Triangulation
+// The far field distributed over MPI ranks (issue 22): ElasticWaveModel's rectangle, with or
+// without a graded hole, free-field sides and point springs to the blocks (no static stage
+// yet), on deal.II's
+// parallel::distributed::Triangulation
 // (p4est) with Trilinos (Epetra) matrices and vectors. Every rank owns a part of the cells and
 // of the degrees of freedom; the effective matrix is solved by CG preconditioned with ML's
 // algebraic multigrid or with its diagonal (warm-started from Newmark's predictor), or by
@@ -12,6 +14,7 @@
 #include "common/enum_names.h"
 #include "fem/elastic_wave_model.h"
 #include "fem/far_field_description.h"
+#include "fem/point_spring_field.h"
 
 #include <mpi.h>
 
@@ -19,6 +22,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace ddafem::fem
 {
@@ -50,14 +54,18 @@ struct DistributedTimings
 };
 
 /// The far field of a FarFieldDescription distributed over the ranks of `comm`. Every call is
-/// collective (all ranks call it, in the same order) unless it says otherwise.
-class DistributedWaveModel
+/// collective (all ranks call it, in the same order) unless it says otherwise. Its point springs
+/// (PointSpringField) live on the rank that owns the cell of their point; every rank gets the
+/// same point vectors and G, bit for bit (each entry is summed from one rank's value and zeros),
+/// so that blocks replicated on every rank step alike.
+class DistributedWaveModel final : public PointSpringField
 {
 public:
-  /// Builds the mesh, distributes it and assembles the constant matrices. Throws InputError
-  /// for a description it cannot honour: a hole, a mesh file, a static stage, a free-field
-  /// column, Rayleigh damping or boundary springs (not distributed yet), and the checks of
-  /// ElasticWaveModel.
+  /// Builds the mesh (the rectangle, or ElasticWaveModel's graded mesh around a hole, with its
+  /// hanging nodes), distributes it and assembles the constant matrices; a free_field side gets
+  /// the serial free-field column on every rank. Throws InputError for a description it cannot
+  /// honour: a mesh file, a static stage, Rayleigh damping or boundary springs (not distributed
+  /// yet), and the checks of ElasticWaveModel.
   DistributedWaveModel(const FarFieldDescription& description, MPI_Comm comm,
                        DistributedSolver solver);
   ~DistributedWaveModel();
@@ -65,8 +73,20 @@ public:
   DistributedWaveModel& operator=(const DistributedWaveModel&) = delete;
 
   /// Advances by dt [s] from rest at t = 0 (a dt other than the last one sets the solver up
-  /// again).
+  /// again): prepare_step() and finish_step() with zero point loads.
   StepStatus advance(double dt);
+
+  std::vector<double> add_point_springs(BoundaryPart part,
+                                        const std::vector<PointSpring>& springs) override;
+  /// Every rank's faces, in the order of their coordinates.
+  std::vector<std::array<double, 4>> boundary_segments(BoundaryPart part) const override;
+  /// 2m solves (one per spring component) and one sum over the ranks.
+  std::vector<double> point_flexibility(double dt) override;
+  StepStatus prepare_step(double dt, std::vector<double>& free_point_displacements) override;
+  /// Takes rank 0's point loads, and fails on every rank if the ranks' loads differ (the blocks
+  /// replicated on the ranks would have parted).
+  StepStatus finish_step(const std::vector<double>& point_loads) override;
+  double work_of_springs() const override;   ///< not collective
   double time() const;                       ///< not collective
   std::size_t n_dofs() const;                ///< of the whole model; not collective
   std::size_t n_locally_owned_dofs() const;  ///< of this rank; not collective
@@ -75,7 +95,7 @@ public:
   const DistributedTimings& timings() const; ///< this rank's; not collective
   /// The sample at a monitor, from the rank that owns its cell, on every rank.
   MonitorSample sample_monitor(std::size_t monitor) const;
-  /// The energy budget (EnergyBalance; work_of_springs and work_of_rayleigh are 0).
+  /// The energy budget (EnergyBalance; work_of_rayleigh is 0).
   EnergyBalance energy() const;
   /// Writes DIRECTORY/BASENAME_NNNNN.pvtu with one DIRECTORY/BASENAME_NNNNN.K.vtu piece per
   /// rank K (deal.II's write_vtu_with_pvtu_record: displacement, velocity, subdomain) and

@@ -1,6 +1,7 @@
 // The state of DistributedWaveModel, shared by its two files (private: only fem/ includes it):
-// fem/distributed_wave_model.cc (set-up, assembly, solver set-up) and
-// fem/distributed_wave_step.cc (the Newmark step, monitors, energies, output).
+// fem/distributed_wave_model.cc (set-up, assembly, solver set-up),
+// fem/distributed_wave_step.cc (the Newmark step, monitors, energies, output) and
+// fem/distributed_point_springs.cc (the ties to the blocks).
 #pragma once
 
 #include "fem/distributed_wave_model.h"
@@ -42,13 +43,35 @@ public:
   void set_up_solver(double dt);
   /// M a0 = f(0) - K u0 - C v0 (zero from rest without input at t = 0).
   void compute_initial_acceleration();
-  StepStatus step(double dt);
+  /// The Newmark right-hand side of a step of dt and its predictor solve into scratch.u_new.
+  void prepare(double dt);
+  /// u_new += P^-1 N^T q, then velocities, accelerations, energies; the state moves to t + dt.
+  StepStatus finish(const std::vector<double>& point_loads);
   /// Solves P x = rhs, x holding the initial guess; returns the iterations (0: direct).
   unsigned int solve(TrilinosWrappers::MPI::Vector& x, const TrilinosWrappers::MPI::Vector& rhs);
   /// The work of the input and the dashpots over a step, with mid-step forces.
   void add_work_of_step(const TrilinosWrappers::MPI::Vector& u_new,
                         const TrilinosWrappers::MPI::Vector& v_new,
                         const TrilinosWrappers::MPI::Vector& force_new);
+  /// Free-field sides (fem/distributed_free_field.cc): the serial column, replicated, and a
+  /// probe of it per quadrature point of this rank's free_field faces (in active-cell order).
+  void make_free_field_column();
+  bool is_free_field_face(const DoFHandler<2>::active_cell_iterator& cell, unsigned int f) const;
+  /// Advances the column by dt, back to the step's start first if a step was abandoned;
+  /// throws if it fails.
+  void advance_column(double dt);
+  /// f += integral(N^T (sigma_ff n + D v_ff)) over this rank's free_field faces.
+  void add_free_field_load(TrilinosWrappers::MPI::Vector& f);
+  /// x with its constrained entries (hanging nodes) set, in `ghosted` (owned and relevant).
+  const TrilinosWrappers::MPI::Vector& ghosted_field(const TrilinosWrappers::MPI::Vector& x) const;
+  /// N x at every spring, on every rank [m] (2m).
+  std::vector<double> evaluate_at_springs(const TrilinosWrappers::MPI::Vector& x) const;
+  /// rhs = N^T q: the owners' springs' point loads q [N] (2m) into the right-hand side.
+  void set_spring_loads(const std::vector<double>& q, TrilinosWrappers::MPI::Vector& rhs) const;
+  /// The work of the springs' forces F = q - K N u over a step (mid-step forces); stores F at
+  /// t + dt.
+  void add_work_of_springs(const TrilinosWrappers::MPI::Vector& u_new,
+                           const std::vector<double>& point_loads);
 
   FarFieldDescription description;
   MPI_Comm comm;
@@ -63,8 +86,8 @@ public:
   DoFHandler<2> dof_handler;
   IndexSet owned, relevant;
   AffineConstraints<double> constraints;
-  DynamicSparsityPattern sparsity_of_effective;
-  TrilinosWrappers::SparseMatrix mass, stiffness, damping, effective;
+  /// The springs' N^T K N (on the effective matrix's pattern) is added to P.
+  TrilinosWrappers::SparseMatrix mass, stiffness, damping, springs_matrix, effective;
   TrilinosWrappers::MPI::Vector input_shape; ///< the input traction per unit v_in [N s/m]
   double input_scale = 0.0;                  ///< 2 rho c [kg/(m^2 s)]
 
@@ -94,6 +117,27 @@ public:
     Point<2> reference; ///< the point in the cell's reference coordinates
   };
   std::vector<MonitorPoint> monitors;
+
+  /// A point spring: every rank lists it; the rank that owns its cell (`mine`) has the cell's
+  /// DOFs and the shape functions' values N there.
+  struct SpringPoint
+  {
+    bool mine = false;
+    std::vector<types::global_dof_index> dofs; ///< the cell's
+    std::vector<double> phi;                   ///< N's entries, by cell DOF
+    std::vector<unsigned int> component;       ///< by cell DOF
+    double k[2][2] = {{0.0, 0.0}, {0.0, 0.0}}; ///< [N/m]
+  };
+  std::vector<SpringPoint> springs;
+  std::vector<double> spring_force; ///< F on the far field at t [N] (2m)
+  /// ghosted_field's work vectors: owned entries, then owned and relevant ones.
+  mutable TrilinosWrappers::MPI::Vector distributed, ghosted;
+  std::unique_ptr<ElasticWaveModel> column; ///< the free-field column, if any
+  std::vector<std::size_t> column_probes;
+  bool column_ahead = false; ///< the column has advanced into a step not finished yet
+  TrilinosWrappers::MPI::Vector free_field_load;
+  bool step_prepared = false;
+  double prepared_dt = 0.0;                              ///< [s]
   std::vector<std::pair<double, std::string>> snapshots; ///< time [s], PVTU name
 };
 

@@ -16,6 +16,7 @@
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -67,7 +68,7 @@ unsigned int DistributedWaveModel::Impl::solve(TrilinosWrappers::MPI::Vector& x,
   return control.last_step();
 }
 
-StepStatus DistributedWaveModel::Impl::step(const double dt)
+void DistributedWaveModel::Impl::prepare(const double dt)
 {
   if (!initial_acceleration_done)
     compute_initial_acceleration();
@@ -80,6 +81,11 @@ StepStatus DistributedWaveModel::Impl::step(const double dt)
   // rhs = f(t + dt) + M (m_u u + m_v v + m_a a) + C (c_u u + c_v v + c_a a)
   auto& [force_new, rhs, combination, product, u_new, a_new, v_new] = scratch;
   force_new.equ(input_scale * description.incident.velocity.value(t + dt), input_shape);
+  if (column)
+  {
+    advance_column(dt);
+    add_free_field_load(force_new);
+  }
   rhs = force_new;
   combination.equ(newmark.mass_u, u);
   combination.add(newmark.mass_v, v, m_a, a);
@@ -102,6 +108,29 @@ StepStatus DistributedWaveModel::Impl::step(const double dt)
   constraints.set_zero(u_new);
   timings.linear_iterations += solve(u_new, rhs);
   timings.solve += seconds_since(start);
+  step_prepared = true;
+  prepared_dt = dt;
+}
+
+StepStatus DistributedWaveModel::Impl::finish(const std::vector<double>& point_loads)
+{
+  AssertThrow(step_prepared, ExcMessage("finish_step() without prepare_step()"));
+  step_prepared = false;
+  column_ahead = false;
+  const double dt = prepared_dt;
+  const NewmarkCoefficients newmark = newmark_coefficients(beta, gamma, dt);
+  const double m_a = 1.0 / (2.0 * beta) - 1.0;
+  auto& [force_new, rhs, combination, product, u_new, a_new, v_new] = scratch;
+  auto start = Clock::now();
+  if (std::any_of(point_loads.begin(), point_loads.end(), [](double q) { return q != 0.0; }))
+  {
+    // u = y + P^-1 N^T q: one more solve with the same matrix.
+    set_spring_loads(point_loads, rhs);
+    combination = 0.0;
+    timings.linear_iterations += solve(combination, rhs);
+    u_new += combination;
+  }
+  timings.solve += seconds_since(start);
 
   start = Clock::now();
   a_new.equ(newmark.mass_u, u_new);
@@ -110,6 +139,8 @@ StepStatus DistributedWaveModel::Impl::step(const double dt)
   v_new = v;
   v_new.add(dt * (1.0 - gamma), a, dt * gamma, a_new);
   add_work_of_step(u_new, v_new, force_new);
+  if (!springs.empty())
+    add_work_of_springs(u_new, point_loads);
   a_previous.swap(a);
   a.swap(a_new);
   u.swap(u_new);
@@ -145,6 +176,15 @@ void DistributedWaveModel::Impl::add_work_of_step(const TrilinosWrappers::MPI::V
   energies.work_of_input += du * mid;
 }
 
+const TrilinosWrappers::MPI::Vector&
+DistributedWaveModel::Impl::ghosted_field(const TrilinosWrappers::MPI::Vector& x) const
+{
+  distributed = x;
+  constraints.distribute(distributed);
+  ghosted = distributed;
+  return ghosted;
+}
+
 void DistributedWaveModel::Impl::locate_monitors()
 {
   const MappingQ1<2> mapping;
@@ -175,9 +215,7 @@ void DistributedWaveModel::Impl::locate_monitors()
 MonitorSample DistributedWaveModel::sample_monitor(const std::size_t monitor) const
 {
   const Impl& m = *impl;
-  TrilinosWrappers::MPI::Vector u(m.owned, m.relevant, m.comm), v(m.owned, m.relevant, m.comm);
-  u = m.u;
-  v = m.v;
+  TrilinosWrappers::MPI::Vector u(m.ghosted_field(m.u)), v(m.ghosted_field(m.v));
   const Impl::MonitorPoint& p = m.monitors.at(monitor);
   std::vector<double> values(7, 0.0); // ux, uy, vx, vy, sxx, syy, sxy; zero on other ranks
   if (p.mine)
@@ -216,33 +254,24 @@ EnergyBalance DistributedWaveModel::energy() const
   e.kinetic = 0.5 * (m.v * product);
   m.stiffness.vmult(product, m.u);
   e.strain = 0.5 * (m.u * product);
-  e.dissipated = e.initial + e.work_of_input + e.work_of_dashpots - e.stored();
+  e.dissipated = e.initial + e.work_of_input + e.work_of_dashpots + e.work_of_springs - e.stored();
   return e;
 }
 
 StepStatus DistributedWaveModel::advance(const double dt)
 {
-  if (!(dt > 0.0 && std::isfinite(dt)))
-    throw InputError("far field (distributed): advance: dt = " + format_number(dt) +
-                     ", expected > 0");
-  try
-  {
-    return impl->step(dt);
-  }
-  catch (const std::exception& e) // a solver that did not converge, on every rank
-  {
-    return {StepOutcome::solver_failure,
-            std::string("far field (distributed): solver failed: ") + e.what()};
-  }
+  std::vector<double> free;
+  const StepStatus status = prepare_step(dt, free);
+  if (status.outcome != StepOutcome::success)
+    return status;
+  return finish_step(std::vector<double>(2 * impl->springs.size(), 0.0));
 }
 
 std::string DistributedWaveModel::write_snapshot(const std::string& directory,
                                                  const std::string& basename)
 {
   Impl& m = *impl;
-  TrilinosWrappers::MPI::Vector u(m.owned, m.relevant, m.comm), v(m.owned, m.relevant, m.comm);
-  u = m.u;
-  v = m.v;
+  TrilinosWrappers::MPI::Vector u(m.ghosted_field(m.u)), v(m.ghosted_field(m.v));
   DataOut<2> out;
   out.attach_dof_handler(m.dof_handler);
   const std::vector<DataComponentInterpretation::DataComponentInterpretation> vector(

@@ -4,6 +4,7 @@
 
 #include "common/checkpoint_fwd.h"
 #include "fem/far_field_description.h"
+#include "fem/point_spring_field.h"
 
 #include <array>
 #include <functional>
@@ -39,25 +40,6 @@ struct MonitorSample
   std::array<double, 3> stress{{0.0, 0.0, 0.0}};  ///< (sxx, syy, sxy) [Pa], tension positive
 };
 
-enum class StepOutcome
-{
-  success,
-  solver_failure
-};
-
-struct StepStatus
-{
-  StepOutcome outcome = StepOutcome::success;
-  std::string message;
-};
-
-/// A spring between a far-field point and an outside body (the ties of coupling/, issue 6).
-struct PointSpring
-{
-  std::array<double, 2> point{{0.0, 0.0}};               ///< [m], near a boundary part
-  std::array<double, 4> stiffness{{0.0, 0.0, 0.0, 0.0}}; ///< K (2 x 2 row-major, symmetric) [N/m]
-};
-
 /// Wall time per phase since construction [s].
 struct Timings
 {
@@ -73,7 +55,7 @@ struct Timings
 /// A far field in time (a rectangle, optionally with a graded hole, or a Gmsh mesh). The
 /// effective matrix K + gamma/(beta dt) C + 1/(beta dt^2) M is set up once (factorized, or a
 /// preconditioner for CG) and each step is one solve (fem/linear_solvers.h).
-class ElasticWaveModel
+class ElasticWaveModel final : public PointSpringField
 {
 public:
   /// Builds the mesh, the FE space and the constant matrices. Throws InputError for settings it
@@ -119,37 +101,34 @@ public:
   /// The energy budget; kinetic and strain energy from two products with the global matrices.
   EnergyBalance energy() const;
   /// EnergyBalance::work_of_springs alone, without energy()'s products [J].
-  double work_of_springs() const;
+  double work_of_springs() const override;
 
-  // ---- point springs: the far field's side of the DDA coupling (coupling/) ----------------
-  // Spring k ties the far field's displacement N_k u at the point X_k to an outside body.
-  // Over a step the far field solves P u = f + N^T q, P = A + sum N_k^T K_k N_k (A the
-  // effective matrix, f the Newmark right-hand side) and q the point loads the caller sets; the
-  // springs' force on the far field is then F_k = q_k - K_k N_k u. With q_k = K_k z_k this is a
-  // spring to the target displacement z_k; advance() uses q = 0 (springs to fixed anchors).
-  // Point vectors are 2m long, (x, y) per spring; matrices 2m x 2m row-major.
+  // ---- point springs: the far field's side of the DDA coupling (fem/point_spring_field.h);
+  // advance() uses q = 0 (springs to fixed anchors) ----
 
-  /// Ties springs to the boundary faces of `part`, each at the point of the part nearest to the
-  /// given point; returns each given point's distance from the part [m] (the caller judges it).
-  /// Throws InputError if the part has no faces or the model has a static stage (the springs
-  /// would take part in it). Changes the effective matrix (refactorized at the next step).
-  std::vector<double> add_point_springs(BoundaryPart part, const std::vector<PointSpring>& springs);
+  /// Also refuses a model with a static stage (the springs would take part in it); the
+  /// effective matrix is refactorized at the next step.
+  std::vector<double> add_point_springs(BoundaryPart part,
+                                        const std::vector<PointSpring>& springs) override;
   std::size_t n_point_springs() const;
-  /// The boundary faces of `part` as straight segments {x0, y0, x1, y1} [m].
-  std::vector<std::array<double, 4>> boundary_segments(BoundaryPart part) const;
-  /// G = N P^-1 N^T for steps of dt: the displacements [m] at the spring points per unit point
-  /// load [N]; 2m solves.
-  std::vector<double> point_flexibility(double dt);
-  /// First half of a step of dt: assembles f and solves P y = f; returns N y, the spring points'
-  /// displacements at the end of the step for q = 0 [m].
-  StepStatus prepare_step(double dt, std::vector<double>& free_point_displacements);
-  /// Second half: u = y + P^-1 N^T q with the point loads q [N] (2m), then velocities,
-  /// accelerations and energies. Only after prepare_step().
-  StepStatus finish_step(const std::vector<double>& point_loads);
+  std::vector<std::array<double, 4>> boundary_segments(BoundaryPart part) const override;
+  /// 2m solves, or one per far-field DOF the springs touch if fewer.
+  std::vector<double> point_flexibility(double dt) override;
+  StepStatus prepare_step(double dt, std::vector<double>& free_point_displacements) override;
+  StepStatus finish_step(const std::vector<double>& point_loads) override;
   /// N u: displacements at the spring points [m] (2m).
   std::vector<double> point_displacements() const;
   /// The springs' forces F on the far field at the current time [N] (2m).
   std::vector<double> spring_forces() const;
+
+  // ---- as the free-field column of a distributed far field (fem/distributed_wave_model.h) --
+  /// Places a probe at (x, y), clamped into the mesh; returns its index.
+  std::size_t add_probe(double x, double y);
+  /// Velocity and stress at probe k (displacement left zero).
+  MonitorSample sample_probe(std::size_t k) const;
+  /// Remembers the state now; return_to_remembered_state() goes back to it (a step abandoned).
+  void remember_state();
+  void return_to_remembered_state();
 
   /// Writes DIRECTORY/BASENAME_NNNNN.vtu (deal.II DataOut: displacement, velocity, stress
   /// components, von Mises), zlib-compressed at `compression`, and rewrites

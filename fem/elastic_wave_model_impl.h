@@ -231,8 +231,13 @@ public:
   void make_free_field_column();
   /// Adds integral(N^T (sigma_ff n + D v_ff)) over the free_field faces to f.
   void add_free_field_load(Vector<double>& f) const;
-  /// Column velocity and stress at height y (a probe made on the fly).
+  /// Column velocity and stress at a probe of the column.
   MonitorSample column_sample(const FEValues<2>& probe) const;
+  /// This model's velocity and stress at one of its probes.
+  MonitorSample probe_sample(const FEValues<2>& probe) const;
+  /// As another model's free-field column (ElasticWaveModel::add_probe).
+  std::vector<std::unique_ptr<FEValues<2>>> probes;
+  State remembered; ///< ElasticWaveModel::remember_state
   std::unique_ptr<FEValues<2>> make_probe(double x, double y) const;
   bool is_free_field_face(const DoFHandler<2>::active_cell_iterator& cell, unsigned int f) const;
 

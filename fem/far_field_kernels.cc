@@ -35,6 +35,29 @@ unsigned int element_intervals(const double length, const double size)
   return static_cast<unsigned int>(std::max(1.0, std::ceil(length / size - 1e-9)));
 }
 
+FarFieldDescription free_field_column_description(const FarFieldDescription& d, const double h)
+{
+  FarFieldDescription c;
+  c.lower = d.lower;
+  c.upper = {{d.lower[0] + h, d.upper[1]}};
+  c.element_size = h;
+  c.degree = d.degree;
+  c.density = d.density;
+  c.youngs_modulus = d.youngs_modulus;
+  c.poisson_ratio = d.poisson_ratio;
+  c.plane_mode = d.plane_mode;
+  c.incident = d.incident;
+  c.dt = d.dt;
+  c.integrator = d.integrator;
+  c.rayleigh = d.rayleigh;
+  for (const auto& bc : d.boundaries)
+    if (bc.part == BoundaryPart::bottom || bc.part == BoundaryPart::top)
+      c.boundaries.push_back(bc);
+  c.boundaries.push_back({BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0, {}});
+  c.boundaries.push_back({BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0, {}});
+  return c;
+}
+
 void add_support_constraints(const DoFHandler<2>& dof_handler, const FarFieldDescription& d,
                              AffineConstraints<double>& constraints)
 {
@@ -112,4 +135,21 @@ void add_face_coupling(const FEFaceValues<2>& values, const unsigned int q, cons
   }
 }
 
+} // namespace ddafem::fem
+
+namespace ddafem::fem
+{
+std::array<double, 2> free_field_traction(const std::array<double, 3>& stress,
+                                          const std::array<double, 2>& velocity,
+                                          const Tensor<1, 2>& n, const double rho, const double vp,
+                                          const double vs)
+{
+  const double sigma[2][2] = {{stress[0], stress[2]}, {stress[2], stress[1]}};
+  const double vn = velocity[0] * n[0] + velocity[1] * n[1];
+  std::array<double, 2> traction{};
+  for (unsigned int c = 0; c < 2; ++c)
+    traction[c] = sigma[c][0] * n[0] + sigma[c][1] * n[1] +
+                  rho * (vp * vn * n[c] + vs * (velocity[c] - vn * n[c]));
+  return traction;
+}
 } // namespace ddafem::fem

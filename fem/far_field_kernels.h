@@ -13,6 +13,9 @@
 #include <deal.II/lac/full_matrix.h>
 
 #include <array>
+#include <cstddef>
+#include <utility>
+#include <vector>
 
 namespace ddafem::fem
 {
@@ -23,6 +26,10 @@ double target_element_size(const FarFieldDescription& description, double vs);
 
 /// Elements of at most `size` along `length`: ceil(length / size), at least 1.
 unsigned int element_intervals(double length, double size);
+
+/// The 1D free-field column beside a far field with free_field sides: one element of h [m]
+/// wide, the far field's material, base and top, rollers on its sides.
+FarFieldDescription free_field_column_description(const FarFieldDescription& description, double h);
 
 /// The constraints of the supports: `fixed` parts both components zero, `roller` parts the
 /// component the incident wave does not move (BoundaryKind::roller). `constraints` is not closed.
@@ -47,5 +54,32 @@ Matrix2 normal_tangential(double scale, double normal, double tangential,
 /// cell(i, j) += N_i T[c_i][c_j] N_j JxW at face quadrature point q.
 void add_face_coupling(const dealii::FEFaceValues<2>& values, unsigned int q, const Matrix2& t,
                        dealii::FullMatrix<double>& cell);
+
+/// The free-field traction on a side with outward unit normal n: sigma_ff n + D v_ff,
+/// D = rho (VP n n^T + VS (I - n n^T)), from the column's stress (sxx, syy, sxy) [Pa] and
+/// velocity [m/s] there; density rho [kg/m^3], wave speeds [m/s]. [Pa]
+std::array<double, 2> free_field_traction(const std::array<double, 3>& stress,
+                                          const std::array<double, 2>& velocity,
+                                          const dealii::Tensor<1, 2>& n, double rho, double vp,
+                                          double vs);
+
+/// Adds to `work` [J] the work of point springs' forces on the far field over a step, with
+/// mid-step forces: F = q - K w, K = springs[k].k (2 x 2 [N/m]) per spring, w the displacements
+/// at the springs at the step's start (w_old) and end (w_new) [m], q the point loads [N] (2m
+/// each). `force` holds F at the step's start and gets F at its end.
+template <class Springs>
+void add_spring_work_of_step(const Springs& springs, const std::vector<double>& q,
+                             const std::vector<double>& w_old, const std::vector<double>& w_new,
+                             std::vector<double>& force, double& work)
+{
+  std::vector<double> f_new(q);
+  for (std::size_t k = 0; k < springs.size(); ++k)
+    for (unsigned int r = 0; r < 2; ++r)
+      for (unsigned int c = 0; c < 2; ++c)
+        f_new[2 * k + r] -= springs[k].k[r][c] * w_new[2 * k + c];
+  for (std::size_t i = 0; i < f_new.size(); ++i)
+    work += 0.5 * (force[i] + f_new[i]) * (w_new[i] - w_old[i]);
+  force = std::move(f_new);
+}
 
 } // namespace ddafem::fem

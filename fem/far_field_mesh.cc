@@ -6,6 +6,7 @@
 #include "common/format.h"
 #include "common/input_error.h"
 
+#include <deal.II/base/mpi.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
@@ -469,9 +470,12 @@ void grade_towards_hole(const HoleDescription& hole, const double far_size, Tria
   const double h_hole = hole.element_size > 0.0 ? std::min(hole.element_size, far_size) : far_size;
   for (unsigned int pass = 0; pass < 40; ++pass)
   {
+    // A distributed mesh (p4est) flags its own cells and refines when any rank flagged one.
     bool refine = false;
     for (const auto& cell : mesh.active_cell_iterators())
     {
+      if (!cell->is_locally_owned())
+        continue;
       const Point<2> p = cell->center();
       const double distance = std::max(0.0, distance_from_hole(hole, p[0], p[1]));
       const double target = std::min(far_size, h_hole + (hole.growth_ratio - 1.0) * distance);
@@ -481,7 +485,7 @@ void grade_towards_hole(const HoleDescription& hole, const double far_size, Tria
         refine = true;
       }
     }
-    if (!refine)
+    if (!Utilities::MPI::logical_or(refine, mesh.get_communicator()))
       return;
     mesh.execute_coarsening_and_refinement();
   }

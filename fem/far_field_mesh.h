@@ -23,7 +23,9 @@ constexpr dealii::types::boundary_id untagged_boundary_id = 5;
 ///   centre from the hole;
 /// - a Gmsh file (`description.mesh_file`): read with GridIn, physical line tags mapped to parts.
 /// Boundary ids follow boundary_id_of(). Throws InputError for a hole that does not fit or a
-/// file that cannot be read or names unknown tags.
+/// file that cannot be read or names unknown tags. A parallel::distributed::Triangulation
+/// (built with limit_level_difference_at_vertices for a hole) gets the same graded mesh: every
+/// rank grades its own cells, collectively.
 void make_far_field_mesh(const FarFieldDescription& description, double far_size,
                          dealii::Triangulation<2>& mesh);
 

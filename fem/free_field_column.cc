@@ -1,6 +1,7 @@
 // ElasticWaveModel free-field sides: a 1D column advanced alongside, sampled at the side faces
 // (fem/README.md, free_field).
 #include "fem/elastic_wave_model_impl.h"
+#include "fem/far_field_kernels.h"
 
 #include <deal.II/base/quadrature.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -24,25 +25,7 @@ void ElasticWaveModel::Impl::make_free_field_column()
   if (!needed)
     return;
   // The column: one far-size element wide, the model's material, base and top, rollers.
-  FarFieldDescription c;
-  c.lower = d.lower;
-  c.upper = {{d.lower[0] + h, d.upper[1]}};
-  c.element_size = h;
-  c.degree = d.degree;
-  c.density = d.density;
-  c.youngs_modulus = d.youngs_modulus;
-  c.poisson_ratio = d.poisson_ratio;
-  c.plane_mode = d.plane_mode;
-  c.incident = d.incident;
-  c.dt = d.dt;
-  c.integrator = d.integrator;
-  c.rayleigh = d.rayleigh;
-  for (const auto& bc : d.boundaries)
-    if (bc.part == BoundaryPart::bottom || bc.part == BoundaryPart::top)
-      c.boundaries.push_back(bc);
-  c.boundaries.push_back({BoundaryPart::left, BoundaryKind::roller, 1.0, 1.0, {}});
-  c.boundaries.push_back({BoundaryPart::right, BoundaryKind::roller, 1.0, 1.0, {}});
-  column = std::make_unique<ElasticWaveModel>(c);
+  column = std::make_unique<ElasticWaveModel>(free_field_column_description(d, h));
 
   const Impl& col = *column->impl;
   const QGauss<1> face_quadrature(fe.degree + 1);
@@ -89,15 +72,40 @@ bool ElasticWaveModel::Impl::is_free_field_face(const DoFHandler<2>::active_cell
 
 MonitorSample ElasticWaveModel::Impl::column_sample(const FEValues<2>& probe) const
 {
-  const Impl& col = *column->impl;
+  return column->impl->probe_sample(probe);
+}
+
+MonitorSample ElasticWaveModel::Impl::probe_sample(const FEValues<2>& probe) const
+{
   std::vector<Vector<double>> point_v(1, Vector<double>(2));
   std::vector<std::vector<Tensor<1, 2>>> grad_u(1, std::vector<Tensor<1, 2>>(2));
-  probe.get_function_values(col.v, point_v);
-  probe.get_function_gradients(col.u, grad_u);
+  probe.get_function_values(v, point_v);
+  probe.get_function_gradients(u, grad_u);
   MonitorSample sample;
   sample.velocity = {{point_v[0](0), point_v[0](1)}};
-  sample.stress = col.elasticity.stress(grad_u[0][0], grad_u[0][1]);
+  sample.stress = elasticity.stress(grad_u[0][0], grad_u[0][1]);
   return sample;
+}
+
+std::size_t ElasticWaveModel::add_probe(const double x, const double y)
+{
+  impl->probes.push_back(impl->make_probe(x, y));
+  return impl->probes.size() - 1;
+}
+
+MonitorSample ElasticWaveModel::sample_probe(const std::size_t k) const
+{
+  return impl->probe_sample(*impl->probes.at(k));
+}
+
+void ElasticWaveModel::remember_state()
+{
+  impl->remembered = impl->save_state();
+}
+
+void ElasticWaveModel::return_to_remembered_state()
+{
+  impl->restore_state(impl->remembered);
 }
 
 void ElasticWaveModel::Impl::add_free_field_load(Vector<double>& f) const
@@ -120,14 +128,8 @@ void ElasticWaveModel::Impl::add_free_field_load(Vector<double>& f) const
       for (const unsigned int q : face_values.quadrature_point_indices())
       {
         const MonitorSample ff = column_sample(*column_probes[probe++]);
-        const Tensor<1, 2> n_q = face_values.normal_vector(q);
-        const double sigma[2][2] = {{ff.stress[0], ff.stress[2]}, {ff.stress[2], ff.stress[1]}};
-        // t = sigma_ff n + D v_ff, D = rho (VP n n^T + VS (I - n n^T)) (a = b = 1).
-        double traction[2];
-        const double vn = ff.velocity[0] * n_q[0] + ff.velocity[1] * n_q[1];
-        for (unsigned int c = 0; c < 2; ++c)
-          traction[c] = sigma[c][0] * n_q[0] + sigma[c][1] * n_q[1] +
-                        rho * (vp * vn * n_q[c] + vs * (ff.velocity[c] - vn * n_q[c]));
+        const std::array<double, 2> traction =
+            free_field_traction(ff.stress, ff.velocity, face_values.normal_vector(q), rho, vp, vs);
         for (unsigned int i = 0; i < n; ++i)
         {
           const unsigned int c = fe.system_to_component_index(i).first;

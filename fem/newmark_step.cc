@@ -3,6 +3,7 @@
 #include "fem/elastic_wave_model_impl.h"
 
 #include "common/newmark.h"
+#include "fem/far_field_kernels.h"
 
 #include <deal.II/lac/precondition.h>
 #include <deal.II/lac/solver_cg.h>
@@ -331,14 +332,8 @@ void ElasticWaveModel::Impl::add_work_of_springs(const Vector<double>& u_new,
   // F = q - K N u on the far field; its work with mid-step forces.
   const std::vector<double> w_old = evaluate_at_springs(u);
   const std::vector<double> w_new = evaluate_at_springs(u_new);
-  std::vector<double> f_new(point_loads);
-  for (std::size_t k = 0; k < springs.size(); ++k)
-    for (unsigned int r = 0; r < 2; ++r)
-      for (unsigned int c = 0; c < 2; ++c)
-        f_new[2 * k + r] -= springs[k].k[r][c] * w_new[2 * k + c];
-  for (std::size_t i = 0; i < f_new.size(); ++i)
-    energies.work_of_springs += 0.5 * (spring_force[i] + f_new[i]) * (w_new[i] - w_old[i]);
-  spring_force = f_new;
+  add_spring_work_of_step(springs, point_loads, w_old, w_new, spring_force,
+                          energies.work_of_springs);
 }
 
 } // namespace ddafem::fem
