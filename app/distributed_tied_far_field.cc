@@ -95,6 +95,7 @@ void DistributedTiedFarField::add_to_summary(nlohmann::json& summary) const
   summary["model"]["tied_blocks"] = ties.n_tied_blocks();
   summary["far_field"] = {{"solver", name_of(distributed_solver(*scene.far_field))},
                           {"linear_iterations", t.linear_iterations},
+                          {"levels", t.n_levels},
                           {"timings_s",
                            {{"setup", t.setup},
                             {"factorize", t.factorize},

@@ -189,7 +189,7 @@ DistributedWaveModel::add_point_springs(const BoundaryPart part,
     m.constraints.distribute_local_to_global(local, sp.dofs, m.springs_matrix);
   }
   m.springs_matrix.compress(VectorOperation::add);
-  m.solver_dt = 0.0; // P gains N^T K N at the next set-up
+  m.levels.clear(); // P gains N^T K N at the next set-up
   return distances;
 }
 
@@ -199,8 +199,7 @@ std::vector<double> DistributedWaveModel::point_flexibility(const double dt)
   const auto start = Clock::now();
   if (!m.initial_acceleration_done)
     m.compute_initial_acceleration();
-  if (dt != m.solver_dt)
-    m.set_up_solver(dt);
+  m.use_level(dt);
   // Column j of G: N P^-1 N^T e_j, the springs' displacements under unit point load j.
   const std::size_t n = 2 * m.springs.size();
   std::vector<double> g(n * n, 0.0), unit(n, 0.0);

@@ -241,28 +241,32 @@ void DistributedWaveModel::Impl::assemble_boundary()
     }
 }
 
-void DistributedWaveModel::Impl::set_up_solver(const double dt)
+void DistributedWaveModel::Impl::use_level(const double dt)
 {
+  if (levels.use(dt))
+    return;
   const auto start = Clock::now();
   const double c_mass = 1.0 / (beta * dt * dt), c_damping = gamma / (beta * dt);
   // P = K + c_damping C + c_mass M; the three were assembled with the constrained rows and
   // columns eliminated, and so is P.
-  effective.reinit(stiffness); // the layout
-  effective.copy_from(stiffness);
-  effective.add(c_mass, mass);
-  effective.add(c_damping, damping);
+  auto level = std::make_unique<Level>();
+  TrilinosWrappers::SparseMatrix& p = level->matrix;
+  p.reinit(stiffness); // the layout
+  p.copy_from(stiffness);
+  p.add(c_mass, mass);
+  p.add(c_damping, damping);
   if (!springs.empty())
-    effective.add(1.0, springs_matrix);
+    p.add(1.0, springs_matrix);
   if (solver_kind == DistributedSolver::mumps)
   {
-    direct = std::make_unique<TrilinosWrappers::SolverDirect>(
+    level->direct = std::make_unique<TrilinosWrappers::SolverDirect>(
         solver_control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Mumps"));
-    direct->initialize(effective);
+    level->direct->initialize(p);
   }
   else if (solver_kind == DistributedSolver::cg_jacobi)
   {
-    jacobi = std::make_unique<TrilinosWrappers::PreconditionJacobi>();
-    jacobi->initialize(effective);
+    level->jacobi = std::make_unique<TrilinosWrappers::PreconditionJacobi>();
+    level->jacobi->initialize(p);
   }
   else
   {
@@ -272,10 +276,11 @@ void DistributedWaveModel::Impl::set_up_solver(const double dt)
     data.smoother_sweeps = 2;
     data.aggregation_threshold = 0.02;
     DoFTools::extract_constant_modes(dof_handler, ComponentMask(), data.constant_modes);
-    amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-    amg->initialize(effective, data);
+    level->amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+    level->amg->initialize(p, data);
   }
-  solver_dt = dt;
+  levels.insert(dt, std::move(level));
+  ++timings.n_levels;
   timings.factorize += seconds_since(start);
 }
 

@@ -4,6 +4,7 @@
 // fem/distributed_point_springs.cc (the ties to the blocks).
 #pragma once
 
+#include "common/recent_cache.h"
 #include "fem/distributed_wave_model.h"
 
 #include <deal.II/base/point.h>
@@ -39,8 +40,9 @@ public:
   void assemble_domain();
   void assemble_boundary();
   void locate_monitors();
-  /// The effective matrix for steps of dt and its solver (AMG or LU).
-  void set_up_solver(double dt);
+  /// The effective matrix for steps of dt and its solver (AMG, Jacobi or LU), set up on first
+  /// use and kept: the current level (levels.front()) from then on.
+  void use_level(double dt);
   /// M a0 = f(0) - K u0 - C v0 (zero from rest without input at t = 0).
   void compute_initial_acceleration();
   /// The Newmark right-hand side of a step of dt and its predictor solve into scratch.u_new.
@@ -86,16 +88,24 @@ public:
   DoFHandler<2> dof_handler;
   IndexSet owned, relevant;
   AffineConstraints<double> constraints;
-  /// The springs' N^T K N (on the effective matrix's pattern) is added to P.
-  TrilinosWrappers::SparseMatrix mass, stiffness, damping, springs_matrix, effective;
+  /// The springs' N^T K N (on the matrices' pattern) is added to P.
+  TrilinosWrappers::SparseMatrix mass, stiffness, damping, springs_matrix;
   TrilinosWrappers::MPI::Vector input_shape; ///< the input traction per unit v_in [N s/m]
   double input_scale = 0.0;                  ///< 2 rho c [kg/(m^2 s)]
 
   SolverControl solver_control{100000, 1e-12};
-  std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
-  std::unique_ptr<TrilinosWrappers::PreconditionJacobi> jacobi;
-  std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
-  double solver_dt = 0.0; ///< the dt the solver is set up for [s]; 0: none
+  /// The effective matrix P = K + gamma/(beta dt) C + 1/(beta dt^2) M (+ N^T K N) of one dt and
+  /// the solver set up on it.
+  struct Level
+  {
+    TrilinosWrappers::SparseMatrix matrix;
+    std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
+    std::unique_ptr<TrilinosWrappers::PreconditionJacobi> jacobi;
+    std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
+  };
+  /// By dt [s], the most recent first: coupled runs that cut dt step on the levels
+  /// dt_max / 2^k and come back (16 kept, as ElasticWaveModel keeps its factorizations).
+  RecentCache<double, Level> levels{16};
 
   TrilinosWrappers::MPI::Vector u, v, a, a_previous, force; ///< owned entries
   /// A step's work vectors, made once: a vector made in a step would make its Epetra map too.

@@ -54,17 +54,18 @@ unsigned int DistributedWaveModel::Impl::solve(TrilinosWrappers::MPI::Vector& x,
     x = 0.0;
     return 0;
   }
-  if (direct)
+  Level& level = levels.front();
+  if (level.direct)
   {
-    direct->solve(x, rhs);
+    level.direct->solve(x, rhs);
     return 0;
   }
   SolverControl control(1000, description.solver_tolerance * rhs.l2_norm());
   SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
-  if (jacobi)
-    cg.solve(effective, x, rhs, *jacobi);
+  if (level.jacobi)
+    cg.solve(level.matrix, x, rhs, *level.jacobi);
   else
-    cg.solve(effective, x, rhs, *amg);
+    cg.solve(level.matrix, x, rhs, *level.amg);
   return control.last_step();
 }
 
@@ -72,8 +73,7 @@ void DistributedWaveModel::Impl::prepare(const double dt)
 {
   if (!initial_acceleration_done)
     compute_initial_acceleration();
-  if (dt != solver_dt)
-    set_up_solver(dt);
+  use_level(dt);
   const NewmarkCoefficients newmark = newmark_coefficients(beta, gamma, dt);
   const double m_a = 1.0 / (2.0 * beta) - 1.0;
   const double c_v = gamma / beta - 1.0, c_a = dt * (gamma / (2.0 * beta) - 1.0);

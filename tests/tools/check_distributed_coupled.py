@@ -8,7 +8,8 @@ when only the blocks' direct solver changes (block_ldlt to KLU), measured here i
 Both sides are direct (CHOLMOD or MUMPS for the far field; the blocks' LDL^T with refinement),
 but bonded joints of 50 E per metre make the coupled steps ill-conditioned enough that round-off
 reaches 1e-9 (column) to 3e-8 (bar) of the peaks whatever the solver. Also checks that rank 0
-wrote summary.json with mpi.ranks and a .vtu piece per rank of each far-field snapshot.
+wrote summary.json with mpi.ranks and a .vtu piece per rank of each far-field snapshot, and that
+a wall-time budget stops both ranks after the same step (exit 3, status stopped, no hang).
 
     check_distributed_coupled.py DDAFEM SOURCE_DIR WORK_DIR
 """
@@ -74,6 +75,18 @@ def main():
             assert records and len(pieces) == ranks * len(records), (len(records), len(pieces))
             print(f"{name}, {ranks} rank(s): the serial monitors within {d:.2g} of their peaks "
                   f"(round-off floor {floor:.2g})")
+    # A budget: rank 0 and rank 1 reach it at different steps; both stop after the same one.
+    out = os.path.join(work, "budget")
+    shutil.rmtree(out, ignore_errors=True)
+    r = subprocess.run(MPIRUN + ["-np", "2", ddafem, "run", os.path.join(source, SCENES[1][0]),
+                                 "-o", out, "-q", "--max-wall-time", "2"],
+                       env=ENVIRONMENT, timeout=120)
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    assert r.returncode == 3 and summary["status"] == "stopped", (r.returncode, summary["status"])
+    steps = [json.load(open(os.path.join(out, "ranks", "rank_1", "summary.json")))["steps"],
+             summary["steps"]]
+    assert steps[0] == steps[1], steps
+    print(f"a 2 s budget stopped both ranks after step {steps[1]}")
 
 
 if __name__ == "__main__":
