@@ -95,6 +95,7 @@ public:
                const InterfaceDescription& description);
 
   void begin_stage(dda::StageMode mode) override;
+  bool begins_step_on_any_thread() const override { return far_field.steps_on_any_thread(); }
   /// Held (static stage): H = K, one 2 x 2 spring per tie.
   bool stiffness_is_block_diagonal() const override { return held; }
   std::string begin_step(double dt, const Eigen::VectorXd& displacements) override;

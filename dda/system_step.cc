@@ -138,7 +138,9 @@ std::future<std::string> System::begin_tied_step(double dt)
     tie_matrices[k] = point_matrix(tie_points[k]);
     displacements.segment<2>(2 * k) = tie_points[k].position - tie_origins[k];
   }
-  return std::async(std::launch::async,
+  // A body that cannot begin on another thread begins when the step asks for it (deferred).
+  return std::async(tied_body->begins_step_on_any_thread() ? std::launch::async
+                                                           : std::launch::deferred,
                     [this, dt, displacements = std::move(displacements)]
                     {
                       const auto start = Clock::now();

@@ -31,6 +31,10 @@ public:
   /// tie's force on the blocks (preload + spring) becomes its constant preload, and the tie
   /// displacements the System passes are measured from the state reached (they restart at 0).
   virtual void begin_stage(StageMode mode) = 0;
+  /// Whether begin_step may run on another thread while the blocks find their contacts
+  /// (false for a body whose calls are MPI collectives: MPI is started for one thread at a time,
+  /// and a request begun on one thread and completed on another can hang).
+  virtual bool begins_step_on_any_thread() const { return true; }
   /// Starts (or restarts, after a cut) a step of dt [s]. `displacements` (2m) are the tie points'
   /// displacements since the ties were made [m]. The ties' trial states start from their
   /// accepted ones. Returns an empty string, or why the body cannot take the step.

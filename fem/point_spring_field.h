@@ -60,6 +60,8 @@ public:
   virtual StepStatus finish_step(const std::vector<double>& point_loads) = 0;
   /// Work of the springs on the far field since t = 0 [J].
   virtual double work_of_springs() const = 0;
+  /// Whether prepare_step may run on a thread other than the caller's (not across MPI ranks).
+  virtual bool steps_on_any_thread() const { return true; }
 };
 
 } // namespace ddafem::fem
