@@ -20,30 +20,16 @@ namespace ddafem
 {
 namespace
 {
-class DistributedTiedFarField : public TiedFarField
+class DistributedTiedFarField : public TiedFarFieldOf<fem::DistributedWaveModel>
 {
 public:
   DistributedTiedFarField(const Scene& scene_, dda::System& system_)
-      : scene(scene_), system(system_), comm(mpi_world()),
-        rank(dealii::Utilities::MPI::this_mpi_process(comm)),
-        far_field(*scene.far_field, comm, distributed_solver(*scene.far_field)),
-        ties(system, far_field, *scene.interface)
+      : TiedFarFieldOf(scene_, system_, *scene_.far_field, mpi_world(),
+                       distributed_solver(*scene_.far_field)),
+        comm(mpi_world()), rank(dealii::Utilities::MPI::this_mpi_process(comm))
   {
   }
 
-  std::string impedance_warning() const override
-  {
-    return tied_impedance_warning(scene, system, ties);
-  }
-  void add_channels(std::vector<HistoryChannel>& channels) const override
-  {
-    add_tied_channels(channels, *scene.far_field);
-  }
-  void append_row(std::vector<double>& row) const override
-  {
-    append_far_field_monitors(row, far_field, scene.far_field->monitors.size());
-    append_tied_energies(row, far_field.energy(), ties);
-  }
   std::string write_snapshot(const std::filesystem::path& dir, fem::VtuCompression) override
   {
     if (!snapshot_written) // rank 0 has cleared an earlier run's pieces before any rank writes
@@ -52,10 +38,6 @@ public:
     // The pieces and the .pvtu records go to rank 0's directory; rank K's is DIR/ranks/rank_K.
     const std::filesystem::path out = rank == 0 ? dir : dir.parent_path().parent_path();
     return far_field.write_snapshot(out.string(), "far_field");
-  }
-  std::vector<dda::ContactSnapshot> tie_snapshot() const override
-  {
-    return tie_contacts(ties, system);
   }
   void add_to_summary(nlohmann::json& summary) const override;
   void describe(std::ostream& out) const override;
@@ -74,12 +56,8 @@ public:
   }
 
 private:
-  const Scene& scene;
-  dda::System& system;
   MPI_Comm comm;
   unsigned int rank = 0;
-  fem::DistributedWaveModel far_field;
-  coupling::FarFieldTies ties; ///< after far_field: it holds a reference to it
   bool snapshot_written = false;
 };
 
@@ -87,12 +65,7 @@ void DistributedTiedFarField::add_to_summary(nlohmann::json& summary) const
 {
   const fem::DistributedTimings& t = far_field.timings();
   const fem::EnergyBalance fe = far_field.energy();
-  summary["model"]["far_field_cells"] = far_field.n_cells();
-  summary["model"]["far_field_dofs"] = far_field.n_dofs();
-  summary["model"]["element_size_m"] = far_field.element_size();
-  summary["model"]["ties"] = ties.n_ties();
-  summary["model"]["tied_edges"] = ties.n_tied_edges();
-  summary["model"]["tied_blocks"] = ties.n_tied_blocks();
+  add_model_summary(summary);
   summary["far_field"] = {{"solver", name_of(distributed_solver(*scene.far_field))},
                           {"linear_iterations", t.linear_iterations},
                           {"levels", t.n_levels},

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ddafem
@@ -70,6 +71,57 @@ void append_far_field_monitors(std::vector<double>& row, const Model& far_field,
                            s.stress[0], s.stress[1], s.stress[2]});
   }
 }
+/// What a far field tied to the blocks does the same way whatever its model (Model:
+/// fem::ElasticWaveModel, or fem::DistributedWaveModel whose calls here are collective): its
+/// channels and rows, the ties' snapshot, the impedance warning and summary.json's "model".
+template <class Model>
+class TiedFarFieldOf : public TiedFarField
+{
+public:
+  /// `arguments` make the far field.
+  template <class... ModelArguments>
+  TiedFarFieldOf(const Scene& scene_, dda::System& system_, ModelArguments&&... arguments)
+      : scene(scene_), system(system_), far_field(std::forward<ModelArguments>(arguments)...),
+        ties(system, far_field, *scene.interface)
+  {
+  }
+
+  std::string impedance_warning() const override
+  {
+    return tied_impedance_warning(scene, system, ties);
+  }
+  void add_channels(std::vector<HistoryChannel>& channels) const override
+  {
+    add_tied_channels(channels, *scene.far_field);
+  }
+  void append_row(std::vector<double>& row) const override
+  {
+    append_far_field_monitors(row, far_field, scene.far_field->monitors.size());
+    append_tied_energies(row, far_field.energy(), ties);
+  }
+  std::vector<dda::ContactSnapshot> tie_snapshot() const override
+  {
+    return tie_contacts(ties, system);
+  }
+
+protected:
+  /// summary.json's "model": the far field's mesh and the ties.
+  void add_model_summary(nlohmann::json& summary) const
+  {
+    summary["model"]["far_field_cells"] = far_field.n_cells();
+    summary["model"]["far_field_dofs"] = far_field.n_dofs();
+    summary["model"]["element_size_m"] = far_field.element_size();
+    summary["model"]["ties"] = ties.n_ties();
+    summary["model"]["tied_edges"] = ties.n_tied_edges();
+    summary["model"]["tied_blocks"] = ties.n_tied_blocks();
+  }
+
+  const Scene& scene;
+  dda::System& system;
+  Model far_field;
+  coupling::FarFieldTies ties; ///< after far_field: it holds a reference to it
+};
+
 /// The far field's timings for summary.json [s]: setup, assemble, solve, update.
 nlohmann::json far_field_timings(const fem::Timings& timings);
 

@@ -25,36 +25,18 @@ std::string impedance_message(const coupling::InterfaceImpedance& z)
          "% of a normally incident wave; a far-field material of the rock mass (E_eff) avoids it";
 }
 
-class TiedFarFieldModel : public TiedFarField
+class TiedFarFieldModel : public TiedFarFieldOf<fem::ElasticWaveModel>
 {
 public:
   TiedFarFieldModel(const Scene& scene_, dda::System& system_)
-      : scene(scene_), system(system_), far_field(*scene.far_field),
-        ties(system, far_field, *scene.interface)
+      : TiedFarFieldOf(scene_, system_, *scene_.far_field)
   {
   }
 
-  std::string impedance_warning() const override
-  {
-    return tied_impedance_warning(scene, system, ties);
-  }
-  void add_channels(std::vector<HistoryChannel>& channels) const override
-  {
-    add_tied_channels(channels, *scene.far_field);
-  }
-  void append_row(std::vector<double>& row) const override
-  {
-    append_far_field_monitors(row, far_field, scene.far_field->monitors.size());
-    append_tied_energies(row, far_field.energy(), ties);
-  }
   std::string write_snapshot(const std::filesystem::path& dir,
                              fem::VtuCompression compression) override
   {
     return far_field.write_snapshot(dir.string(), "far_field", compression);
-  }
-  std::vector<dda::ContactSnapshot> tie_snapshot() const override
-  {
-    return tie_contacts(ties, system);
   }
   void add_to_summary(nlohmann::json& summary) const override;
   void describe(std::ostream& out) const override
@@ -81,11 +63,6 @@ private:
   }
   void describe_far_field(std::ostream& out) const;
   void describe_interface(std::ostream& out) const;
-
-  const Scene& scene;
-  dda::System& system;
-  fem::ElasticWaveModel far_field;
-  coupling::FarFieldTies ties; ///< after far_field: it holds a reference to it
 };
 
 } // namespace
@@ -196,12 +173,7 @@ void TiedFarFieldModel::add_to_summary(nlohmann::json& summary) const
 {
   const fem::Timings& ft = far_field.timings();
   const fem::EnergyBalance fe = far_field.energy();
-  summary["model"]["far_field_cells"] = far_field.n_cells();
-  summary["model"]["far_field_dofs"] = far_field.n_dofs();
-  summary["model"]["element_size_m"] = far_field.element_size();
-  summary["model"]["ties"] = ties.n_ties();
-  summary["model"]["tied_edges"] = ties.n_tied_edges();
-  summary["model"]["tied_blocks"] = ties.n_tied_blocks();
+  add_model_summary(summary);
   summary["far_field"] = {{"solver", far_field.solver_name()},
                           {"factorizations", ft.n_factorizations},
                           {"timings_s", far_field_timings(ft)},

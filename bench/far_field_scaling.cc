@@ -6,7 +6,9 @@
 //
 // --cells N: N x N elements (2 (2N + 1)^2 DOFs); --steps S: timed steps after 5 warm-up steps;
 // --solver cg_amg | cg_jacobi | mumps. Each timed step starts at a barrier and ends when the
-// slowest rank has finished it; the median step is reported.
+// slowest rank has finished it; the median step is reported. --ties M: M point springs along the
+// top, as the blocks' ties (2M right-hand sides), and the time of their condensation G =
+// N P^-1 N^T; --width W: right-hand sides solved at once for it (1: one solve each).
 #include "bench/bench_support.h"
 #include "fem/distributed_wave_model.h"
 
@@ -51,7 +53,7 @@ FarFieldDescription square(const unsigned int cells)
 
 struct Options
 {
-  unsigned int cells = 32, steps = 20;
+  unsigned int cells = 32, steps = 20, ties = 0, width = 64;
   DistributedSolver solver = DistributedSolver::cg_amg;
 };
 
@@ -64,12 +66,16 @@ bool parse(int argc, char** argv, Options& o)
       o.cells = static_cast<unsigned int>(std::atoi(value.c_str()));
     else if (arg == "--steps")
       o.steps = static_cast<unsigned int>(std::atoi(value.c_str()));
+    else if (arg == "--ties")
+      o.ties = static_cast<unsigned int>(std::atoi(value.c_str()));
+    else if (arg == "--width")
+      o.width = static_cast<unsigned int>(std::atoi(value.c_str()));
     else if (arg == "--solver" && value_of<DistributedSolver>(value))
       o.solver = *value_of<DistributedSolver>(value);
     else
       return false;
   }
-  return argc % 2 == 1 && o.cells > 0 && o.steps > 0;
+  return argc % 2 == 1 && o.cells > 0 && o.steps > 0 && o.width > 0;
 }
 
 int run(const Options& o)
@@ -79,6 +85,20 @@ int run(const Options& o)
   auto start = std::chrono::steady_clock::now();
   DistributedWaveModel model(square(o.cells), comm, o.solver);
   const double setup = dealii::Utilities::MPI::max(seconds(start), comm);
+  double condensation = 0.0; // [s]
+  if (o.ties > 0)
+  {
+    const double size = 4.0 * o.cells; // [m]
+    std::vector<PointSpring> springs;
+    for (unsigned int k = 0; k < o.ties; ++k) // 1 GPa/m normal, 0.4 GPa/m shear
+      springs.push_back({{{(k + 0.5) * size / o.ties, size}}, {{0.4e9, 0.0, 0.0, 1e9}}});
+    model.add_point_springs(BoundaryPart::top, springs);
+    model.set_condensation_width(o.width);
+    MPI_Barrier(comm);
+    start = std::chrono::steady_clock::now();
+    model.point_flexibility(dt);
+    condensation = dealii::Utilities::MPI::max(seconds(start), comm);
+  }
   start = std::chrono::steady_clock::now();
   for (int k = 0; k < 5; ++k) // warm-up: the solver's set-up, caches
     if (model.advance(dt).outcome != StepOutcome::success)
@@ -108,7 +128,8 @@ int run(const Options& o)
               << ", \"cells\": " << model.n_cells() << ", \"dofs\": " << model.n_dofs()
               << ", \"solver\": \"" << name_of(o.solver) << "\", \"setup_s\": " << setup
               << ", \"warm_up_s\": " << warm_up << ", \"factorize_s\": " << t.factorize
-              << ", \"steps\": " << o.steps
+              << ", \"ties\": " << o.ties << ", \"condensation_width\": " << o.width
+              << ", \"condensation_s\": " << condensation << ", \"steps\": " << o.steps
               << ", \"median_step_ms\": " << 1e3 * step_s[step_s.size() / 2]
               << ", \"solve_ms_per_step\": " << 1e3 * solve / t.n_steps
               << ", \"solve_ms_per_step_fastest_rank\": " << 1e3 * solve_fastest / t.n_steps
@@ -130,7 +151,8 @@ int main(int argc, char** argv)
   if (!parse(argc, argv, o))
   {
     std::cerr
-        << "usage: far_field_scaling [--cells N] [--steps S] [--solver cg_amg|cg_jacobi|mumps]\n";
+        << "usage: far_field_scaling [--cells N] [--steps S] [--solver cg_amg|cg_jacobi|mumps] "
+           "[--ties M] [--width W]\n";
     return 2;
   }
   try

@@ -69,13 +69,20 @@ std::pair<Point<2>, Face> nearest_on(const std::vector<Face>& faces, const Point
 } // namespace
 
 std::vector<double>
-DistributedWaveModel::Impl::evaluate_at_springs(const TrilinosWrappers::MPI::Vector& x) const
+DistributedWaveModel::Impl::springs_share_of(const TrilinosWrappers::MPI::Vector& x) const
 {
   const TrilinosWrappers::MPI::Vector& field = ghosted_field(x);
   std::vector<double> out(2 * springs.size(), 0.0);
   for (std::size_t k = 0; k < springs.size(); ++k)
     for (std::size_t i = 0; i < springs[k].dofs.size(); ++i)
       out[2 * k + springs[k].component[i]] += springs[k].phi[i] * field(springs[k].dofs[i]);
+  return out;
+}
+
+std::vector<double>
+DistributedWaveModel::Impl::evaluate_at_springs(const TrilinosWrappers::MPI::Vector& x) const
+{
+  std::vector<double> out = springs_share_of(x);
   Utilities::MPI::sum(out, comm, out);
   return out;
 }
@@ -200,22 +207,38 @@ std::vector<double> DistributedWaveModel::point_flexibility(const double dt)
   if (!m.initial_acceleration_done)
     m.compute_initial_acceleration();
   m.use_level(dt);
-  // Column j of G: N P^-1 N^T e_j, the springs' displacements under unit point load j.
+  // Column j of G: N P^-1 N^T e_j, the springs' displacements under unit point load j, solved
+  // for `width` columns at a time (condensation_width, and at most 128 MB a block: MUMPS gathers
+  // the block on rank 0).
   const std::size_t n = 2 * m.springs.size();
-  std::vector<double> g(n * n, 0.0), unit(n, 0.0);
   TrilinosWrappers::MPI::Vector& rhs = m.scratch.rhs;
   TrilinosWrappers::MPI::Vector& x = m.scratch.combination;
-  for (std::size_t j = 0; j < n; ++j)
+  const std::size_t width = std::clamp<std::size_t>(
+      std::size_t{16'000'000} / std::max<std::size_t>(rhs.size(), 1), 1, m.condensation_width);
+  Epetra_MultiVector loads(rhs.trilinos_vector().Map(), static_cast<int>(std::min(width, n)));
+  Epetra_MultiVector displacements(loads.Map(), loads.NumVectors());
+  std::vector<double> g(n * n, 0.0), unit(n, 0.0);
+  for (std::size_t first = 0; first < n; first += width)
   {
-    unit[j] = 1.0;
-    m.set_spring_loads(unit, rhs);
-    unit[j] = 0.0;
-    x = 0.0;
-    m.solve(x, rhs);
-    const std::vector<double> column = m.evaluate_at_springs(x);
-    for (std::size_t i = 0; i < n; ++i)
-      g[i * n + j] = column[i];
+    const int columns = static_cast<int>(std::min(width, n - first));
+    Epetra_MultiVector b(View, loads, 0, columns), y(View, displacements, 0, columns);
+    for (int c = 0; c < columns; ++c)
+    {
+      unit[first + c] = 1.0;
+      m.set_spring_loads(unit, rhs);
+      unit[first + c] = 0.0;
+      std::copy(rhs.begin(), rhs.end(), b[c]);
+    }
+    m.solve_block(y, b);
+    for (int c = 0; c < columns; ++c)
+    {
+      std::copy(y[c], y[c] + y.MyLength(), x.begin());
+      const std::vector<double> share = m.springs_share_of(x);
+      for (std::size_t i = 0; i < n; ++i)
+        g[i * n + first + c] = share[i];
+    }
   }
+  Utilities::MPI::sum(g, m.comm, g); // one nonzero term per entry: the same bits on every rank
   m.timings.factorize += seconds_since(start);
   return g;
 }
@@ -270,6 +293,12 @@ StepStatus DistributedWaveModel::finish_step(const std::vector<double>& point_lo
     return {StepOutcome::solver_failure,
             std::string("far field (distributed): solver failed: ") + e.what()};
   }
+}
+
+void DistributedWaveModel::set_condensation_width(const unsigned int width)
+{
+  AssertThrow(width > 0, ExcMessage("set_condensation_width(): width 0"));
+  impl->condensation_width = width;
 }
 
 double DistributedWaveModel::work_of_springs() const

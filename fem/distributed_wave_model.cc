@@ -259,9 +259,7 @@ void DistributedWaveModel::Impl::use_level(const double dt)
     p.add(1.0, springs_matrix);
   if (solver_kind == DistributedSolver::mumps)
   {
-    level->direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-        solver_control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Mumps"));
-    level->direct->initialize(p);
+    level->direct = std::make_unique<DistributedMumps>(p.trilinos_matrix(), comm);
   }
   else if (solver_kind == DistributedSolver::cg_jacobi)
   {

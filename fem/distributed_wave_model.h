@@ -81,8 +81,13 @@ public:
                                         const std::vector<PointSpring>& springs) override;
   /// Every rank's faces, in the order of their coordinates.
   std::vector<std::array<double, 4>> boundary_segments(BoundaryPart part) const override;
-  /// 2m solves (one per spring component) and one sum over the ranks.
+  /// 2m right-hand sides (one per spring component), solved `condensation_width` at a time
+  /// (block solves; fewer if a block of the whole model would pass 128 MB), and one sum over the
+  /// ranks.
   std::vector<double> point_flexibility(double dt) override;
+  /// Right-hand sides solved at once in point_flexibility() (default 64; 1: one solve each, for
+  /// comparison in bench/far_field_scaling).
+  void set_condensation_width(unsigned int width);
   StepStatus prepare_step(double dt, std::vector<double>& free_point_displacements) override;
   /// Takes rank 0's point loads, and fails on every rank if the ranks' loads differ (the blocks
   /// replicated on the ranks would have parted).

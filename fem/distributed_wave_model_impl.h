@@ -6,6 +6,7 @@
 
 #include "common/recent_cache.h"
 #include "fem/distributed_wave_model.h"
+#include "fem/mumps_solver.h"
 
 #include <deal.II/base/point.h>
 #include <deal.II/distributed/tria.h>
@@ -18,6 +19,8 @@
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
+
+#include <Epetra_MultiVector.h>
 
 #include <memory>
 #include <string>
@@ -51,6 +54,13 @@ public:
   StepStatus finish(const std::vector<double>& point_loads);
   /// Solves P x = rhs, x holding the initial guess; returns the iterations (0: direct).
   unsigned int solve(TrilinosWrappers::MPI::Vector& x, const TrilinosWrappers::MPI::Vector& rhs);
+  /// Solves P X = B for all columns of B at once (zero initial guesses): MUMPS with every
+  /// right-hand side in one pass over its factors, or Belos' pseudo-block CG (a CG per column,
+  /// their products with P and preconditioner together: one pass over P an iteration for all
+  /// columns; each column to the solver tolerance relative to its own norm); returns the iterations
+  /// (0: direct). Throws if CG does not converge. (Belos' true block CG broke down on G's
+  /// right-hand sides: their block loses rank as columns converge.)
+  unsigned int solve_block(Epetra_MultiVector& x, const Epetra_MultiVector& b);
   /// The work of the input and the dashpots over a step, with mid-step forces.
   void add_work_of_step(const TrilinosWrappers::MPI::Vector& u_new,
                         const TrilinosWrappers::MPI::Vector& v_new,
@@ -66,6 +76,8 @@ public:
   void add_free_field_load(TrilinosWrappers::MPI::Vector& f);
   /// x with its constrained entries (hanging nodes) set, in `ghosted` (owned and relevant).
   const TrilinosWrappers::MPI::Vector& ghosted_field(const TrilinosWrappers::MPI::Vector& x) const;
+  /// N x at this rank's springs, zero at the others' [m] (2m).
+  std::vector<double> springs_share_of(const TrilinosWrappers::MPI::Vector& x) const;
   /// N x at every spring, on every rank [m] (2m).
   std::vector<double> evaluate_at_springs(const TrilinosWrappers::MPI::Vector& x) const;
   /// rhs = N^T q: the owners' springs' point loads q [N] (2m) into the right-hand side.
@@ -101,11 +113,12 @@ public:
     TrilinosWrappers::SparseMatrix matrix;
     std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg;
     std::unique_ptr<TrilinosWrappers::PreconditionJacobi> jacobi;
-    std::unique_ptr<TrilinosWrappers::SolverDirect> direct;
+    std::unique_ptr<DistributedMumps> direct;
   };
   /// By dt [s], the most recent first: coupled runs that cut dt step on the levels
   /// dt_max / 2^k and come back (16 kept, as ElasticWaveModel keeps its factorizations).
   RecentCache<double, Level> levels{16};
+  unsigned int condensation_width = 64; ///< right-hand sides solved at once for G
 
   TrilinosWrappers::MPI::Vector u, v, a, a_previous, force; ///< owned entries
   /// A step's work vectors, made once: a vector made in a step would make its Epetra map too.

@@ -16,6 +16,12 @@
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <BelosEpetraAdapter.hpp>
+#include <BelosLinearProblem.hpp>
+#include <BelosPseudoBlockCGSolMgr.hpp>
+#include <Teuchos_ParameterList.hpp>
+#include <Teuchos_RCP.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -56,10 +62,7 @@ unsigned int DistributedWaveModel::Impl::solve(TrilinosWrappers::MPI::Vector& x,
   }
   Level& level = levels.front();
   if (level.direct)
-  {
-    level.direct->solve(x, rhs);
-    return 0;
-  }
+    return solve_block(x.trilinos_vector(), rhs.trilinos_vector());
   SolverControl control(1000, description.solver_tolerance * rhs.l2_norm());
   SolverCG<TrilinosWrappers::MPI::Vector> cg(control);
   if (level.jacobi)
@@ -67,6 +70,35 @@ unsigned int DistributedWaveModel::Impl::solve(TrilinosWrappers::MPI::Vector& x,
   else
     cg.solve(level.matrix, x, rhs, *level.amg);
   return control.last_step();
+}
+
+unsigned int DistributedWaveModel::Impl::solve_block(Epetra_MultiVector& x,
+                                                     const Epetra_MultiVector& b)
+{
+  Level& level = levels.front();
+  if (level.direct)
+  {
+    level.direct->solve(x, b);
+    return 0;
+  }
+  using Problem = Belos::LinearProblem<double, Epetra_MultiVector, Epetra_Operator>;
+  x.PutScalar(0.0);
+  const auto problem = Teuchos::rcp(new Problem(Teuchos::rcpFromRef(level.matrix.trilinos_matrix()),
+                                                Teuchos::rcpFromRef(x), Teuchos::rcpFromRef(b)));
+  Epetra_Operator& preconditioner =
+      level.jacobi ? level.jacobi->trilinos_operator() : level.amg->trilinos_operator();
+  problem->setLeftPrec(Teuchos::rcp(new Belos::EpetraPrecOp(Teuchos::rcpFromRef(preconditioner))));
+  problem->setProblem();
+  // Each column converges to the tolerance relative to its initial residual, its own norm (the
+  // zero guess): the criterion of solve().
+  const auto parameters = Teuchos::parameterList();
+  parameters->set("Maximum Iterations", 1000);
+  parameters->set("Convergence Tolerance", description.solver_tolerance);
+  Belos::PseudoBlockCGSolMgr<double, Epetra_MultiVector, Epetra_Operator> cg(problem, parameters);
+  AssertThrow(cg.solve() == Belos::Converged,
+              ExcMessage("CG did not converge in 1000 iterations on " +
+                         std::to_string(b.NumVectors()) + " right-hand sides"));
+  return static_cast<unsigned int>(cg.getNumIters());
 }
 
 void DistributedWaveModel::Impl::prepare(const double dt)

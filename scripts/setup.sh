@@ -13,6 +13,7 @@ packages=(
   libhdf5-dev             # HDF5 (the OpenMPI build, the one deal.II links) for histories.h5
   mpi-default-dev         # mpi.h, which the OpenMPI build's hdf5.h includes
   mpi-default-bin         # mpirun: the distributed far field (tests fem.distributed_np*, bench)
+  libmumps-dev            # MUMPS (also a deal.II dependency): the distributed far field's block solves
   libsuitesparse-dev      # KLU (blocks and far field), CHOLMOD (far field)
   libtbb-dev              # threads (common/parallel)
   libboost-serialization-dev  # checkpoints (common/checkpoint_archive.h; deal.II's needs it too)
