@@ -185,6 +185,17 @@ MPI_Comm mpi_world()
   return MPI_COMM_WORLD;
 }
 
+void end_every_rank(const int exit_code)
+{
+  int started = 0, finished = 0, size = 1;
+  MPI_Initialized(&started);
+  MPI_Finalized(&finished);
+  if (started && !finished)
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+  if (size > 1)
+    MPI_Abort(MPI_COMM_WORLD, exit_code);
+}
+
 fem::DistributedSolver distributed_solver(const fem::FarFieldDescription& d)
 {
   return d.solver == fem::LinearSolver::direct ? fem::DistributedSolver::mumps

@@ -12,6 +12,9 @@ namespace ddafem
 {
 /// MPI_COMM_WORLD, with MPI (and p4est) started on first use and finished at exit.
 MPI_Comm mpi_world();
+/// Ends every rank with `exit_code` (MPI_Abort) if MPI runs on more than one rank; otherwise
+/// returns (FarFieldModule::end_every_rank_after_error).
+void end_every_rank(int exit_code);
 /// The scene's far_field.solver on the ranks: direct as MUMPS, cg as CG with Jacobi.
 fem::DistributedSolver distributed_solver(const fem::FarFieldDescription& description);
 } // namespace ddafem

@@ -1,6 +1,7 @@
 // The far-field module's entry point (app/far_field_module.h): libddafem_far_field.so exports
 // ddafem_far_field_module(), which the core looks up after dlopen; the test programs link these
 // objects and reach it directly.
+#include "app/distributed_support.h"
 #include "app/far_field_parts.h"
 #include "app/run_support.h"
 #include "common/input_error.h"
@@ -39,6 +40,12 @@ public:
   std::string check_far_field(const Scene& scene) const override
   {
     return ddafem::check_far_field(scene);
+  }
+  void end_every_rank_after_error([[maybe_unused]] const int exit_code) const override
+  {
+#ifndef DDAFEM_WITHOUT_DISTRIBUTED_FAR_FIELD
+    end_every_rank(exit_code);
+#endif
   }
 };
 } // namespace

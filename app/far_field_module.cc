@@ -12,13 +12,22 @@ extern "C" const ddafem::FarFieldModule* ddafem_far_field_module() __attribute__
 
 namespace ddafem
 {
+namespace
+{
+/// libddafem_far_field.so beside the executable.
+std::filesystem::path module_file()
+{
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  return exe.parent_path() / "libddafem_far_field.so";
+}
+} // namespace
+
 const FarFieldModule& far_field_module()
 {
   if (ddafem_far_field_module)
     return *ddafem_far_field_module();
-  std::error_code error;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
-  const std::filesystem::path file = exe.parent_path() / "libddafem_far_field.so";
+  const std::filesystem::path file = module_file();
   // dlopen counts references: after the first call this returns the loaded module.
   void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
   const char* why = handle ? nullptr : dlerror();
@@ -31,6 +40,19 @@ const FarFieldModule& far_field_module()
                      (why ? std::string(why) : "no entry point ddafem_far_field_module") +
                      "): expected the libddafem_far_field.so built beside ddafem");
   return *entry();
+}
+
+void end_every_rank_after_error(const int exit_code)
+{
+  if (ddafem_far_field_module)
+  {
+    ddafem_far_field_module()->end_every_rank_after_error(exit_code);
+    return;
+  }
+  // RTLD_NOLOAD: the module only if a scene has loaded it already.
+  void* handle = dlopen(module_file().c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NOLOAD);
+  if (handle)
+    far_field_module().end_every_rank_after_error(exit_code);
 }
 
 } // namespace ddafem

@@ -73,12 +73,19 @@ public:
   distributed_far_field_simulation(const Scene& scene) const = 0;
   /// `check` of a far field alone.
   virtual std::string check_far_field(const Scene& scene) const = 0;
+  /// After an error on this rank of a distributed run (MPI started, more than one rank): ends
+  /// every rank with `exit_code` (MPI_Abort), since the others may be waiting for this one in a
+  /// collective call and MPI's finalization would wait for them. Otherwise returns.
+  virtual void end_every_rank_after_error(int exit_code) const = 0;
 };
 
 /// The module: linked in (the test programs) or loaded from libddafem_far_field.so beside the
 /// executable on first use, and never unloaded. Throws InputError naming the file and the
 /// loader's reason if it cannot be loaded.
 const FarFieldModule& far_field_module();
+/// After an error: FarFieldModule::end_every_rank_after_error if the module has been loaded
+/// (only the module starts MPI); otherwise nothing.
+void end_every_rank_after_error(int exit_code);
 
 } // namespace ddafem
 

@@ -10,6 +10,7 @@
 // 2 bad input (scene, command line, missing file, a scene too large for memory), 3 stopped at a
 // budget (--max-wall-time, --max-memory).
 #include "app/checkpoint.h"
+#include "app/far_field_module.h"
 #include "app/run.h"
 #include "app/run_support.h"
 #include "app/scene.h"
@@ -281,12 +282,14 @@ int main(int argc, char** argv)
   }
   catch (const ddafem::InputError& e)
   {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << e.what() << std::endl;
+    ddafem::end_every_rank_after_error(2);
     return 2;
   }
   catch (const std::exception& e)
   {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << e.what() << std::endl;
+    ddafem::end_every_rank_after_error(1);
     return 1;
   }
 }

@@ -5,9 +5,9 @@
 // (p4est) with Trilinos (Epetra) matrices and vectors. Every rank owns a part of the cells and
 // of the degrees of freedom; the effective matrix is solved by CG preconditioned with ML's
 // algebraic multigrid or with its diagonal (warm-started from Newmark's predictor), or by
-// Amesos (MUMPS) factorized once per dt. The same physics as ElasticWaveModel: consistent mass,
-// plane elasticity, Lysmer dashpots, the Joyner-Chen input of a vertically incident wave, Newmark
-// (trapezoidal or DDA's), so that both give the same histories
+// MUMPS (fem/mumps_solver.h) factorized once per dt. The same physics as ElasticWaveModel:
+// consistent mass, plane elasticity, Lysmer dashpots, the Joyner-Chen input of a vertically
+// incident wave, Newmark (trapezoidal or DDA's), so that both give the same histories
 // (tests/fem/test_distributed_wave_model.cc).
 #pragma once
 
@@ -31,7 +31,7 @@ enum class DistributedSolver
 {
   cg_amg,    ///< CG preconditioned by ML AMG (set up once per dt), warm-started
   cg_jacobi, ///< CG preconditioned by the diagonal, warm-started: for a mass-dominated matrix
-  mumps      ///< Amesos_Mumps: distributed LU factorized once per dt, two substitutions a step
+  mumps      ///< MUMPS: distributed LDL^T factorized once per dt, two substitutions a step
 };
 
 constexpr std::array<EnumName<DistributedSolver>, 3> enum_names(DistributedSolver)
@@ -85,8 +85,8 @@ public:
   /// (block solves; fewer if a block of the whole model would pass 128 MB), and one sum over the
   /// ranks.
   std::vector<double> point_flexibility(double dt) override;
-  /// Right-hand sides solved at once in point_flexibility() (default 64; 1: one solve each, for
-  /// comparison in bench/far_field_scaling).
+  /// Right-hand sides solved at once in point_flexibility() (default 64 with MUMPS, 2 with CG;
+  /// 1: one solve each, for comparison in bench/far_field_scaling).
   void set_condensation_width(unsigned int width);
   StepStatus prepare_step(double dt, std::vector<double>& free_point_displacements) override;
   /// Takes rank 0's point loads, and fails on every rank if the ranks' loads differ (the blocks

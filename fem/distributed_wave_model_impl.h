@@ -118,7 +118,11 @@ public:
   /// By dt [s], the most recent first: coupled runs that cut dt step on the levels
   /// dt_max / 2^k and come back (16 kept, as ElasticWaveModel keeps its factorizations).
   RecentCache<double, Level> levels{16};
-  unsigned int condensation_width = 64; ///< right-hand sides solved at once for G
+  /// Right-hand sides solved at once for G (docs/performance/far_field_scaling/condensation.md,
+  /// 702 of them): MUMPS reads its factors once per block (64: 2-2.5x faster than one at a
+  /// time); Belos' pseudo-block CG gains 8-21 % at 2 and loses beyond 4 (Epetra's products
+  /// with many vectors stride over them).
+  unsigned int condensation_width = solver_kind == DistributedSolver::mumps ? 64 : 2;
 
   TrilinosWrappers::MPI::Vector u, v, a, a_previous, force; ///< owned entries
   /// A step's work vectors, made once: a vector made in a step would make its Epetra map too.

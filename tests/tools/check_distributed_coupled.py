@@ -9,7 +9,8 @@ Both sides are direct (CHOLMOD or MUMPS for the far field; the blocks' LDL^T wit
 but bonded joints of 50 E per metre make the coupled steps ill-conditioned enough that round-off
 reaches 1e-9 (column) to 3e-8 (bar) of the peaks whatever the solver. Also checks that rank 0
 wrote summary.json with mpi.ranks and a .vtu piece per rank of each far-field snapshot, and that
-a wall-time budget stops both ranks after the same step (exit 3, status stopped, no hang).
+a wall-time budget stops both ranks after the same step (exit 3, status stopped, no hang), and
+that an error on one rank alone ends every rank with its exit code.
 
     check_distributed_coupled.py DDAFEM SOURCE_DIR WORK_DIR
 """
@@ -90,6 +91,18 @@ def main():
              summary["steps"]]
     assert steps[0] == steps[1], steps
     print(f"a 2 s budget stopped both ranks after step {steps[1]}")
+    # An error on one rank only, after MPI has started: rank 1 cannot make its directory (DIR/ranks
+    # is a file) while rank 0 goes on into the run's collective calls. Every rank must end, with
+    # the error's exit code, instead of waiting for the other (a hang until mpirun is killed).
+    out = os.path.join(work, "one_rank_fails")
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(out)
+    open(os.path.join(out, "ranks"), "w").close()
+    r = subprocess.run(MPIRUN + ["-np", "2", ddafem, "run", os.path.join(source, SCENES[1][0]),
+                                 "-o", out, "-q"], env=ENVIRONMENT, timeout=120,
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "ranks/rank_1" in r.stderr, (r.returncode, r.stderr)
+    print("an error on rank 1 alone ended both ranks, exit code 2")
 
 
 if __name__ == "__main__":

@@ -218,14 +218,16 @@ bool same_on_every_rank(const std::vector<double>& x)
 }
 
 /// The ties' view of the far field (fem/point_spring_field.h) on both models: the part's
-/// segments, G = N P^-1 N^T (block solves: 82 columns, 64 and 18) and steps whose point loads
+/// segments, G = N P^-1 N^T (82 columns in blocks of `width`) and steps whose point loads
 /// pull the springs towards a moving target z (q = K z), as the blocks would; the distributed
 /// model with `solver` against CHOLMOD within `tolerance` of the peaks.
-void expect_serial_ties(const DistributedSolver solver, const double tolerance)
+void expect_serial_ties(const DistributedSolver solver, const double tolerance,
+                        const unsigned int width)
 {
   const FarFieldDescription d = square(BoundaryKind::roller);
   ElasticWaveModel serial(d);
   DistributedWaveModel distributed(d, MPI_COMM_WORLD, solver);
+  distributed.set_condensation_width(width);
   std::vector<std::array<double, 4>> expected = serial.boundary_segments(BoundaryPart::top);
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(distributed.boundary_segments(BoundaryPart::top), expected);
@@ -269,7 +271,8 @@ void expect_serial_ties(const DistributedSolver solver, const double tolerance)
 
 TEST(DistributedWaveModel, PointSpringsGiveTheSerialFlexibilityAndStepsWithMumps)
 {
-  expect_serial_ties(DistributedSolver::mumps, 1e-10); // round-off: measured 2e-15 (G), 1e-12
+  // Blocks of 64 and 18. Round-off: measured 2e-15 (G), 1e-12.
+  expect_serial_ties(DistributedSolver::mumps, 1e-10, 64);
 }
 
 TEST(DistributedWaveModel, PointSpringsGiveTheSerialFlexibilityAndStepsWithCg)
@@ -277,7 +280,7 @@ TEST(DistributedWaveModel, PointSpringsGiveTheSerialFlexibilityAndStepsWithCg)
   // Belos' pseudo-block CG for G and CG for the steps, each to 1e-12 of its right-hand side.
   // Measured at 1 and 2 ranks: G within 3.1e-14, the free responses within 5.3e-9 (a few points'
   // error against the field's residual norm, carried over 100 steps), the energies within 5e-11.
-  expect_serial_ties(DistributedSolver::cg_jacobi, 2e-8);
+  expect_serial_ties(DistributedSolver::cg_jacobi, 2e-8, 8); // blocks of 8 (Belos' path)
 }
 
 TEST(DistributedWaveModel, RefusesWhatIsNotDistributedYet)
