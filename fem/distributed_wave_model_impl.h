@@ -14,9 +14,7 @@
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
@@ -105,7 +103,6 @@ public:
   TrilinosWrappers::MPI::Vector input_shape; ///< the input traction per unit v_in [N s/m]
   double input_scale = 0.0;                  ///< 2 rho c [kg/(m^2 s)]
 
-  SolverControl solver_control{100000, 1e-12};
   /// The effective matrix P = K + gamma/(beta dt) C + 1/(beta dt^2) M (+ N^T K N) of one dt and
   /// the solver set up on it.
   struct Level

@@ -52,6 +52,19 @@ struct DistributedMumps::Instance
 {
   DMUMPS_STRUC_C id{};
   Triplets entries; ///< MUMPS keeps pointers to them until the factorization
+  bool started = false;
+
+  Instance() = default;
+  Instance(const Instance&) = delete;
+  Instance& operator=(const Instance&) = delete;
+  /// MUMPS frees its factors: also when the constructor of DistributedMumps threw.
+  ~Instance()
+  {
+    if (!started)
+      return;
+    id.job = finish;
+    dmumps_c(&id);
+  }
 
   /// Runs a job; throws naming it and MUMPS' error code if it failed on any rank.
   void run(const MUMPS_INT job, const char* what)
@@ -75,6 +88,7 @@ DistributedMumps::DistributedMumps(const Epetra_CrsMatrix& matrix, MPI_Comm comm
   id.par = host_works;
   id.sym = general_symmetric;
   mumps->run(initialize, "initialization");
+  mumps->started = true;
   id.icntl[0] = -1; // ICNTL(1-4): no messages
   id.icntl[1] = -1;
   id.icntl[2] = -1;
@@ -92,11 +106,7 @@ DistributedMumps::DistributedMumps(const Epetra_CrsMatrix& matrix, MPI_Comm comm
   mumps->entries = Triplets(); // the factors hold what MUMPS needs
 }
 
-DistributedMumps::~DistributedMumps()
-{
-  mumps->id.job = finish;
-  dmumps_c(&mumps->id);
-}
+DistributedMumps::~DistributedMumps() = default;
 
 void DistributedMumps::solve(Epetra_MultiVector& x, const Epetra_MultiVector& b)
 {
