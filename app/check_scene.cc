@@ -206,6 +206,28 @@ std::string describe_resources(const Scene& scene)
       << "\n";
   return out.str();
 }
+/// The rock's damping (dda/damping.h): each damped material's and joint material's ratio, the
+/// frequency where it holds and beta; the far field's Rayleigh factors.
+void describe_damping(const Scene& scene, std::ostream& out)
+{
+  const auto line = [&](const std::string& what, const dda::RockDamping& d)
+  {
+    if (d.active())
+      out << "  damping of " << what << ": " << format_significant(100.0 * d.ratio) << " % at "
+          << format_significant(d.frequency) << " Hz, beta "
+          << format_significant(d.stiffness_factor()) << " s (stiffness-proportional)\n";
+  };
+  for (const dda::Material& m : scene.model.materials)
+    line("material " + m.name, m.damping);
+  for (const dda::JointMaterial& j : scene.model.joint_materials)
+    line("joint material " + j.name, j.damping);
+  if (scene.far_field &&
+      (scene.far_field->rayleigh.alpha > 0.0 || scene.far_field->rayleigh.beta > 0.0))
+    out << "  damping of the far field: Rayleigh alpha "
+        << format_significant(scene.far_field->rayleigh.alpha) << " 1/s, beta "
+        << format_significant(scene.far_field->rayleigh.beta) << " s\n";
+}
+
 } // namespace
 
 std::string check_scene(const Scene& scene)
@@ -226,12 +248,15 @@ std::string check_scene(const Scene& scene)
   describe_blocks(scene, system, out);
   describe_keyblocks(scene, out);
   describe_stepping(scene, system, out);
+  describe_damping(scene, out);
   if (!scene.model.boundaries.empty())
     describe_boundaries(system, scene.model.time.dt, out);
   if (tied)
     tied->describe(out);
   for (const std::string& w : unstable_boundary_messages(system, scene.model.time.dt))
     out << "warning: " << w << " (`run` refuses it without --allow-unstable)\n";
+  for (const std::string& w : scene.warnings)
+    out << "warning: " << w << "\n";
   out << describe_resources(scene);
   return out.str();
 }

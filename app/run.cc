@@ -156,6 +156,7 @@ void SceneRun::setup()
                : rank           ? far_field_module().distributed_far_field_simulation(scene)
                                 : far_field_module().far_field_simulation(scene);
   warnings = simulation->collect_warnings(options.allow_unstable);
+  warnings.insert(warnings.begin(), scene.warnings.begin(), scene.warnings.end());
   dir = options.output_directory.empty() ? scene.output.directory : options.output_directory;
   if (rank && *rank > 0) // the driver's own files of the other ranks (app/distributed_far_field.cc)
     dir = dir / "ranks" / ("rank_" + std::to_string(*rank));

@@ -29,8 +29,9 @@ std::vector<double> history_row(const dda::System& system, const LastStep& last)
   add_lining_row(row, system);
   append_grouted_bolt_row(row, system);
   const dda::EnergyBalance e = system.energy();
-  row.insert(row.end(), {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
-                         e.work_of_boundaries, e.work_of_ties, e.removed, e.dissipated});
+  row.insert(row.end(),
+             {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
+              e.work_of_boundaries, e.work_of_ties, e.work_of_damping, e.removed, e.dissipated});
   const dda::ContactCounts n = system.contact_counts();
   row.insert(row.end(),
              {static_cast<double>(n.open), static_cast<double>(n.slide),
@@ -79,11 +80,14 @@ std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
   channels.push_back({"energy/work_of_ties", 1, "J",
                       "ties to the far field on the blocks since t = 0 (the energy that crossed "
                       "the interface into the blocks; 0 without a far field)"});
+  channels.push_back({"energy/work_of_damping", 1, "J",
+                      "the rock's dashpots (materials' and joint materials' `damping`) since t = "
+                      "0 (negative: absorbed)"});
   channels.push_back(
       {"energy/removed", 1, "J", "kinetic energy of fallen blocks removed as debris since t = 0"});
   channels.push_back({"energy/dissipated", 1, "J",
                       "initial + work - stored: algorithmic damping of the integrator, friction "
-                      "and contact impacts"});
+                      "and contact impacts (the rock's dashpots: work_of_damping)"});
   channels.push_back({"contacts/open", 1, "", "number of open contacts"});
   channels.push_back({"contacts/slide", 1, "", "number of sliding contacts"});
   channels.push_back({"contacts/lock", 1, "", "number of locked contacts"});

@@ -128,6 +128,7 @@ void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
                          {"work_of_supports", e.work_of_supports},
                          {"work_of_boundaries", e.work_of_boundaries},
                          {"work_of_ties", e.work_of_ties},
+                         {"work_of_damping", e.work_of_damping},
                          {"removed", e.removed},
                          {"initial", e.initial},
                          {"dissipated", e.dissipated}};

@@ -51,6 +51,7 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   for (const MapReader& r : top.section_list("boundaries"))
     model.boundaries.push_back(read_boundary(r, model));
 
+  complete_damping(top, scene);
   read_time(top, model.time);
   read_contacts(top, model.contacts);
   read_stages(top, model);

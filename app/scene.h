@@ -62,7 +62,8 @@ struct Scene
   std::optional<TunnelPlan> tunnel;
   std::string expanded_yaml;
   OutputSettings output;
-  ResourceLimits limits; ///< what it was read against (check prints the estimate)
+  std::vector<std::string> warnings; ///< what the reader found worth saying (run, check print)
+  ResourceLimits limits;             ///< what it was read against (check prints the estimate)
 };
 
 /// One `--set path.to.key=value` override; list items are addressed by index (blocks.0.material).

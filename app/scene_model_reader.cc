@@ -221,6 +221,84 @@ void read_analysis(const MapReader& top, dda::ModelDescription& model)
   model.geometry = analysis.choice_of<dda::GeometryMode>("geometry");
 }
 
+/// The `damping` of a material or joint material, if any: its ratio and its frequency (0 when
+/// not given: the scene input's, set by complete_damping).
+dda::RockDamping read_damping(const MapReader& parent)
+{
+  dda::RockDamping d;
+  if (!parent.has("damping"))
+    return d;
+  const MapReader r = parent.section_reader("damping");
+  if (!r.has("ratio"))
+    throw r.error("ratio", "missing required key: the fraction of critical damping, e.g. 0.02");
+  d.ratio = r.number("ratio");
+  if (r.has("frequency"))
+    d.frequency = r.number("frequency");
+  return d;
+}
+
+/// The dominant frequency of the scene's input [Hz]: the first boundary's input wave, else the
+/// far field's incident wave that has one; 0 if none is known.
+double input_frequency(const Scene& scene)
+{
+  for (const dda::BoundaryDescription& b : scene.model.boundaries)
+    if (b.has_input && b.input.velocity.dominant_frequency() > 0.0)
+      return b.input.velocity.dominant_frequency();
+  if (scene.far_field)
+    return scene.far_field->incident.velocity.dominant_frequency();
+  return 0.0;
+}
+
+void complete_damping(const MapReader& top, Scene& scene)
+{
+  const double frequency = input_frequency(scene);
+  const auto complete = [&](const MapReader& r, dda::RockDamping& d)
+  {
+    if (!d.active() || d.frequency > 0.0)
+      return;
+    if (!(frequency > 0.0))
+      throw r.section_reader("damping").error(
+          "frequency", "missing key: the frequency [Hz] where the damping ratio holds (the scene "
+                       "has no input motion whose dominant frequency could set it)");
+    d.frequency = frequency;
+  };
+  std::size_t i = 0;
+  for (const auto& named : top.section_map("materials"))
+    complete(named.second, scene.model.materials[i++].damping);
+  i = 0;
+  for (const auto& named : top.section_map("joint_materials"))
+    complete(named.second, scene.model.joint_materials[i++].damping);
+  const auto damped = [](const auto& m) { return m.damping.active(); };
+  const dda::ModelDescription& model = scene.model;
+  if (std::any_of(model.boundaries.begin(), model.boundaries.end(),
+                  [](const dda::BoundaryDescription& b)
+                  { return b.type == dda::BoundaryType::vb1; }) &&
+      (std::any_of(model.materials.begin(), model.materials.end(), damped) ||
+       std::any_of(model.joint_materials.begin(), model.joint_materials.end(), damped)))
+    scene.warnings.push_back(
+        "vb1 boundaries with the rock's damping: VB I's coefficients (Bao et al. 2012, eq. 39) "
+        "are derived for undamped boundary blocks; with dashpots on them a model may keep a "
+        "period-2 oscillation at the boundary and not settle (docs/damping.md): the dashpot "
+        "boundary, or the far field, is the tested choice");
+  if (!scene.far_field)
+    return;
+  // The far field carries its material's damping as Rayleigh's beta (same ratio, same
+  // frequency); an explicit `far_field.rayleigh` wins.
+  const MapReader f = top.section_reader("far_field");
+  const std::string material = f.string("material");
+  for (const dda::Material& m : scene.model.materials)
+    if (m.name == material && m.damping.active())
+    {
+      if (f.has("rayleigh"))
+        scene.warnings.push_back(
+            "far_field.rayleigh is given: it damps the far field instead of its material `" +
+            material + "`'s damping (ratio " + format_significant(m.damping.ratio) + " at " +
+            format_significant(m.damping.frequency) + " Hz)");
+      else
+        scene.far_field->rayleigh = {0.0, m.damping.stiffness_factor()};
+    }
+}
+
 SceneNames read_materials(const MapReader& top, dda::ModelDescription& model)
 {
   SceneNames names;
@@ -232,6 +310,7 @@ SceneNames read_materials(const MapReader& top, dda::ModelDescription& model)
     m.density = r.number("density");
     m.youngs_modulus = r.number("youngs_modulus");
     m.poisson_ratio = r.number("poisson_ratio");
+    m.damping = read_damping(r);
     model.materials.push_back(m);
     material_names.push_back(name);
   }
@@ -249,6 +328,7 @@ SceneNames read_materials(const MapReader& top, dda::ModelDescription& model)
     j.cohesion = r.number("cohesion");
     j.tensile_strength = r.number("tensile_strength");
     j.bonded = r.boolean("bonded");
+    j.damping = read_damping(r);
     model.joint_materials.push_back(j);
     joint_names.push_back(name);
   }

@@ -80,6 +80,10 @@ TimeFunction read_time_function(const MapReader& parent, const std::string& name
 void read_analysis(const MapReader& top, dda::ModelDescription& model);
 /// `materials`, `joint_materials` and `joints`.
 SceneNames read_materials(const MapReader& top, dda::ModelDescription& model);
+/// The damping frequencies not given (the dominant frequency of the scene's input; InputError
+/// naming the key if none is known) and the far field's Rayleigh beta from its material's damping
+/// (a warning where `far_field.rayleigh` is given instead); after the boundaries and far field.
+void complete_damping(const MapReader& top, Scene& scene);
 dda::BoundaryDescription read_boundary(const MapReader& r, const dda::ModelDescription& model);
 void read_time(const MapReader& top, dda::TimeSettings& time);
 void read_contacts(const MapReader& top, dda::ContactSettings& contacts);

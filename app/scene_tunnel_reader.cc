@@ -8,6 +8,12 @@ namespace ddafem::scene_reading
 {
 namespace
 {
+/// The damping ratio of tunnel scenes without `tunnel.damping.ratio` [-]: 2 % of critical, the
+/// lower end of the 2-5 % usual for rock (joint slip, the main dissipation, is modelled
+/// explicitly) and the amount Hatzor et al. (2004) found to fit Masada's 2000 years
+/// (docs/damping.md).
+constexpr double default_tunnel_damping_ratio = 0.02;
+
 /// The `tunnel` section's joint sets and explicit joints. Their joint material names (passed on
 /// to `rock_mass` with them) are checked here, so that errors name the tunnel's keys.
 void read_tunnel_joints(const MapReader& r, const YAML::Node& root, dda::RockMassDescription& d)
@@ -152,6 +158,55 @@ void read_tunnel_stages(const MapReader& r, TunnelDescription& t)
     t.settle_max_duration = settle.number("max_duration");
   t.settle_remove_fallen = settle.boolean("remove_fallen");
 }
+
+/// `tunnel.damping` (default: 2 % at the wave's dominant frequency, docs/damping.md; none with
+/// the vb1 truncation) onto every material and joint material of the expanded scene that has no
+/// `damping` of its own; the far field takes its material's as Rayleigh's beta
+/// (complete_damping). Ratio 0: undamped.
+void write_tunnel_damping(const MapReader& r, const TunnelDescription& t, TunnelPlan& plan,
+                          YAML::Node& root)
+{
+  // VB I's coefficients (Bao et al. 2012, eq. 39) hold for an undamped boundary block under
+  // DDA's scheme; with the rock's dashpots on its blocks the horseshoe (k0 1, no cohesion,
+  // 0.1 m/s) keeps a period-2 oscillation at its base and never settles (docs/damping.md).
+  const bool vb1 = t.truncation == TunnelTruncation::vb1;
+  double ratio = vb1 ? 0.0 : default_tunnel_damping_ratio, frequency = t.wave_frequency;
+  if (r.has("damping"))
+  {
+    const MapReader d = r.section_reader("damping");
+    if (d.has("ratio"))
+      ratio = d.number("ratio");
+    if (d.has("frequency"))
+      frequency = d.number("frequency");
+  }
+  plan.reasons.push_back(
+      ratio == 0.0 ? std::string("damping of the rock: none") +
+                         (vb1 ? " (truncation vb1: VB I is derived for undamped boundary blocks; "
+                                "tunnel.damping.ratio sets it, docs/damping.md)"
+                              : "")
+                   : "damping of the rock: " + format_significant(100.0 * ratio) +
+                         " % of "
+                         "critical at " +
+                         format_significant(frequency) +
+                         " Hz, stiffness-proportional, on every material and joint material and "
+                         "the far field (tunnel.damping, docs/damping.md)");
+  if (ratio == 0.0)
+    return;
+  YAML::Node damping;
+  damping["ratio"] = ratio;
+  damping["frequency"] = frequency;
+  for (const char* section : {"materials", "joint_materials"})
+  {
+    const YAML::Node& given = root;
+    if (!given[section])
+      continue;
+    YAML::Node named = YAML::Clone(given[section]);
+    for (auto entry : named)
+      if (entry.second.IsMap() && !entry.second["damping"])
+        entry.second["damping"] = YAML::Clone(damping);
+    root[section] = named;
+  }
+}
 } // namespace
 
 /// The `tunnel` section: reads it, plans the model (app/tunnel_scene.h) and writes the sections
@@ -189,6 +244,7 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
                            child(tunnel_node, "joints"), nested(tunnel_node, {"wave", "velocity"}),
                            child(tunnel_node, "lining")},
                           root);
+    write_tunnel_damping(r, t, plan, root);
     return plan;
   }
   catch (const InputError& e)

@@ -222,7 +222,8 @@ Section materials_section()
                .required()
                .at_least(0)
                .less_than(0.5)
-               .meaning("Poisson's ratio nu")}};
+               .meaning("Poisson's ratio nu"),
+           damping_key("materials.<name>.damping", "the blocks' strain rates")}};
 }
 
 Section joint_materials_section()
@@ -263,7 +264,8 @@ Section joint_materials_section()
            .default_yaml("true")
            .meaning("true: blocks sharing an edge are glued by springs until the strength is "
                     "exceeded, then they meet through frictional contacts (residual friction, no "
-                    "cohesion); false: frictional contacts from the start")}};
+                    "cohesion); false: frictional contacts from the start"),
+       damping_key("joint_materials.<name>.damping", "the joints' and contacts' relative motion")}};
 }
 
 Section joints_section()

@@ -24,6 +24,10 @@ Section top_level_section();
 Section analysis_section();
 Section materials_section();
 Section joint_materials_section();
+/// `damping` of a material, a joint material or a tunnel (app/schema_damping.cc), its section
+/// `section_id` and what it damps (for the key's meaning); the section of that id.
+Key damping_key(const std::string& section_id, const std::string& what);
+Section damping_section(const std::string& id);
 Section joints_section();
 Section joints_pairs_section();
 Section blocks_section();

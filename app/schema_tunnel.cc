@@ -118,6 +118,8 @@ Section tunnel_section()
            .section("tunnel.settle")
            .default_note("see `tunnel.settle`")
            .meaning("the settle stage after the wave: until every block is at rest or fell"),
+       damping_key("tunnel.damping", "every material and joint material that has none of its "
+                                     "own, and the far field"),
        key("lining", T::section)
            .section("tunnel.lining")
            .default_note("none")

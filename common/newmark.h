@@ -24,4 +24,15 @@ inline NewmarkCoefficients newmark_coefficients(double beta, double gamma, doubl
   return c;
 }
 
+/// The part of Newmark's end velocity that the step's displacement d does not set:
+/// v1 = damping_u d + offset, offset = (1 - gamma / beta) v0 + dt (1 - gamma / (2 beta)) a0,
+/// from the velocity v0 and acceleration a0 at the step's start. A dashpot of C on v1 adds
+/// damping_u C to the step's matrix and -C offset to its right-hand side. T: a scalar or an
+/// Eigen vector [m/s, and the block's other unknowns' rates].
+template <typename T>
+T newmark_velocity_offset(double beta, double gamma, double dt, const T& v0, const T& a0)
+{
+  return (1.0 - gamma / beta) * v0 + dt * (1.0 - gamma / (2.0 * beta)) * a0;
+}
+
 } // namespace ddafem

@@ -4,6 +4,7 @@
 #include "common/elasticity.h"
 #include "common/time_function.h"
 #include "common/wave_type.h"
+#include "dda/damping.h"
 #include "dda/grouted_bolt.h"
 #include "dda/integrator.h"
 #include "dda/types.h"
@@ -46,6 +47,7 @@ struct Material
   double density = 0.0;        ///< rho [kg/m^3], > 0
   double youngs_modulus = 0.0; ///< E [Pa], > 0
   double poisson_ratio = 0.0;  ///< nu [-], in [0, 0.5)
+  RockDamping damping = {};    ///< dashpots on the block's strain rates (dda/damping.h)
 };
 
 /// Properties of the joints (contacts) between blocks.
@@ -61,6 +63,9 @@ struct JointMaterial
   /// frictional contacts; false: every contact is a frictional contact from the start (with
   /// cohesion and tensile strength until it first slides or opens)
   bool bonded = true;
+  /// Dashpots beside the bonded joints' springs and the closed contacts' normal (and, while
+  /// they stick, shear) springs, from normal_stiffness and shear_ratio (dda/damping.h)
+  RockDamping damping = {};
 };
 
 /// Which joint material applies between blocks of two given materials.

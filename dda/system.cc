@@ -60,6 +60,10 @@ void System::set_material_constants()
   }
   for (const JointMaterial& jm : model.joint_materials)
     tan_friction.push_back(std::tan(jm.friction_angle * M_PI / 180.0));
+  for (const Material& m : model.materials)
+    damped = damped || m.damping.active();
+  for (const JointMaterial& jm : model.joint_materials)
+    damped = damped || jm.damping.active();
 }
 
 std::vector<std::string> System::make_blocks()
@@ -388,7 +392,7 @@ void System::begin_stage(StageMode new_mode)
       monitor_origins[k] = monitors[k].position;
     for (std::size_t k = 0; k < tie_points.size(); ++k)
       tie_origins[k] = tie_points[k].position;
-    work_of_loads = work_of_supports = work_of_boundaries = 0.0;
+    work_of_loads = work_of_supports = work_of_boundaries = work_of_damping = 0.0;
     largest_energy_input = 0.0;
     initial_energy = energy().stored();
   }

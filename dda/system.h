@@ -37,9 +37,9 @@
 namespace ddafem::dda
 {
 /// Energies of the model [J]. Conservation: kinetic + strain + spring = initial +
-/// work_of_loads + work_of_supports + work_of_boundaries - dissipated, where `dissipated` is
-/// the residual: the algorithmic damping of the integrator (zero for trapezoidal Newmark on a
-/// linear model).
+/// work_of_loads + work_of_supports + work_of_boundaries + work_of_damping - dissipated, where
+/// `dissipated` is the residual: the algorithmic damping of the integrator (zero for trapezoidal
+/// Newmark on a linear model).
 struct EnergyBalance
 {
   double kinetic = 0.0;       ///< sum of v^T M v / 2
@@ -52,6 +52,7 @@ struct EnergyBalance
   /// Done by the ties to a tied body (the far field) on the blocks since t = 0: the energy that
   /// crossed the interface into the blocks (negative when it left them).
   double work_of_ties = 0.0;
+  double work_of_damping = 0.0; ///< done by the rock's dashpots (dda/damping.h), negative
   /// Kinetic energy that left with blocks removed in motion (fallen debris, see
   /// SettleCriterion::remove_fallen), since t = 0.
   double removed = 0.0;
@@ -416,6 +417,16 @@ private:
   StepStatus solve_with_open_close(const StepLabel& when, bool new_matrix);
   /// Trial contact k's springs K2 [N/m] and force on its vertex [N] (minus on its edge).
   void contact_spring(std::size_t k, Eigen::Matrix2d& k2, Vector2& force_on_vertex) const;
+  /// The rock's dashpots (dda/system_damping.cc): the step's share of them (none in static
+  /// stages), a material's beta [s] in this step, a trial contact's dashpot C [N s/m] and its
+  /// terms in k2 and the force on the vertex, and the work of all of them on the step's d.
+  void prepare_dashpots(double dt);
+  double dashpot_factor(const RockDamping& damping) const;
+  Eigen::Matrix2d contact_dashpot(const Contact& c, const ContactFrame& f) const;
+  void add_contact_dashpot(const Contact& c, const ContactFrame& f, Eigen::Matrix2d& k2,
+                           Vector2& force_on_vertex) const;
+  void add_work_of_damping(const Eigen::VectorXd& d);
+  double viscous_shear(std::size_t k) const; ///< of trial contact k [N] (evaluate_contact)
   /// Adds every closed trial contact's terms to the matrix and right-hand side (an attempt's
   /// first open-close iteration, or after the tie terms changed).
   void add_contact_terms();
@@ -777,6 +788,9 @@ private:
   double work_of_loads = 0.0;
   double work_of_supports = 0.0;
   double work_of_boundaries = 0.0;
+  double work_of_damping = 0.0;
+  bool damped = false; ///< a material or joint material has damping
+  StepDashpots dashpots;
   double removed_energy = 0.0; ///< kinetic energy of blocks removed in motion [J]
   double initial_energy = 0.0;
   double largest_energy_input = 0.0; ///< max over time of work_of_loads + work_of_supports

@@ -15,6 +15,7 @@ void System::assemble(double dt, bool with_matrix)
   rhs.setZero();
   // Loads and supports are evaluated at the step's end (the clock stands still in a static stage).
   const double t1 = mode == StageMode::static_equilibrium ? current_time : current_time + dt;
+  prepare_dashpots(dt);
   add_block_terms(dt, with_matrix);
   add_point_terms(t1, with_matrix);
   add_boundary_terms(dt, t1, with_matrix);
@@ -36,12 +37,22 @@ void System::add_block_terms(double dt, bool with_matrix)
     const PolygonMoments& g = linearisation_moments(b);
     const double density = block_density(b);
     const Matrix6& m = step_masses[i] = mass_matrix(g, density);
-    if (with_matrix)
-    {
-      matrix.diagonal(i).noalias() += mass_factor * m;
-      matrix.diagonal(i).noalias() += elastic_stiffness(g.area, elasticity[b.material]);
-    }
+    // The dashpot beta K_e on the strain rates (dda/damping.h).
+    const double beta = dashpot_factor(model.materials[b.material].damping);
     auto f = rhs.segment<6>(6 * i);
+    if (with_matrix || beta > 0.0)
+    {
+      const Matrix6 k = elastic_stiffness(g.area, elasticity[b.material]);
+      if (with_matrix)
+      {
+        matrix.diagonal(i).noalias() += mass_factor * m;
+        matrix.diagonal(i).noalias() += k;
+        if (beta > 0.0)
+          matrix.diagonal(i).noalias() += (dashpots.velocity_factor * beta) * k;
+      }
+      if (beta > 0.0)
+        f -= beta * (k * dashpots.offsets[i]);
+    }
     f += inertia_force(step_integration, m, step_start(i, dt), dt);
     f += stress_force(g.area, b.stress) + body_force(g.area, density, model.gravity);
   }
@@ -104,12 +115,24 @@ void System::add_joint_terms(bool with_matrix)
   {
     const Vector2 tangent = j.tangent(small_displacement());
     const Vector2 n = Joint::normal_of(tangent);
+    const JointMaterial& jm = model.joint_materials[j.joint_material];
+    const Eigen::Matrix2d springs = joint_spring_matrix(jm, n, tangent);
+    // With a dashpot beta K_s on the relative velocity (dda/damping.h): (1 + c_v beta) K_s.
+    const double beta = dashpot_factor(jm.damping);
     const Eigen::Matrix2d ks =
-        joint_spring_matrix(model.joint_materials[j.joint_material], n, tangent);
+        beta > 0.0 ? Eigen::Matrix2d((1.0 + dashpots.velocity_factor * beta) * springs) : springs;
     for (const JointPoint& p : j.points)
     {
       const Matrix26 ta = point_matrix(p.on_a);
       const Matrix26 tb = point_matrix(p.on_b);
+      if (beta > 0.0)
+      {
+        const Vector2 offset = point_displacement(p.on_b, dashpots.offsets[j.block_b]) -
+                               point_displacement(p.on_a, dashpots.offsets[j.block_a]);
+        const Vector2 force = beta * (springs * offset);
+        rhs.segment<6>(6 * j.block_a).noalias() += ta.transpose() * force;
+        rhs.segment<6>(6 * j.block_b).noalias() -= tb.transpose() * force;
+      }
       if (with_matrix)
       {
         const Matrix26 ks_ta = ks * ta;
@@ -118,7 +141,7 @@ void System::add_joint_terms(bool with_matrix)
         matrix.diagonal(j.block_b).noalias() += tb.transpose() * ks_tb;
         matrix.upper(j.coupling).noalias() -= ta.transpose() * ks_tb;
       }
-      const Vector2 force = ks * (p.on_b.position - p.on_a.position) + p.normal_preload * n +
+      const Vector2 force = springs * (p.on_b.position - p.on_a.position) + p.normal_preload * n +
                             p.shear_preload * tangent;
       rhs.segment<6>(6 * j.block_a).noalias() += ta.transpose() * force;
       rhs.segment<6>(6 * j.block_b).noalias() -= tb.transpose() * force;

@@ -67,7 +67,7 @@ void System::transfer_state(Archive& a)
   transfer_all(a, joint_couplings_revision, rhs, solution);
   transfer_object(a, solver);
   transfer_all(a, current_time, work_of_loads, work_of_supports, work_of_boundaries,
-               removed_energy);
+               work_of_damping, removed_energy);
   transfer_all(a, initial_energy, largest_energy_input, timings);
   // The joints' sorted lists are rebuilt at the next detection.
   joint_lists.revision = std::numeric_limits<std::uint64_t>::max();

@@ -25,6 +25,7 @@ void System::contact_spring(std::size_t k, Eigen::Matrix2d& k2, Vector2& force_o
     shear = was_closed ? c.forces.shear_force : 0.0;
   }
   force_on_vertex = -law.normal_stiffness * c.gap * f.normal - shear * f.tangent;
+  add_contact_dashpot(c, f, k2, force_on_vertex);
 }
 
 void System::add_contact_terms()

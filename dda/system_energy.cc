@@ -58,11 +58,12 @@ EnergyBalance System::energy() const
   e.work_of_loads = work_of_loads;
   e.work_of_supports = work_of_supports;
   e.work_of_boundaries = work_of_boundaries;
+  e.work_of_damping = work_of_damping;
   e.work_of_ties = tied_body ? tied_body->work_on_blocks() : 0.0;
   e.removed = removed_energy;
   e.initial = initial_energy;
   e.dissipated = e.initial + e.work_of_loads + e.work_of_supports + e.work_of_boundaries +
-                 e.work_of_ties - e.removed - e.stored();
+                 e.work_of_damping + e.work_of_ties - e.removed - e.stored();
   return e;
 }
 

@@ -224,7 +224,8 @@ void System::update_trial_state(std::size_t k, unsigned iteration, double neglig
                            f.t_edge * solution.segment<6>(6 * c.edge_block);
   c.end_gap = c.gap + f.normal.dot(relative);
   c.step_slip = f.tangent.dot(relative);
-  const ContactForces law = evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip);
+  const ContactForces law =
+      evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip, viscous_shear(k));
   // With slip reversals localised, sliding that reverses between trials is taken as lock
   // (only on a slide of at least 10 steps: slides_long_enough).
   const ContactForces next = localising && slides_long_enough(c, matrix_dt)

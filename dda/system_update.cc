@@ -50,6 +50,7 @@ void System::add_work_of_step(double dt, const Eigen::VectorXd& d)
   if (!is_static)
     for (const Support& s : supports)
       work_of_loads += s.load.dot(point_displacement(s.point, d.segment<6>(6 * s.point.block)));
+  add_work_of_damping(d);
 
   // Work done by moving supports: -k (x - X)_mid . dX.
   for (const AttachedFixedPoint& f : fixed_points)

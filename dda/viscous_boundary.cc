@@ -253,8 +253,7 @@ BoundaryStep boundary_step(BoundaryType type, const BoundaryEdge& edge, const Ve
     // + dt (1 - gamma / (2 beta)) a0 (both integrators: 2 d / dt - v0).
     const Eigen::Matrix2d cg = r.transpose() * c * r;
     step.k = newmark_coefficients(beta, gamma, dt).damping_u * cg;
-    step.f = -cg *
-             ((1.0 - gamma / beta) * velocity0 + dt * (1.0 - gamma / (2.0 * beta)) * acceleration0);
+    step.f = -cg * newmark_velocity_offset<Vector2>(beta, gamma, dt, velocity0, acceleration0);
     break;
   }
   }

@@ -44,8 +44,6 @@ void check_distributable(const FarFieldDescription& d)
   require(d.mesh_file.file.empty(),
           "a mesh file is not distributed yet: expected the rectangle, with or without a hole");
   require(!d.static_stage.enabled, "a static stage is not distributed yet");
-  require(d.rayleigh.alpha == 0.0 && d.rayleigh.beta == 0.0,
-          "Rayleigh damping is not distributed yet: expected alpha = beta = 0");
   for (const BoundaryCondition& bc : d.boundaries)
     require(!bc.springs.enabled, std::string("boundary part '") + name_of(bc.part) +
                                      "': boundary springs are not distributed yet");
@@ -173,6 +171,11 @@ void DistributedWaveModel::Impl::assemble()
   for (TrilinosWrappers::SparseMatrix* m : {&mass, &stiffness, &damping})
     m->compress(VectorOperation::add);
   input_shape.compress(VectorOperation::add);
+  // Rayleigh damping joins the dashpots: C = dashpots + alpha M + beta K (one pattern for all).
+  if (description.rayleigh.alpha > 0.0)
+    damping.add(description.rayleigh.alpha, mass);
+  if (description.rayleigh.beta > 0.0)
+    damping.add(description.rayleigh.beta, stiffness);
 }
 
 void DistributedWaveModel::Impl::assemble_domain()

@@ -65,8 +65,8 @@ public:
   /// Builds the mesh (the rectangle, or ElasticWaveModel's graded mesh around a hole, with its
   /// hanging nodes), distributes it and assembles the constant matrices; a free_field side gets
   /// the serial free-field column on every rank. Throws InputError for a description it cannot
-  /// honour: a mesh file, a static stage, Rayleigh damping or boundary springs (not distributed
-  /// yet), and the checks of ElasticWaveModel.
+  /// honour: a mesh file, a static stage or boundary springs (not distributed yet), and the
+  /// checks of ElasticWaveModel.
   DistributedWaveModel(const FarFieldDescription& description, MPI_Comm comm,
                        DistributedSolver solver);
   ~DistributedWaveModel();
@@ -101,7 +101,7 @@ public:
   const DistributedTimings& timings() const; ///< this rank's; not collective
   /// The sample at a monitor, from the rank that owns its cell, on every rank.
   MonitorSample sample_monitor(std::size_t monitor) const;
-  /// The energy budget (EnergyBalance; work_of_rayleigh is 0).
+  /// The energy budget (EnergyBalance).
   EnergyBalance energy() const;
   /// Writes DIRECTORY/BASENAME_NNNNN.pvtu with one DIRECTORY/BASENAME_NNNNN.K.vtu piece per
   /// rank K (deal.II's write_vtu_with_pvtu_record: displacement, velocity, subdomain) and

@@ -202,6 +202,16 @@ void DistributedWaveModel::Impl::add_work_of_step(const TrilinosWrappers::MPI::V
   mid *= 0.5;
   damping.vmult(product, mid);
   energies.work_of_dashpots -= du * product;
+  // Rayleigh's share of C (Impl::assemble), reported apart as ElasticWaveModel does.
+  const RayleighDamping& r = description.rayleigh;
+  for (const auto& [factor, matrix] : {std::pair{r.alpha, &mass}, std::pair{r.beta, &stiffness}})
+    if (factor > 0.0)
+    {
+      matrix->vmult(product, mid);
+      const double work = factor * (du * product);
+      energies.work_of_rayleigh -= work;
+      energies.work_of_dashpots += work;
+    }
   mid = force;
   mid += force_new;
   mid *= 0.5;
@@ -286,7 +296,8 @@ EnergyBalance DistributedWaveModel::energy() const
   e.kinetic = 0.5 * (m.v * product);
   m.stiffness.vmult(product, m.u);
   e.strain = 0.5 * (m.u * product);
-  e.dissipated = e.initial + e.work_of_input + e.work_of_dashpots + e.work_of_springs - e.stored();
+  e.dissipated = e.initial + e.work_of_input + e.work_of_dashpots + e.work_of_rayleigh +
+                 e.work_of_springs - e.stored();
   return e;
 }
 

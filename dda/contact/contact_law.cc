@@ -6,7 +6,7 @@
 namespace ddafem::dda
 {
 ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start, double gap,
-                               double slip)
+                               double slip, double viscous_shear)
 {
   ContactForces out;
   out.intact = start.intact;
@@ -29,7 +29,9 @@ ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start
                                          (out.intact ? law.cohesive_force : 0.0));
   const double previous_shear = was_closed ? start.shear_force : 0.0;
   const double trial = previous_shear + law.shear_stiffness * slip;
-  if (std::abs(trial) <= limit)
+  // The dashpot may hold the contact (spring and dashpot together within the limit), never
+  // push it to slide (the spring alone within the limit sticks).
+  if (std::min(std::abs(trial), std::abs(trial + viscous_shear)) <= limit)
   {
     out.state = ContactState::lock;
     out.shear_force = trial;
@@ -39,7 +41,7 @@ ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start
   out.intact = false;
   // The limit without cohesion, since sliding has destroyed it.
   const double residual = std::max(normal_force, 0.0) * law.tan_friction;
-  out.shear_force = std::copysign(residual, trial);
+  out.shear_force = std::copysign(residual, trial + viscous_shear);
   return out;
 }
 

@@ -45,8 +45,18 @@ struct ContactForces
 /// - A closed contact locks when the elastic trial S0 + p_s slip is within the Mohr-Coulomb
 ///   limit N tan(phi) + c (c only while intact), and slides otherwise with S = +-limit in the
 ///   direction of the trial; sliding ends cohesion and tensile strength.
+/// - `viscous_shear` [N], same sign convention as S: the shear force of a sticking contact's
+///   dashpot at the step's end (dda/damping.h). The dashpot sits beside the shear spring, the
+///   two in series with the slider (a Kelvin-Voigt element and a Coulomb slider): the contact
+///   also sticks when the spring's and the dashpot's shear together are within the limit. The
+///   dashpot may so hold a contact but never push one to slide (a spring within the limit
+///   sticks whatever the dashpot carries); the strength is the springs' alone (N is the normal
+///   spring's force) and the stored S the spring's. Without it, a dashpot that slows the slip
+///   unloading an overloaded spring keeps the spring beyond the limit (slide), and the slide
+///   without the dashpot reverses (lock), for ever; with the dashpot in the demand alone, a
+///   contact at the limit flips on the dashpot's last newton (both seen on the tunnels).
 ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start, double gap,
-                               double slip);
+                               double slip, double viscous_shear = 0.0);
 
 /// Whether forces beyond the law's strength act on an intact bond (a bonded joint's end spring):
 /// a pull beyond the tensile capacity, -normal_force > tensile_capacity, or a shear beyond
