@@ -4,12 +4,14 @@
 //   ddafem run SCENE [-o DIR] [--quiet] [--allow-unstable] [--set key=value]...
 //   ddafem resume DIR [--quiet] [--max-wall-time S] [--max-memory SIZE]
 //   ddafem sweep SCENE --key KEY [--find first_fall|displacement] [--threshold M] [-o DIR] ...
+//   ddafem ensemble SCENE -n N [-o DIR] [--vary KEY=DIST]... [--roundoff [KEY]] [--seed S] ...
 //   ddafem scene-reference
 //
 // Exit codes: 0 success, 1 numerical failure (or an I/O failure while writing results),
 // 2 bad input (scene, command line, missing file, a scene too large for memory), 3 stopped at a
 // budget (--max-wall-time, --max-memory).
 #include "app/checkpoint.h"
+#include "app/ensemble.h"
 #include "app/far_field_module.h"
 #include "app/run.h"
 #include "app/run_support.h"
@@ -184,6 +186,53 @@ int sweep_command(const ddafem::SweepOptions& o)
   return ddafem::run_sweep(o, std::cerr);
 }
 
+/// The `ensemble` command, its results by default in results/ensemble.
+CLI::App* add_ensemble_command(CLI::App& app, ddafem::EnsembleOptions& o)
+{
+  o.directory = "results/ensemble";
+  CLI::App* e = app.add_subcommand(
+      "ensemble", "run a scene N times, perturbed, in parallel: keyblock probabilities");
+  e->add_option("SCENE", o.scene, "the scene file (YAML)")->required();
+  e->add_option("-n,--members", o.members, "members to run")
+      ->required()
+      ->check(CLI::Range(std::size_t(1), std::size_t(100000)));
+  e->add_option("-o,--output", o.directory, "output directory (default results/ensemble)")
+      ->type_name("DIR");
+  e->add_option("--set", o.settings, "override a scene key in every member (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  e->add_option("--vary", o.vary,
+                "draw a numeric key for each member: normal(mean,sd), lognormal(median,beta), "
+                "uniform(low,high), truncnormal(mean,sd,low,high) (repeatable)")
+      ->type_name("KEY=DIST")
+      ->allow_extra_args(false);
+  e->add_option("--roundoff", o.roundoff,
+                "member k's KEY x (1 + k 1e-12), chaos apart from uncertainty (default key "
+                "tunnel.wave.velocity.amplitude)")
+      ->expected(0, 1)
+      ->type_name("[KEY]");
+  e->add_option("--seed", o.seed, "seed of the members' seeds and of every draw (default 1)");
+  e->add_option("-j,--jobs", o.jobs, "runs at a time (default 0: the cores)")
+      ->check(CLI::Range(0u, 256u));
+  e->add_option("--threads", o.threads, "threads of each run (default 0: the cores shared)")
+      ->check(CLI::Range(0u, 1024u));
+  e->add_option("--max-wall-time", o.max_wall_time, "budget of each member (exit code 3)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("SECONDS");
+  e->add_flag("--snapshots", o.snapshots,
+              "VTU snapshots at the scene's output.interval (default: first and last only)");
+  e->add_flag("-q,--quiet", o.quiet, "no line per member");
+  return e;
+}
+
+/// Runs the ensemble; returns the exit code.
+int ensemble_command(const CLI::App& command, ddafem::EnsembleOptions o)
+{
+  if (command.get_option("--roundoff")->count() > 0 && !o.roundoff)
+    o.roundoff = ""; // given without a key: the default key
+  return ddafem::run_ensemble(o, std::cerr);
+}
+
 /// The options of a run that `run` and `resume` share.
 void add_run_options(CLI::App& command, CommandLine& cl)
 {
@@ -242,18 +291,21 @@ int main(int argc, char** argv)
       ->type_name("SIZE");
   ddafem::SweepOptions sweep_options;
   CLI::App* sweep = add_sweep_command(app, sweep_options);
+  ddafem::EnsembleOptions ensemble_options;
+  CLI::App* ensemble = add_ensemble_command(app, ensemble_options);
   CLI::App* reference =
       app.add_subcommand("scene-reference", "print the scene key reference (Markdown)");
   const auto is_command = [&](const std::string& word)
   {
     return word == check->get_name() || word == run->get_name() ||
            word == resume_command->get_name() || word == reference->get_name() ||
-           word == sweep->get_name();
+           word == sweep->get_name() || word == ensemble->get_name();
   };
   if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1]))
   {
-    std::cerr << "error: unknown command '" << argv[1]
-              << "': expected check, run, resume, sweep or scene-reference (ddafem --help)\n";
+    std::cerr
+        << "error: unknown command '" << argv[1]
+        << "': expected check, run, resume, sweep, ensemble or scene-reference (ddafem --help)\n";
     return 2;
   }
   try
@@ -278,6 +330,8 @@ int main(int argc, char** argv)
       return resume(cl);
     if (sweep->parsed())
       return sweep_command(sweep_options);
+    if (ensemble->parsed())
+      return ensemble_command(*ensemble, ensemble_options);
     return check_or_run(cl, run->parsed());
   }
   catch (const ddafem::InputError& e)
