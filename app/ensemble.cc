@@ -354,24 +354,68 @@ void write_report(const EnsembleOptions& o, const EnsemblePlan& plan,
   run_support::write_text_file(dir / "ensemble.md", ensemble_markdown(j));
 }
 
-/// Runs the members `jobs` at a time, each with `threads` threads; after each, `after_each`.
+/// The members that finished (completed or failed) in an earlier run of this ensemble into the
+/// same directory, from its ensemble.json and their summary.json; none if there is none. Throws
+/// InputError if that was another ensemble (another scene, -n, --vary, --seed, --set,
+/// --roundoff or --snapshots).
+std::vector<MemberOutcome> earlier_outcomes(const EnsembleOptions& o, const EnsemblePlan& plan)
+{
+  const std::filesystem::path file = std::filesystem::path(o.directory) / "ensemble.json";
+  std::ifstream in(file);
+  if (!in)
+    return {};
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object())
+    throw InputError(file.string() + ": not an ensemble's report: expected an empty or new -o DIR");
+  const nlohmann::json now = {{"scene", o.scene},        {"members_requested", o.members},
+                              {"vary", o.vary},          {"seed", o.seed},
+                              {"settings", o.settings},  {"roundoff_key", plan.roundoff_key},
+                              {"snapshots", o.snapshots}};
+  for (const auto& [key, value] : now.items())
+    if (j.value(key, nlohmann::json()) != value)
+      throw InputError(file.string() + ": the ensemble in this directory has " + key + " = " +
+                       j.value(key, nlohmann::json()).dump() + ", not " + value.dump() +
+                       ": expected the same options to continue it (ddafem resume " + o.directory +
+                       "), or another -o DIR");
+  std::vector<MemberOutcome> outcomes;
+  for (const nlohmann::json& m : j.value("members", nlohmann::json::array()))
+  {
+    const std::string status = m.value("status", "");
+    if (!m.value("finished", false) || (status != "completed" && status != "failed"))
+      continue; // not run, stopped at a budget, or without a summary: run again
+    std::ifstream summary_in(std::filesystem::path(o.directory) / m.value("directory", "") /
+                             "summary.json");
+    const nlohmann::json summary = nlohmann::json::parse(summary_in, nullptr, false);
+    if (summary.is_discarded())
+      continue;
+    outcomes.push_back(member_outcome(m["index"], m.value("exit_code", -1), summary));
+    outcomes.back().wall_s = m.value("wall_s", 0.0);
+  }
+  return outcomes;
+}
+
+/// Runs the members without an outcome in `outcomes` (those of an earlier, interrupted run of
+/// the ensemble), `jobs` at a time, each with `threads` threads; after each, `after_each`.
 std::vector<MemberOutcome>
 run_members(const EnsembleOptions& o, const std::vector<Member>& members, unsigned jobs,
-            unsigned threads, std::ostream& log,
+            unsigned threads, std::vector<MemberOutcome> outcomes, std::ostream& log,
             const std::function<void(const std::vector<MemberOutcome>&)>& after_each)
 {
   std::vector<child_runs::Child> children(members.size());
-  std::vector<std::size_t> running; // indices into members
-  std::vector<MemberOutcome> outcomes;
+  std::vector<std::size_t> to_run, running; // indices into members
+  for (const Member& m : members)
+    if (std::none_of(outcomes.begin(), outcomes.end(),
+                     [&](const MemberOutcome& done) { return done.index == m.index; }))
+      to_run.push_back(m.index);
   std::size_t next = 0;
   try
   {
-    while (next < members.size() || !running.empty())
+    while (next < to_run.size() || !running.empty())
     {
-      for (; running.size() < jobs && next < members.size(); ++next)
+      for (; running.size() < jobs && next < to_run.size(); ++next)
       {
-        children[next] = start_member(o, members[next], threads);
-        running.push_back(next);
+        children[to_run[next]] = start_member(o, members[to_run[next]], threads);
+        running.push_back(to_run[next]);
       }
       std::vector<child_runs::Child*> waiting;
       for (const std::size_t i : running)
@@ -404,10 +448,14 @@ int run_ensemble(const EnsembleOptions& o, std::ostream& log)
   for (std::size_t k = 0; k < o.members; ++k)
     members.push_back(plan_member(o, plan, k));
   const auto [jobs, threads] = child_runs::jobs_and_threads(o.jobs, o.threads);
+  const std::vector<MemberOutcome> earlier = earlier_outcomes(o, plan);
+  if (!earlier.empty() && !o.quiet)
+    log << "ensemble: continuing in " << o.directory << ": " << earlier.size() << " of "
+        << o.members << " members finished earlier" << std::endl;
   run_support::create_output_directory(o.directory);
-  write_report(o, plan, members, {}, 0.0);
+  write_report(o, plan, members, earlier, 0.0);
   const std::vector<MemberOutcome> outcomes =
-      run_members(o, members, jobs, threads, log,
+      run_members(o, members, jobs, threads, earlier, log,
                   [&](const std::vector<MemberOutcome>& done)
                   { write_report(o, plan, members, done, seconds_since(wall_start)); });
   const nlohmann::json j = ensemble_json(o, plan, members, outcomes, seconds_since(wall_start));
@@ -417,6 +465,29 @@ int run_ensemble(const EnsembleOptions& o, std::ostream& log)
   if (!j["failed"].empty())
     return 1;
   return j["stopped"].empty() ? 0 : 3;
+}
+
+int resume_ensemble(const std::string& directory, const bool quiet, const unsigned threads,
+                    std::ostream& log)
+{
+  const std::filesystem::path file = std::filesystem::path(directory) / "ensemble.json";
+  std::ifstream in(file);
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (!in || j.is_discarded() || !j.is_object())
+    throw InputError(file.string() + ": cannot be read: expected the report of an ensemble");
+  EnsembleOptions o;
+  o.scene = j.value("scene", "");
+  o.members = j.value("members_requested", std::size_t(0));
+  o.settings = j.value("settings", std::vector<std::string>());
+  o.vary = j.value("vary", std::vector<std::string>());
+  o.seed = j.value("seed", std::uint64_t(1));
+  o.snapshots = j.value("snapshots", false);
+  if (const std::string key = j.value("roundoff_key", ""); !key.empty())
+    o.roundoff = key;
+  o.directory = directory;
+  o.quiet = quiet;
+  o.threads = threads;
+  return run_ensemble(o, log);
 }
 
 } // namespace ddafem

@@ -117,7 +117,13 @@ std::string ensemble_markdown(const nlohmann::json& ensemble);
 
 /// Runs the ensemble into DIR (DIR/member_NNN with member.json, DIR/ensemble.json and .md
 /// rewritten after each member). Returns the exit code: 0; 1 if a member failed numerically;
-/// 3 if one stopped at a budget. Bad input throws InputError before any member runs.
+/// 3 if one stopped at a budget. Bad input throws InputError before any member runs. If DIR
+/// holds the report of an earlier run of the same ensemble, the members that finished there
+/// (completed or failed) are not run again; another ensemble's report (another scene, -n,
+/// --vary, --seed, --set, --roundoff or --snapshots) is bad input.
 int run_ensemble(const EnsembleOptions& options, std::ostream& log);
+
+/// `ddafem resume DIR` of an ensemble: run_ensemble with the options in DIR/ensemble.json.
+int resume_ensemble(const std::string& directory, bool quiet, unsigned threads, std::ostream& log);
 
 } // namespace ddafem

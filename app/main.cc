@@ -21,6 +21,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <malloc.h>
@@ -115,9 +116,12 @@ int check_or_run(const CommandLine& cl, bool run)
   }
 }
 
-/// Continues the run whose checkpoint is in cl.directory; returns the exit code.
+/// Continues the run whose checkpoint is in cl.directory, or the ensemble whose report is there;
+/// returns the exit code.
 int resume(const CommandLine& cl)
 {
+  if (std::filesystem::exists(std::filesystem::path(cl.directory) / "ensemble.json"))
+    return ddafem::resume_ensemble(cl.directory, cl.options.quiet, cl.options.threads, std::cerr);
   ddafem::CheckpointReader checkpoint(cl.directory);
   const ddafem::CheckpointHeader& header = checkpoint.header();
   if (ddafem::scene_file_text(header.scene_file) != header.scene_text)

@@ -4,8 +4,10 @@
 truncnormal(35, 3, 25, 45) and the wave's amplitude perturbed by k 1e-12. Checks the member
 directories, that each member.json holds the values drawn for it and
 that ensemble.json's values, verdicts and probabilities are those of the members' own
-summary.json, recounted here; that the scene's seed warning is printed once; and that bad
---vary texts exit 2 naming them, before any member runs.
+summary.json, recounted here; that the scene's seed warning is printed once; that `ddafem
+resume` of an interrupted ensemble runs only the member missing and gives the same report, and
+another -n into the same directory exits 2; and that bad --vary texts exit 2 naming them, before
+any member runs.
 
     check_ensemble.py DDAFEM SOURCE_DIR WORK_DIR
 """
@@ -82,6 +84,26 @@ def main():
     check_probabilities(result, check_members(out, result))
     text = open(os.path.join(out, "ensemble.md")).read()
     assert text.split("\n")[2] == "**" + result["answer"] + "**", text[:300]
+
+    # An interrupted ensemble: member 3 as if it had not run. `ddafem resume` runs it alone and
+    # ends with the same report; the same -o with another -n is refused.
+    ensemble_json = os.path.join(out, "ensemble.json")
+    interrupted = json.load(open(ensemble_json))
+    interrupted["members"][3]["finished"] = False
+    json.dump(interrupted, open(ensemble_json, "w"))
+    shutil.rmtree(os.path.join(out, "member_003"))
+    r = subprocess.run([ddafem, "resume", out], capture_output=True, text=True)
+    assert r.returncode in (0, 1), (r.returncode, r.stderr)
+    assert "3 of 4 members finished earlier" in r.stderr, r.stderr
+    assert r.stderr.count("ensemble: member_") == 1 and "member_003" in r.stderr, r.stderr
+    resumed = json.load(open(ensemble_json))
+    assert resumed["keyblocks"] == result["keyblocks"], "the resumed ensemble differs"
+    assert [m["values"] for m in resumed["members"]] == [m["values"] for m in result["members"]]
+    r = subprocess.run([ddafem, "ensemble", scene, "-n", "5", "-o", out, "--set",
+                        "tunnel.settle.enabled=false", "--vary",
+                        friction + "=truncnormal(35,3,25,45)", "--roundoff"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "members_requested = 4, not 5" in r.stderr, r.stderr
 
     # Bad --vary texts: exit 2 naming the text and what was expected; nothing run.
     shutil.rmtree(out)
