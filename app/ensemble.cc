@@ -367,9 +367,12 @@ std::vector<MemberOutcome> earlier_outcomes(const EnsembleOptions& o, const Ense
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object())
     throw InputError(file.string() + ": not an ensemble's report: expected an empty or new -o DIR");
-  const nlohmann::json now = {{"scene", o.scene},        {"members_requested", o.members},
-                              {"vary", o.vary},          {"seed", o.seed},
-                              {"settings", o.settings},  {"roundoff_key", plan.roundoff_key},
+  const nlohmann::json now = {{"scene_path", scene_path(o.scene)},
+                              {"members_requested", o.members},
+                              {"vary", o.vary},
+                              {"seed", o.seed},
+                              {"settings", o.settings},
+                              {"roundoff_key", plan.roundoff_key},
                               {"snapshots", o.snapshots}};
   for (const auto& [key, value] : now.items())
     if (j.value(key, nlohmann::json()) != value)
@@ -476,7 +479,7 @@ int resume_ensemble(const std::string& directory, const bool quiet, const unsign
   if (!in || j.is_discarded() || !j.is_object())
     throw InputError(file.string() + ": cannot be read: expected the report of an ensemble");
   EnsembleOptions o;
-  o.scene = j.value("scene", "");
+  o.scene = j.value("scene_path", ""); // absolute: resume may run from another directory
   o.members = j.value("members_requested", std::size_t(0));
   o.settings = j.value("settings", std::vector<std::string>());
   o.vary = j.value("vary", std::vector<std::string>());

@@ -104,6 +104,10 @@ struct MemberOutcome
 /// The outcome of a member from its summary.json (null: the run left none).
 MemberOutcome member_outcome(std::size_t index, int exit_code, const nlohmann::json& summary);
 
+/// The scene file's absolute path without `.` and `..` (ensemble.json's scene_path: the same
+/// file however it was named).
+std::string scene_path(const std::string& scene);
+
 /// ensemble.json: the question, each member and, over the completed members, per keyblock
 /// P(fell) and P(loosened) with 95 % Wilson intervals and the median, 5-95 % and the median's
 /// 95 % order-statistic interval of its residual relative displacement; per opening the fallen

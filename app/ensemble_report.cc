@@ -7,6 +7,7 @@
 #include "common/format.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -137,10 +138,16 @@ nlohmann::json openings_json(const std::vector<MemberOutcome>& outcomes)
   return list;
 }
 
+/// A fraction in percent: whole numbers from 10 %, two significant digits below ("4.2").
+std::string percent(const double fraction)
+{
+  const double x = 100.0 * fraction;
+  return x >= 9.95 ? std::to_string(std::lround(x)) : format_significant(x, 2);
+}
+
 /// "35 % [20, 52]" of a proportion_json.
 std::string percent_text(const nlohmann::json& p)
 {
-  const auto percent = [](double x) { return format_significant(100.0 * x, 2); };
   return percent(p["p"].get<double>()) + " % [" + percent(p["wilson_95"][0].get<double>()) + ", " +
          percent(p["wilson_95"][1].get<double>()) + "]";
 }
@@ -172,8 +179,8 @@ std::string answer_sentence(const nlohmann::json& j)
       << " (95 % Wilson)";
   else
     s << ", no keyblock the excavation left in place fell (at most "
-      << format_significant(100.0 * statistics::wilson_interval(0, n).high, 2)
-      << " %, the 95 % Wilson bound of 0 in " << n << ")";
+      << percent(statistics::wilson_interval(0, n).high) << " %, the 95 % Wilson bound of 0 in "
+      << n << ")";
   if (!j["keyblocks"].empty())
     s << "; " << n_loosen_often << " of " << j["keyblocks"].size()
       << " keyblocks loosen in at least half of the runs";
@@ -224,6 +231,11 @@ nlohmann::json member_json(const Member& m, const MemberOutcome* outcome)
 }
 } // namespace
 
+std::string scene_path(const std::string& scene)
+{
+  return std::filesystem::weakly_canonical(std::filesystem::absolute(scene)).string();
+}
+
 nlohmann::json ensemble_json(const EnsembleOptions& o, const EnsemblePlan& plan,
                              const std::vector<Member>& members,
                              const std::vector<MemberOutcome>& outcomes, const double wall_s)
@@ -249,6 +261,7 @@ nlohmann::json ensemble_json(const EnsembleOptions& o, const EnsemblePlan& plan,
   for (const VariedKey& v : plan.varied)
     varied.push_back({{"key", v.key}, {"distribution", v.distribution.text}});
   nlohmann::json j = {{"scene", o.scene},
+                      {"scene_path", scene_path(o.scene)},
                       {"settings", o.settings},
                       {"members_requested", o.members},
                       {"seed", o.seed},
@@ -306,7 +319,12 @@ void member_table(const nlohmann::json& j, std::ostringstream& md)
   {
     std::vector<std::string> values;
     for (const auto& [key, value] : m["values"].items())
-      values.push_back(key + " = " + format_significant(value.get<double>(), 6));
+    {
+      const double v = value.get<double>(); // a seed in full, other values to 6 digits
+      values.push_back(key + " = " +
+                       (v == std::floor(v) && std::abs(v) < 1e15 ? std::to_string(std::llround(v))
+                                                                 : format_significant(v, 6)));
+    }
     md << "| " << m["directory"].get<std::string>() << " | " << m["seed"] << " | "
        << scene_reading::join(values, ", ") << " | ";
     if (!m["finished"].get<bool>())
