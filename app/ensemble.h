@@ -36,6 +36,7 @@ struct EnsembleOptions
   unsigned threads = 0;       ///< threads of each run; 0: the cores shared by the runs
   double max_wall_time = 0.0; ///< [s] budget of each member; 0: none
   bool snapshots = false;     ///< VTU snapshots during the run (else first and last only)
+  double sector_deg = 10.0;   ///< width of the sectors of an opening's perimeter [deg]
   bool quiet = false;
   std::string directory;
 };
@@ -86,6 +87,8 @@ struct KeyblockOutcome
   std::size_t opening = 0;
   bool fell = false, loosened = false, released = false;
   double residual_relative_m = 0.0; ///< residual displacement relative to the rock [m]
+  /// Where on the opening's perimeter: from straight up, clockwise [deg]; NaN if not given.
+  double angle_deg = 0.0;
 };
 
 /// What one member said.
@@ -110,8 +113,10 @@ std::string scene_path(const std::string& scene);
 
 /// ensemble.json: the question, each member and, over the completed members, per keyblock
 /// P(fell) and P(loosened) with 95 % Wilson intervals and the median, 5-95 % and the median's
-/// 95 % order-statistic interval of its residual relative displacement; per opening the fallen
-/// area; `answer`, the sentence ensemble.md opens with.
+/// 95 % order-statistic interval of its residual relative displacement; per sector of each
+/// opening's perimeter (options.sector_deg wide, from the crown clockwise) the probability that a
+/// keyblock there fell or loosened, which holds where the members' blocks differ; per opening
+/// the fallen area; `answer`, the sentence ensemble.md opens with.
 nlohmann::json ensemble_json(const EnsembleOptions& options, const EnsemblePlan& plan,
                              const std::vector<Member>& members,
                              const std::vector<MemberOutcome>& outcomes, double wall_s);

@@ -7,6 +7,7 @@
 #include "common/format.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -29,7 +30,8 @@ MemberOutcome member_outcome(const std::size_t index, const int exit_code,
   for (const nlohmann::json& b : keyblocks.value("blocks", nlohmann::json::array()))
     m.keyblocks.push_back({b.value("id", std::size_t(0)), b.value("opening", std::size_t(0)),
                            b.value("fell", false), b.value("loosened", false),
-                           b.value("released", false), b.value("residual_relative_m", 0.0)});
+                           b.value("released", false), b.value("residual_relative_m", 0.0),
+                           b.value("angle_deg", std::nan(""))});
   for (const nlohmann::json& o : keyblocks.value("openings", nlohmann::json::array()))
     m.fallen_area_m2.push_back(o.value("fallen_area_m2", 0.0));
   return m;
@@ -43,6 +45,7 @@ using statistics::Interval;
 struct KeyblockTally
 {
   std::size_t opening = 0, n = 0, n_fell = 0, n_loosened = 0, n_released = 0;
+  std::size_t n_fell_in_place = 0; ///< fell where the excavation had not released it
   std::vector<double> residuals_m;
 };
 
@@ -89,6 +92,7 @@ std::map<std::size_t, KeyblockTally> tally_keyblocks(const std::vector<MemberOut
         t.opening = k.opening;
         ++t.n;
         t.n_fell += k.fell ? 1 : 0;
+        t.n_fell_in_place += k.fell && !k.released ? 1 : 0;
         t.n_loosened += k.loosened ? 1 : 0;
         t.n_released += k.released ? 1 : 0;
         t.residuals_m.push_back(k.residual_relative_m);
@@ -104,9 +108,54 @@ nlohmann::json keyblocks_json(const std::vector<MemberOutcome>& outcomes)
                     {"opening", t.opening},
                     {"n", t.n},
                     {"fell", proportion_json(t.n_fell, t.n)},
+                    {"fell_in_place", proportion_json(t.n_fell_in_place, t.n)},
                     {"loosened", proportion_json(t.n_loosened, t.n)},
                     {"released", t.n_released},
                     {"residual_relative_m", sample_json(t.residuals_m)}});
+  return list;
+}
+
+/// Per sector of each opening's perimeter (`width` degrees from the crown clockwise) in which
+/// some member has a keyblock: in how many counted members a keyblock there fell (not one the
+/// excavation released: that one falls whatever the shaking), loosened, was released.
+nlohmann::json sectors_json(const std::vector<MemberOutcome>& outcomes, const double width)
+{
+  struct Counts
+  {
+    std::size_t with_keyblock = 0, fell = 0, loosened = 0, released = 0;
+  };
+  std::map<std::pair<std::size_t, long>, Counts> sectors; // (opening, sector)
+  std::size_t n = 0;
+  for (const MemberOutcome& m : outcomes)
+  {
+    if (!m.counted())
+      continue;
+    ++n;
+    std::map<std::pair<std::size_t, long>, std::array<bool, 3>> seen; // fell, loosened, released
+    for (const KeyblockOutcome& k : m.keyblocks)
+      if (std::isfinite(k.angle_deg))
+      {
+        std::array<bool, 3>& s = seen[{k.opening, std::lround(std::floor(k.angle_deg / width))}];
+        s = {s[0] || (k.fell && !k.released), s[1] || k.loosened, s[2] || k.released};
+      }
+    for (const auto& [where, s] : seen)
+    {
+      Counts& c = sectors[where];
+      c.with_keyblock += 1;
+      c.fell += s[0] ? 1 : 0;
+      c.loosened += s[1] ? 1 : 0;
+      c.released += s[2] ? 1 : 0;
+    }
+  }
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& [where, c] : sectors)
+    list.push_back({{"opening", where.first},
+                    {"from_deg", static_cast<double>(where.second) * width},
+                    {"to_deg", static_cast<double>(where.second + 1) * width},
+                    {"with_keyblock", c.with_keyblock},
+                    {"fell", proportion_json(c.fell, n)},
+                    {"loosened", proportion_json(c.loosened, n)},
+                    {"released", c.released}});
   return list;
 }
 
@@ -167,16 +216,28 @@ std::string answer_sentence(const nlohmann::json& j)
   std::size_t n_loosen_often = 0;
   for (const nlohmann::json& k : j["keyblocks"])
   {
-    if (k["released"].get<std::size_t>() < k["n"].get<std::size_t>() &&
-        (!likeliest || k["fell"]["p"].get<double>() > (*likeliest)["fell"]["p"].get<double>()))
+    if (!likeliest ||
+        k["fell_in_place"]["p"].get<double>() > (*likeliest)["fell_in_place"]["p"].get<double>())
       likeliest = &k;
     n_loosen_often += 2 * k["loosened"]["count"].get<std::size_t>() >= k["n"].get<std::size_t>();
   }
+  const bool by_sector = std::any_of(j["keyblocks"].begin(), j["keyblocks"].end(),
+                                     [&](const nlohmann::json& k) { return k["n"] != n; });
+  const nlohmann::json* sector = nullptr; // the sector likeliest to lose a keyblock
+  for (const nlohmann::json& x : j["sectors"])
+    if (!sector || x["fell"]["p"].get<double>() > (*sector)["fell"]["p"].get<double>())
+      sector = &x;
   if (j["keyblocks"].empty())
     s << ", the scene has no keyblocks";
-  else if (likeliest && (*likeliest)["fell"]["count"].get<std::size_t>() > 0)
-    s << ", block " << (*likeliest)["id"] << " falls in " << percent_text((*likeliest)["fell"])
-      << " (95 % Wilson)";
+  else if (by_sector && sector && (*sector)["fell"]["count"].get<std::size_t>() > 0)
+    s << " (the blocks differ between them: by location), a keyblock the excavation left in "
+         "place falls between "
+      << (*sector)["from_deg"].get<double>() << " and " << (*sector)["to_deg"].get<double>()
+      << " deg from the crown (clockwise) of opening " << (*sector)["opening"] << " in "
+      << percent_text((*sector)["fell"]) << " (95 % Wilson)";
+  else if (!by_sector && likeliest && (*likeliest)["fell_in_place"]["count"].get<std::size_t>() > 0)
+    s << ", block " << (*likeliest)["id"] << " falls, the excavation having left it in place, in "
+      << percent_text((*likeliest)["fell_in_place"]) << " (95 % Wilson)";
   else
     s << ", no keyblock the excavation left in place fell (at most "
       << percent(statistics::wilson_interval(0, n).high) << " %, the 95 % Wilson bound of 0 in "
@@ -276,6 +337,8 @@ nlohmann::json ensemble_json(const EnsembleOptions& o, const EnsemblePlan& plan,
                       {"failed", failed},
                       {"stopped", stopped},
                       {"keyblocks", keyblocks_json(outcomes)},
+                      {"sector_deg", o.sector_deg},
+                      {"sectors", sectors_json(outcomes, o.sector_deg)},
                       {"openings", openings_json(outcomes)},
                       {"members", list},
                       {"wall_s", wall_s}};
@@ -309,6 +372,23 @@ void keyblock_table(const nlohmann::json& j, std::ostringstream& md)
     md << "| " << k["id"] << " | " << k["opening"] << " | " << k["n"] << " | "
        << percent_text(k["fell"]) << " | " << percent_text(k["loosened"]) << " | " << k["released"]
        << " | " << residual_cells(k["residual_relative_m"]) << " |\n";
+}
+
+void sector_table(const nlohmann::json& j, std::ostringstream& md)
+{
+  md << "\n## Sectors\n\nBy location, which holds where the members' blocks differ: sectors of "
+     << j["sector_deg"] << " deg of each opening's perimeter, from the crown (0) clockwise (90 the "
+     << "right wall, 180 the invert), by the keyblocks' centroids at the start. P: a keyblock in "
+        "the sector fell (a block the excavation released not counted), loosened, over all "
+        "completed runs, with its 95 % Wilson interval.\n\n"
+        "| opening | sector [deg] | runs with a keyblock there | P(a keyblock fell) | "
+        "P(a keyblock loosened) | runs in which the excavation released one |\n"
+        "|---|---|---|---|---|---|\n";
+  for (const nlohmann::json& s : j["sectors"])
+    md << "| " << s["opening"] << " | " << s["from_deg"].get<double>() << " to "
+       << s["to_deg"].get<double>() << " | " << s["with_keyblock"] << " | "
+       << percent_text(s["fell"]) << " | " << percent_text(s["loosened"]) << " | " << s["released"]
+       << " |\n";
 }
 
 void member_table(const nlohmann::json& j, std::ostringstream& md)
@@ -362,6 +442,7 @@ std::string ensemble_markdown(const nlohmann::json& j)
     md << " Stopped at a budget (not counted): members " << j["stopped"].dump() << ".";
   md << "\n";
   keyblock_table(j, md);
+  sector_table(j, md);
   md << "\n## Openings\n\nFallen area per opening [m^2, = m^3 per metre of tunnel] over the "
         "completed runs.\n\n| opening | P(anything fell) | median | 5-95 % | mean | max |\n"
         "|---|---|---|---|---|---|\n";

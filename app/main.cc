@@ -223,6 +223,9 @@ CLI::App* add_ensemble_command(CLI::App& app, ddafem::EnsembleOptions& o)
   e->add_option("--max-wall-time", o.max_wall_time, "budget of each member (exit code 3)")
       ->check(CLI::PositiveNumber)
       ->type_name("SECONDS");
+  e->add_option("--sector", o.sector_deg,
+                "width of the sectors of an opening's perimeter in the report [deg] (default 10)")
+      ->check(CLI::Range(1.0, 180.0));
   e->add_flag("--snapshots", o.snapshots,
               "VTU snapshots at the scene's output.interval (default: first and last only)");
   e->add_flag("-q,--quiet", o.quiet, "no line per member");

@@ -133,6 +133,7 @@ TEST(Ensemble, MembersDrawDeterministicValues)
 nlohmann::json summary(const std::string& status, bool fell_50, double residual_47,
                        bool loosened_47)
 {
+  // Block 47 at 355 deg (sector 35 of 10 deg), 50 at 5 (sector 0), 60 at 15 (sector 1).
   const auto block = [](std::size_t id, bool fell, bool loosened, bool released, double r)
   {
     return nlohmann::json{{"id", id},
@@ -140,7 +141,10 @@ nlohmann::json summary(const std::string& status, bool fell_50, double residual_
                           {"fell", fell},
                           {"loosened", loosened},
                           {"released", released},
-                          {"residual_relative_m", r}};
+                          {"residual_relative_m", r},
+                          {"angle_deg", id == 47   ? 355.0
+                                        : id == 50 ? 5.0
+                                                   : 15.0}};
   };
   return {{"status", status},
           {"keyblocks",
@@ -191,15 +195,28 @@ TEST(Ensemble, ReportCountsCompletedMembers)
   EXPECT_EQ(r["median_95"][0], 1e-3 * 2); // order statistics: the samples themselves
   EXPECT_EQ(r["median_95"][1], 1e-3 * 9);
   EXPECT_EQ(j["keyblocks"][2]["released"], 10);
+  // By sector: 0-10 deg (block 50) fell in 4 of 10; 10-20 (block 60) was released in 10, which
+  // does not count as a fall there; 350-360 (block 47) loosened in 6.
+  const nlohmann::json& sectors = j["sectors"];
+  ASSERT_EQ(sectors.size(), 3u);
+  EXPECT_EQ(sectors[0]["from_deg"], 0.0);
+  EXPECT_EQ(sectors[0]["fell"]["count"], 4);
+  EXPECT_EQ(sectors[1]["to_deg"], 20.0);
+  EXPECT_EQ(sectors[1]["fell"]["count"], 0);
+  EXPECT_EQ(sectors[1]["released"], 10);
+  EXPECT_EQ(sectors[2]["from_deg"], 350.0);
+  EXPECT_EQ(sectors[2]["loosened"]["count"], 6);
+  EXPECT_EQ(sectors[2]["fell"]["count"], 0);
+  EXPECT_EQ(sectors[2]["with_keyblock"], 10);
   // Opening 0 loses 1.5 m^2 in the 4 members where block 50 fell, else 0.5 (block 60).
   const nlohmann::json& opening = j["openings"][0];
   EXPECT_EQ(opening["any_fell"]["count"], 10);
   EXPECT_NEAR(opening["fallen_area_mean_m2"].get<double>(), 0.9, 1e-15);
-  // The answer quotes block 50 (block 60 is released in every run), as a percentage with its
+  // The answer quotes block 50 (block 60 falls only where released), as a percentage with its
   // interval rounded to two digits: 40 % [17, 69].
   const std::string answer = j["answer"];
-  EXPECT_NE(answer.find("Over 10 completed runs (1 failed numerically, excluded), block 50 falls "
-                        "in 40 % [17, 69] (95 % Wilson)"),
+  EXPECT_NE(answer.find("Over 10 completed runs (1 failed numerically, excluded), block 50 falls, "
+                        "the excavation having left it in place, in 40 % [17, 69] (95 % Wilson)"),
             std::string::npos)
       << answer;
   EXPECT_NE(answer.find("1 of 3 keyblocks loosen in at least half of the runs"), std::string::npos)
@@ -226,5 +243,37 @@ TEST(Ensemble, ReportWithoutFallsGivesTheUpperBound)
   EXPECT_EQ(j["members"][1]["finished"], false);
   EXPECT_EQ(ensemble_json(o, plan, members, {}, 0.0)["answer"],
             "No run of the 2 has completed yet.");
+}
+} // namespace
+
+namespace
+{
+TEST(Ensemble, ReportBySectorWhereTheBlocksDiffer)
+{
+  // Two members whose crown keyblocks differ (47 at 5 deg, 48 at 7 deg): the answer goes by
+  // sector, 0 to 10 deg, where a keyblock fell in 1 of 2. Wilson(1, 2): 0.5 -+ 1.96
+  // sqrt(0.125 + 0.2401) / 2.9208 = [0.0945, 0.9055].
+  EnsembleOptions o = roof_wedge_options();
+  o.members = 2;
+  const EnsemblePlan plan = plan_ensemble(o);
+  const auto member = [](std::size_t id, double angle, bool fell)
+  {
+    return nlohmann::json{
+        {"status", "completed"},
+        {"keyblocks",
+         {{"blocks", {{{"id", id}, {"opening", 0}, {"fell", fell}, {"angle_deg", angle}}}}}}};
+  };
+  const nlohmann::json j = ensemble_json(
+      o, plan, {plan_member(o, plan, 0), plan_member(o, plan, 1)},
+      {member_outcome(0, 0, member(47, 5.0, true)), member_outcome(1, 0, member(48, 7.0, false))},
+      1.0);
+  ASSERT_EQ(j["sectors"].size(), 1u);
+  EXPECT_EQ(j["sectors"][0]["with_keyblock"], 2);
+  EXPECT_NE(j["answer"].get<std::string>().find(
+                "(the blocks differ between them: by location), a keyblock the excavation left in "
+                "place falls between 0 and 10 deg from the crown (clockwise) of opening 0 in 50 % "
+                "[9.5, 91] (95 % Wilson)"),
+            std::string::npos)
+      << j["answer"];
 }
 } // namespace
