@@ -207,8 +207,13 @@ std::string answer_sentence(const nlohmann::json& j)
 {
   const std::size_t n = j["n_counted"], n_total = j["members_requested"];
   std::ostringstream s;
-  if (n == 0)
+  if (n == 0 && j["n_finished"] == 0)
     return "No run of the " + std::to_string(n_total) + " has completed yet.";
+  if (n == 0)
+    return "None of the " + j["n_finished"].dump() + " runs that ended (of " +
+           std::to_string(n_total) + ") completed: " + j["failed"].dump() +
+           " failed numerically or without a summary, " + j["stopped"].dump() +
+           " stopped at a budget.";
   s << "Over " << n << " completed runs";
   if (!j["failed"].empty())
     s << " (" << j["failed"].size() << " failed numerically, excluded)";

@@ -6,8 +6,8 @@ directories, that each member.json holds the values drawn for it and
 that ensemble.json's values, verdicts and probabilities are those of the members' own
 summary.json, recounted here; that the scene's seed warning is printed once; that `ddafem
 resume` of an interrupted ensemble runs only the member missing and gives the same report, and
-another -n into the same directory exits 2; and that bad --vary texts exit 2 naming them, before
-any member runs.
+another -n into the same directory exits 2; that bad --vary texts exit 2 naming them, before
+any member runs; and that members failing numerically give exit 1, listed and not counted.
 
     check_ensemble.py DDAFEM SOURCE_DIR WORK_DIR
 """
@@ -116,6 +116,21 @@ def main():
         assert r.returncode == 2 and "--vary " + vary in r.stderr and expected in r.stderr, (
             vary, r.returncode, r.stderr)
         assert not os.path.exists(out), vary
+    # Members that fail numerically (the block stack's static stage given one step): exit 1,
+    # listed, not counted, the report written. --roundoff without a key needs a tunnel.
+    stack = os.path.join(source, "examples/block_stack/stack.yaml")
+    r = subprocess.run([ddafem, "ensemble", stack, "-n", "2", "-o", out, "--set",
+                        "stages.0.max_steps=1"], capture_output=True, text=True)
+    assert r.returncode == 1, (r.returncode, r.stderr)
+    failed = json.load(open(os.path.join(out, "ensemble.json")))
+    assert failed["failed"] == [0, 1] and failed["n_counted"] == 0, failed
+    assert failed["answer"].startswith("None of the 2 runs that ended (of 2) completed"), failed
+    assert "Failed (not counted): members [0,1]" in open(os.path.join(out, "ensemble.md")).read()
+    shutil.rmtree(out)
+    r = subprocess.run([ddafem, "ensemble", stack, "-n", "2", "-o", out, "--roundoff"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "--roundoff: the scene has no tunnel section" in r.stderr, r.stderr
+    assert not os.path.exists(out)
     print("ensemble of 4: %s" % result["answer"])
 
 
