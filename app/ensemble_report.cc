@@ -211,8 +211,8 @@ std::string answer_sentence(const nlohmann::json& j)
     return "No run of the " + std::to_string(n_total) + " has completed yet.";
   if (n == 0)
     return "None of the " + j["n_finished"].dump() + " runs that ended (of " +
-           std::to_string(n_total) + ") completed: " + j["failed"].dump() +
-           " failed numerically or without a summary, " + j["stopped"].dump() +
+           std::to_string(n_total) + ") completed: " + std::to_string(j["failed"].size()) +
+           " failed numerically or without a summary, " + std::to_string(j["stopped"].size()) +
            " stopped at a budget.";
   s << "Over " << n << " completed runs";
   if (!j["failed"].empty())

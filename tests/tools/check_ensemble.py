@@ -7,7 +7,8 @@ that ensemble.json's values, verdicts and probabilities are those of the members
 summary.json, recounted here; that the scene's seed warning is printed once; that `ddafem
 resume` of an interrupted ensemble runs only the member missing and gives the same report, and
 another -n into the same directory exits 2; that bad --vary texts exit 2 naming them, before
-any member runs; and that members failing numerically give exit 1, listed and not counted.
+any member runs; that members failing numerically give exit 1, listed and not counted, and
+one stopped at its budget exit 3.
 
     check_ensemble.py DDAFEM SOURCE_DIR WORK_DIR
 """
@@ -126,6 +127,14 @@ def main():
     assert failed["failed"] == [0, 1] and failed["n_counted"] == 0, failed
     assert failed["answer"].startswith("None of the 2 runs that ended (of 2) completed"), failed
     assert "Failed (not counted): members [0,1]" in open(os.path.join(out, "ensemble.md")).read()
+    shutil.rmtree(out)
+    # A member stopped at its budget: exit 3, not counted either.
+    r = subprocess.run([ddafem, "ensemble", scene, "-n", "1", "-o", out, "--max-wall-time",
+                        "0.01"], capture_output=True, text=True)
+    assert r.returncode == 3, (r.returncode, r.stderr)
+    stopped = json.load(open(os.path.join(out, "ensemble.json")))
+    assert stopped["stopped"] == [0] and stopped["n_counted"] == 0, stopped
+    assert "1 stopped at a budget" in stopped["answer"], stopped["answer"]
     shutil.rmtree(out)
     r = subprocess.run([ddafem, "ensemble", stack, "-n", "2", "-o", out, "--roundoff"],
                        capture_output=True, text=True)
