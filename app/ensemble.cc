@@ -443,6 +443,11 @@ run_members(const EnsembleOptions& o, const std::vector<Member>& members, unsign
 
 int run_ensemble(const EnsembleOptions& o, std::ostream& log)
 {
+  return run_ensemble_members(o, log).exit_code;
+}
+
+EnsembleResult run_ensemble_members(const EnsembleOptions& o, std::ostream& log)
+{
   const auto wall_start = std::chrono::steady_clock::now();
   const EnsemblePlan plan = plan_ensemble(o);
   if (!plan.seed_warning.empty())
@@ -465,9 +470,7 @@ int run_ensemble(const EnsembleOptions& o, std::ostream& log)
   log << "ensemble: " << j["answer"].get<std::string>() << " ("
       << (std::filesystem::path(o.directory) / "ensemble.md").string() << ", "
       << format_significant(seconds_since(wall_start), 3) << " s)" << std::endl;
-  if (!j["failed"].empty())
-    return 1;
-  return j["stopped"].empty() ? 0 : 3;
+  return {!j["failed"].empty() ? 1 : j["stopped"].empty() ? 0 : 3, outcomes};
 }
 
 int resume_ensemble(const std::string& directory, const bool quiet, const unsigned threads,

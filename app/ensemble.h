@@ -107,6 +107,12 @@ struct MemberOutcome
 /// The outcome of a member from its summary.json (null: the run left none).
 MemberOutcome member_outcome(std::size_t index, int exit_code, const nlohmann::json& summary);
 
+/// A count `k` of `n` as a probability: {"count", "p" = k / n, "wilson_95": [low, high]}.
+nlohmann::json proportion_json(std::size_t k, std::size_t n);
+
+/// "35 % [20, 52]" of a proportion_json: whole percent from 10 %, two digits below.
+std::string percent_text(const nlohmann::json& p);
+
 /// The scene file's absolute path without `.` and `..` (ensemble.json's scene_path: the same
 /// file however it was named).
 std::string scene_path(const std::string& scene);
@@ -131,6 +137,17 @@ std::string ensemble_markdown(const nlohmann::json& ensemble);
 /// (completed or failed) are not run again; another ensemble's report (another scene, -n,
 /// --vary, --seed, --set, --roundoff or --snapshots) is bad input.
 int run_ensemble(const EnsembleOptions& options, std::ostream& log);
+
+/// What run_ensemble ran: its exit code and the outcome of every member that finished (here or
+/// in the earlier run it continued), in the order they finished.
+struct EnsembleResult
+{
+  int exit_code = 0;
+  std::vector<MemberOutcome> outcomes;
+};
+
+/// run_ensemble, returning the members' outcomes too (`ddafem fragility` runs one per level).
+EnsembleResult run_ensemble_members(const EnsembleOptions& options, std::ostream& log);
 
 /// `ddafem resume DIR` of an ensemble: run_ensemble with the options in DIR/ensemble.json.
 int resume_ensemble(const std::string& directory, bool quiet, unsigned threads, std::ostream& log);

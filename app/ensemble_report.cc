@@ -72,13 +72,17 @@ nlohmann::json sample_json(const std::vector<double>& sample)
           {"median_95_coverage", m.available ? nlohmann::json(m.coverage) : nlohmann::json()}};
 }
 
-/// A count as a probability with its 95 % Wilson interval.
+} // namespace
+
 nlohmann::json proportion_json(std::size_t k, std::size_t n)
 {
   return {{"count", k},
           {"p", n > 0 ? static_cast<double>(k) / static_cast<double>(n) : 0.0},
           {"wilson_95", interval_json(statistics::wilson_interval(k, n))}};
 }
+
+namespace
+{
 
 /// Per keyblock id, its tally over the counted members.
 std::map<std::size_t, KeyblockTally> tally_keyblocks(const std::vector<MemberOutcome>& outcomes)
@@ -194,12 +198,16 @@ std::string percent(const double fraction)
   return x >= 9.95 ? std::to_string(std::lround(x)) : format_significant(x, 2);
 }
 
-/// "35 % [20, 52]" of a proportion_json.
+} // namespace
+
 std::string percent_text(const nlohmann::json& p)
 {
   return percent(p["p"].get<double>()) + " % [" + percent(p["wilson_95"][0].get<double>()) + ", " +
          percent(p["wilson_95"][1].get<double>()) + "]";
 }
+
+namespace
+{
 
 /// The sentence an engineer can quote: the keyblock likeliest to fall, how many loosen, the
 /// fallen area.
