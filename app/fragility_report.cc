@@ -210,7 +210,7 @@ std::string fragility_markdown(const nlohmann::json& j)
   const nlohmann::json& im = j["intensity_measure"];
   std::ostringstream md;
   md << "# Fragility of `" << j["scene"].get<std::string>() << "`\n\n"
-     << j["answer"].get<std::string>() << "\n\nIntensity measure: **"
+     << "**" << j["answer"].get<std::string>() << "**\n\nIntensity measure: **"
      << im["name"].get<std::string>() << "** [" << im["unit"].get<std::string>() << "], "
      << im["definition"].get<std::string>() << ". " << j["levels"].size() << " levels of "
      << j["members_per_level"] << " members (" << j["key"].get<std::string>() << "), "
