@@ -23,6 +23,23 @@ extern char** environ;
 
 namespace ddafem::child_runs
 {
+namespace
+{
+/// This process's environment without the MPI launcher's variables (OMPI_*, PMIX_*, PMI_*): a
+/// child of a rank that mpirun started is a serial run of its own, not a rank of that job.
+std::vector<std::string> environment_without_mpi()
+{
+  std::vector<std::string> kept;
+  for (char** e = environ; *e != nullptr; ++e)
+  {
+    const std::string entry(*e);
+    if (entry.rfind("OMPI_", 0) != 0 && entry.rfind("PMIX_", 0) != 0 && entry.rfind("PMI_", 0) != 0)
+      kept.push_back(entry);
+  }
+  return kept;
+}
+} // namespace
+
 Child start(const std::vector<std::string>& args, const std::string& log_file)
 {
   std::vector<std::string> copy = args;
@@ -37,8 +54,13 @@ Child start(const std::vector<std::string>& args, const std::string& log_file)
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   Child child;
   child.started = std::chrono::steady_clock::now();
+  std::vector<std::string> environment = environment_without_mpi();
+  std::vector<char*> envp;
+  for (std::string& e : environment)
+    envp.push_back(e.data());
+  envp.push_back(nullptr);
   const int error =
-      posix_spawn(&child.pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
+      posix_spawn(&child.pid, "/proc/self/exe", &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   if (error != 0)
     throw std::runtime_error("cannot start a run: " + std::string(strerror(error)));

@@ -25,7 +25,9 @@ struct Child
 };
 
 /// Starts this executable with `args` (args[0] the program's name), its stdout and stderr into
-/// `log_file` (truncated). Throws std::runtime_error if it cannot.
+/// `log_file` (truncated), in this process's environment less the MPI launcher's variables
+/// (OMPI_*, PMIX_*, PMI_*): under mpirun the child is a serial run of its own. Throws
+/// std::runtime_error if it cannot.
 Child start(const std::vector<std::string>& args, const std::string& log_file);
 
 /// Waits until one of the running `children` (exit_code < 0) ends; records its exit code and

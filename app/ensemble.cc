@@ -16,6 +16,7 @@
 #include <fstream>
 #include <functional>
 #include <sstream>
+#include <thread>
 
 namespace ddafem
 {
@@ -397,17 +398,110 @@ std::vector<MemberOutcome> earlier_outcomes(const EnsembleOptions& o, const Ense
   return outcomes;
 }
 
-/// Runs the members without an outcome in `outcomes` (those of an earlier, interrupted run of
-/// the ensemble), `jobs` at a time, each with `threads` threads; after each, `after_each`.
+/// Which members this process runs: all, or under mpirun with N ranks member k on rank k mod N
+/// (each a child run of its own, app/child_runs.h).
+struct RankShare
+{
+  std::optional<run_support::MpiJob> job;
+  bool runs(const std::size_t index) const { return !job || index % job->size == job->rank; }
+  /// Whether this process writes the report: rank 0, or the only process.
+  bool leads() const { return !job || job->rank == 0; }
+};
+
+RankShare rank_share()
+{
+  return {run_support::mpi_job_from_environment()};
+}
+
+/// DIR/rank_NNN.json: the members rank r ran (index, exit code, wall time), written when it is
+/// done (or failed: `error`); rank 0 waits for it.
+std::filesystem::path rank_marker(const EnsembleOptions& o, const unsigned int rank)
+{
+  return std::filesystem::path(o.directory) / ("rank_" + std::to_string(rank) + ".json");
+}
+
+/// Runs this rank's members by `run`; on a rank other than 0 of several, then writes its marker
+/// with the members it ran (not those of `earlier`), or with the error that ended it.
+std::vector<MemberOutcome> run_rank_members(const EnsembleOptions& o, const RankShare& share,
+                                            const std::vector<MemberOutcome>& earlier,
+                                            const std::function<std::vector<MemberOutcome>()>& run)
+{
+  if (share.leads() || share.job->size < 2)
+    return run();
+  nlohmann::json marker = {{"job", share.job->name}, {"rank", share.job->rank}};
+  try
+  {
+    const std::vector<MemberOutcome> outcomes = run();
+    nlohmann::json list = nlohmann::json::array();
+    for (std::size_t i = earlier.size(); i < outcomes.size(); ++i)
+      list.push_back({{"index", outcomes[i].index},
+                      {"exit_code", outcomes[i].exit_code},
+                      {"wall_s", outcomes[i].wall_s}});
+    marker["members"] = list;
+    run_support::write_text_file(rank_marker(o, share.job->rank), marker.dump(2) + "\n");
+    return outcomes;
+  }
+  catch (const std::exception& e)
+  {
+    marker["error"] = e.what();
+    marker["input_error"] = dynamic_cast<const InputError*>(&e) != nullptr;
+    run_support::write_text_file(rank_marker(o, share.job->rank), marker.dump(2) + "\n");
+    throw;
+  }
+}
+
+/// On rank 0 of several: waits for every other rank's marker of this job (polling DIR), adds
+/// the outcomes of the members they ran from their summary.json, and removes the markers. A
+/// rank's error is thrown here (InputError if it was bad input).
+std::vector<MemberOutcome> gather_ranks(const EnsembleOptions& o, const RankShare& share,
+                                        std::vector<MemberOutcome> outcomes)
+{
+  for (unsigned int r = 1; share.job && r < share.job->size; ++r)
+  {
+    nlohmann::json marker;
+    while (true)
+    {
+      std::ifstream in(rank_marker(o, r));
+      marker = in ? nlohmann::json::parse(in, nullptr, false) : nlohmann::json();
+      if (marker.is_object() && marker.value("job", "") == share.job->name)
+        break; // not another job's stale marker
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    std::filesystem::remove(rank_marker(o, r));
+    if (marker.contains("error"))
+    {
+      const std::string what =
+          "ensemble: rank " + std::to_string(r) + ": " + marker["error"].get<std::string>();
+      if (marker.value("input_error", false))
+        throw InputError(what);
+      throw std::runtime_error(what);
+    }
+    for (const nlohmann::json& m : marker["members"])
+    {
+      std::ifstream in(member_directory(o, m["index"]) / "summary.json");
+      const nlohmann::json summary = nlohmann::json::parse(in, nullptr, false);
+      outcomes.push_back(member_outcome(m["index"], m["exit_code"],
+                                        summary.is_discarded() ? nlohmann::json() : summary));
+      outcomes.back().wall_s = m["wall_s"];
+    }
+  }
+  return outcomes;
+}
+
+/// Runs the members of this rank (all without mpirun) without an outcome in `outcomes` (those
+/// of an earlier, interrupted run of the ensemble), `jobs` at a time, each with `threads`
+/// threads; after each, `after_each`.
 std::vector<MemberOutcome>
 run_members(const EnsembleOptions& o, const std::vector<Member>& members, unsigned jobs,
-            unsigned threads, std::vector<MemberOutcome> outcomes, std::ostream& log,
+            unsigned threads, std::vector<MemberOutcome> outcomes, const RankShare& share,
+            std::ostream& log,
             const std::function<void(const std::vector<MemberOutcome>&)>& after_each)
 {
   std::vector<child_runs::Child> children(members.size());
   std::vector<std::size_t> to_run, running; // indices into members
   for (const Member& m : members)
-    if (std::none_of(outcomes.begin(), outcomes.end(),
+    if (share.runs(m.index) &&
+        std::none_of(outcomes.begin(), outcomes.end(),
                      [&](const MemberOutcome& done) { return done.index == m.index; }))
       to_run.push_back(m.index);
   std::size_t next = 0;
@@ -450,22 +544,40 @@ EnsembleResult run_ensemble_members(const EnsembleOptions& o, std::ostream& log)
 {
   const auto wall_start = std::chrono::steady_clock::now();
   const EnsemblePlan plan = plan_ensemble(o);
-  if (!plan.seed_warning.empty())
+  const RankShare share = rank_share();
+  if (!plan.seed_warning.empty() && share.leads())
     log << "ensemble: warning: " << plan.seed_warning << std::endl;
   std::vector<Member> members;
   for (std::size_t k = 0; k < o.members; ++k)
     members.push_back(plan_member(o, plan, k));
-  const auto [jobs, threads] = child_runs::jobs_and_threads(o.jobs, o.threads);
+  // Under mpirun one run at a time per rank unless -j says otherwise: the ranks are the cores.
+  const auto [jobs, threads] =
+      child_runs::jobs_and_threads(share.job && o.jobs == 0 ? 1 : o.jobs, o.threads);
   const std::vector<MemberOutcome> earlier = earlier_outcomes(o, plan);
-  if (!earlier.empty() && !o.quiet)
+  if (!earlier.empty() && !o.quiet && share.leads())
     log << "ensemble: continuing in " << o.directory << ": " << earlier.size() << " of "
         << o.members << " members finished earlier" << std::endl;
   run_support::create_output_directory(o.directory);
-  write_report(o, plan, members, earlier, 0.0);
-  const std::vector<MemberOutcome> outcomes =
-      run_members(o, members, jobs, threads, earlier, log,
-                  [&](const std::vector<MemberOutcome>& done)
-                  { write_report(o, plan, members, done, seconds_since(wall_start)); });
+  if (share.leads())
+    write_report(o, plan, members, earlier, 0.0);
+  std::vector<MemberOutcome> outcomes = run_rank_members(
+      o, share, earlier,
+      [&]
+      {
+        return run_members(o, members, jobs, threads, earlier, share, log,
+                           [&](const std::vector<MemberOutcome>& done)
+                           {
+                             if (share.leads())
+                               write_report(o, plan, members, done, seconds_since(wall_start));
+                           });
+      });
+  if (!share.leads())
+    return {0, outcomes}; // rank 0 reports
+  if (share.job && share.job->size > 1)
+  {
+    outcomes = gather_ranks(o, share, std::move(outcomes));
+    write_report(o, plan, members, outcomes, seconds_since(wall_start));
+  }
   const nlohmann::json j = ensemble_json(o, plan, members, outcomes, seconds_since(wall_start));
   log << "ensemble: " << j["answer"].get<std::string>() << " ("
       << (std::filesystem::path(o.directory) / "ensemble.md").string() << ", "

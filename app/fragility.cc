@@ -240,14 +240,24 @@ int run_fragility(const FragilityOptions& o, std::ostream& log)
   check_options(o);
   const IntensityMeasure im = intensity_measure(o.ensemble.scene, o.ensemble.settings, o.key);
   run_support::create_output_directory(o.ensemble.directory);
+  // Under mpirun every rank runs each level's ensemble (its share of the members, rank 0
+  // gathering); the bracketing sweep runs on one process only, so the levels must be given.
+  const std::optional<run_support::MpiJob> job = run_support::mpi_job_from_environment();
+  const bool leads = !job || job->rank == 0;
+  if (job && job->size > 1 && o.levels.empty())
+    throw InputError("fragility under mpirun: expected --levels (the bracketing that chooses "
+                     "them runs on one process: run it without mpirun, or give the levels)");
   const std::vector<double> values = choose_levels(o, log);
   std::vector<FragilityLevelRun> levels;
   const auto write_report = [&]
   {
     const nlohmann::json j = fragility_json(o, im, states, levels, seconds_since(wall_start));
     const std::filesystem::path dir(o.ensemble.directory);
-    run_support::write_text_file(dir / "fragility.json", j.dump(2) + "\n");
-    run_support::write_text_file(dir / "fragility.md", fragility_markdown(j));
+    if (leads) // the other ranks know only their own members
+    {
+      run_support::write_text_file(dir / "fragility.json", j.dump(2) + "\n");
+      run_support::write_text_file(dir / "fragility.md", fragility_markdown(j));
+    }
     return j;
   };
   bool failed = false, stopped = false;
@@ -256,7 +266,7 @@ int run_fragility(const FragilityOptions& o, std::ostream& log)
     EnsembleOptions e = o.ensemble;
     e.settings.push_back(o.key + "=" + format_significant(values[i], 17));
     e.directory = level_directory(o, i).string();
-    if (!o.ensemble.quiet)
+    if (!o.ensemble.quiet && leads)
       log << "fragility: level " << i + 1 << " of " << values.size() << ": " << o.key << " = "
           << values[i] << " (" << im.name << " " << im.factor * values[i] << " " << im.unit << ")"
           << std::endl;
@@ -267,6 +277,8 @@ int run_fragility(const FragilityOptions& o, std::ostream& log)
     write_report();
   }
   const nlohmann::json j = write_report();
+  if (!leads)
+    return 0; // rank 0 reports
   log << "fragility: " << j["answer"].get<std::string>() << " ("
       << (std::filesystem::path(o.ensemble.directory) / "fragility.md").string() << ", "
       << format_significant(seconds_since(wall_start), 3) << " s)" << std::endl;
