@@ -17,11 +17,7 @@ import shutil
 import subprocess
 import sys
 
-
-def wilson(k, n, z=1.96):
-    p = k / n
-    centre, half = p + z * z / (2 * n), z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    return [max(0.0, (centre - half) / (1 + z * z / n)), min(1.0, (centre + half) / (1 + z * z / n))]
+from check_ensemble import wilson  # the same Wilson interval
 
 
 def recount(out, level):

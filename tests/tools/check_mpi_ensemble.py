@@ -14,16 +14,9 @@ import shutil
 import subprocess
 import sys
 
-import h5py
 import numpy as np
 
-
-def datasets(path):
-    found = {}
-    with h5py.File(path, "r") as f:
-        f.visititems(lambda name, obj: found.__setitem__(name, obj[()])
-                     if isinstance(obj, h5py.Dataset) else None)
-    return found
+from check_crash_safety import datasets  # every dataset of an HDF5 file by path
 
 
 def main():
