@@ -31,7 +31,8 @@ def curve(theta, beta, xs):
 def plot_state(ax, f, k, state, xs):
     """Points with Wilson bars, the fit and its bootstrap band (or the separation bracket)."""
     color = "C%d" % k
-    ims = [level["im"] for level in f["levels"] if level["n_counted"] > 0]
+    # Each state's points a little apart from the others' at the same level.
+    ims = [level["im"] * (1.0 + 0.015 * k) for level in f["levels"] if level["n_counted"] > 0]
     props = [level["states"][k] for level in f["levels"] if level["n_counted"] > 0]
     ps = [p["p"] for p in props]
     low = [p["p"] - p["wilson_95"][0] for p in props]
