@@ -87,7 +87,7 @@ std::string state_sentence(const nlohmann::json& s, const nlohmann::json& im)
   if (status == "resolved")
   {
     const nlohmann::json& b = f["bootstrap"];
-    t << "the median " << name << " for " << s["name"].get<std::string>() << " is "
+    t << "the median " << name << " at which " << s["name"].get<std::string>() << " is "
       << im_text(f["theta"], im) << " [" << format_significant(b["theta_90"][0], 3) << ", "
       << format_significant(b["theta_90"][1], 3) << "], beta "
       << format_significant(f["beta"].get<double>(), 2) << " ["

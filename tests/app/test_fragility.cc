@@ -173,9 +173,9 @@ TEST(Fragility, ReportCountsTheMembersAndFitsByMaximumLikelihood)
   EXPECT_EQ(f["beta"].get<double>(), fit.beta);
   EXPECT_LT(f["bootstrap"]["theta_90"][0].get<double>(), fit.theta);
   EXPECT_GT(f["bootstrap"]["theta_90"][1].get<double>(), fit.theta);
-  EXPECT_EQ(
-      j["answer"].get<std::string>().rfind("The median PGV (outcrop) for a keyblock fell is", 0),
-      0u)
+  EXPECT_EQ(j["answer"].get<std::string>().rfind(
+                "The median PGV (outcrop) at which a keyblock fell is", 0),
+            0u)
       << j["answer"];
   // 3 of 8 at 1 (PGV 2 m/s) and 5 of 8 at 1.5 are as near one half: the lower is quoted, with
   // its Wilson interval [13.7, 69.4] %.
