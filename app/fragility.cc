@@ -143,6 +143,15 @@ IntensityMeasure intensity_measure(const std::string& scene,
   return im;
 }
 
+std::optional<double> record_pga_g_per_pgv(const nlohmann::json& summary)
+{
+  const nlohmann::json records = summary.value("records", nlohmann::json::array());
+  if (!records.is_array() || records.empty())
+    return std::nullopt;
+  const double pga_g = records[0].value("pga_g", 0.0), pgv = records[0].value("pgv_m_s", 0.0);
+  return pga_g > 0.0 && pgv > 0.0 ? std::optional<double>(pga_g / pgv) : std::nullopt;
+}
+
 namespace
 {
 /// DIR/level_NN, 1-based.
@@ -151,6 +160,22 @@ std::filesystem::path level_directory(const FragilityOptions& o, const std::size
   std::string number = std::to_string(index + 1);
   number.insert(0, number.size() < 2 ? 2 - number.size() : 0, '0');
   return std::filesystem::path(o.ensemble.directory) / ("level_" + number);
+}
+
+/// A record's PGA [g] per PGV [m/s] from the summary.json of a member in `level` that has one
+/// (scaling the record keeps the ratio); none if no member reports a record.
+std::optional<double> member_pga_g_per_pgv(const std::filesystem::path& level)
+{
+  for (const std::filesystem::directory_entry& member : std::filesystem::directory_iterator(level))
+  {
+    std::ifstream in(member.path() / "summary.json");
+    const nlohmann::json summary =
+        in ? nlohmann::json::parse(in, nullptr, false) : nlohmann::json();
+    if (summary.is_object())
+      if (const std::optional<double> ratio = record_pga_g_per_pgv(summary))
+        return ratio;
+  }
+  return std::nullopt;
 }
 
 /// Bad input found before any run: the options, the scene at each given level, the ensemble's
@@ -238,7 +263,7 @@ int run_fragility(const FragilityOptions& o, std::ostream& log)
   const auto wall_start = std::chrono::steady_clock::now();
   const std::vector<DamageState> states = damage_states(o);
   check_options(o);
-  const IntensityMeasure im = intensity_measure(o.ensemble.scene, o.ensemble.settings, o.key);
+  IntensityMeasure im = intensity_measure(o.ensemble.scene, o.ensemble.settings, o.key);
   run_support::create_output_directory(o.ensemble.directory);
   // Under mpirun every rank runs each level's ensemble (its share of the members, rank 0
   // gathering); the bracketing sweep runs on one process only, so the levels must be given.
@@ -274,6 +299,8 @@ int run_fragility(const FragilityOptions& o, std::ostream& log)
     failed = failed || r.exit_code == 1;
     stopped = stopped || r.exit_code == 3;
     levels.push_back({values[i], level_directory(o, i).filename().string(), std::move(r.outcomes)});
+    if (!im.pga_g_per_im && im.name == "PGV (record)")
+      im.pga_g_per_im = member_pga_g_per_pgv(level_directory(o, i));
     write_report();
   }
   const nlohmann::json j = write_report();

@@ -102,6 +102,11 @@ IntensityMeasure intensity_measure(const std::string& scene,
                                    const std::vector<std::string>& settings,
                                    const std::string& key);
 
+/// PGA [g] per PGV [m/s] of the record a run's summary.json reports (its first `records[]`
+/// entry, pga_g / pgv_m_s, of the record as scaled and corrected): for an IM that scales a
+/// record, the ratio holds at every level. None without a record.
+std::optional<double> record_pga_g_per_pgv(const nlohmann::json& summary);
+
 /// One level's members.
 struct FragilityLevelRun
 {

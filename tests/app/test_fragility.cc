@@ -222,4 +222,15 @@ TEST(Fragility, IntensityMeasureOfTheTunnelsSinePulse)
   EXPECT_FALSE(other.pga_g_per_im);
 }
 
+TEST(Fragility, RecordsPgaPerPgvFromASummary)
+{
+  // summary.json's records[0] (app/run_summary.cc): PGA 0.4 g with PGV 0.25 m/s: 1.6 g per m/s.
+  const nlohmann::json summary = {
+      {"records", {{{"where", "far_field.incident.velocity"}, {"pga_g", 0.4}, {"pgv_m_s", 0.25}}}}};
+  ASSERT_TRUE(record_pga_g_per_pgv(summary));
+  EXPECT_DOUBLE_EQ(*record_pga_g_per_pgv(summary), 1.6);
+  EXPECT_FALSE(record_pga_g_per_pgv(nlohmann::json{{"records", nlohmann::json::array()}}));
+  EXPECT_FALSE(record_pga_g_per_pgv(nlohmann::json{{"status", "completed"}}));
+}
+
 } // namespace
