@@ -365,11 +365,6 @@ nlohmann::json sweep_json(const SweepOptions& o, const std::vector<Case>& cases,
           {"wall_s", seconds_since(sweep_start)}};
 }
 
-/// What to do when the outcome is not monotonic in the value: a band, not a value.
-constexpr const char* fragility_hint =
-    "The critical value is a band, not a value: `ddafem fragility SCENE --key KEY` gives the "
-    "probability of a fall at each value (docs/fragility.md).";
-
 /// sweep.md: the answer, then the cases in the order of their values.
 std::string sweep_markdown(const nlohmann::json& j)
 {
@@ -392,8 +387,7 @@ std::string sweep_markdown(const nlohmann::json& j)
                      format_significant(j["highest_holding"].get<double>(), 6) + " and at most " +
                      format_significant(j["lowest_exceeding"].get<double>(), 6) + " so far.");
   if (!j["non_monotonic"].empty())
-    md << " Not monotonic: held at " << j["non_monotonic"].dump()
-       << ", above the lowest value that exceeded. " << fragility_hint;
+    md << " " << non_monotonic_note(j["non_monotonic"], j["key"]);
   md << "\n\n| " << j["key"].get<std::string>()
      << " | verdict | fallen keyblocks | largest relative residual [mm] | keyblock peak [mm] | "
         "status | wall [s] | run |\n|---|---|---|---|---|---|---|---|\n";
@@ -414,6 +408,16 @@ std::string sweep_markdown(const nlohmann::json& j)
   return md.str();
 }
 } // namespace
+
+std::string non_monotonic_note(const std::vector<double>& held_above, const std::string& key)
+{
+  std::ostringstream note;
+  note << "Not monotonic: held at " << nlohmann::json(held_above).dump()
+       << ", above the lowest value that exceeded. The critical value is a band, not a value: "
+          "`ddafem fragility SCENE --key "
+       << key << "` gives the probability of a fall at each value (docs/fragility.md).";
+  return note.str();
+}
 
 int run_sweep(const SweepOptions& o, std::ostream& log)
 {
@@ -460,8 +464,7 @@ int run_sweep(const SweepOptions& o, std::ostream& log)
   log << "; " << cases.size() << " runs in " << format_significant(seconds_since(wall_start), 3)
       << " s; " << (std::filesystem::path(o.directory) / "sweep.md").string() << "\n";
   if (!search.non_monotonic().empty())
-    log << "sweep: not monotonic: held at " << nlohmann::json(search.non_monotonic()).dump()
-        << ", above the lowest value that exceeded. " << fragility_hint << "\n";
+    log << "sweep: " << non_monotonic_note(search.non_monotonic(), o.key) << "\n";
   return 0;
 }
 
