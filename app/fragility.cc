@@ -212,9 +212,9 @@ void check_options(const FragilityOptions& o)
       throw InputError("fragility: --key " + o.key + " = " + format_number(v) + ": " + e.what());
     }
   }
-  EnsembleOptions first = o.ensemble;
-  first.settings.push_back(o.key + "=" +
-                           format_significant(o.levels.empty() ? 1.0 : o.levels[0], 17));
+  EnsembleOptions first = o.ensemble; // at the first level given, else at the scene's value
+  if (!o.levels.empty())
+    first.settings.push_back(o.key + "=" + format_significant(o.levels[0], 17));
   plan_ensemble(first);
 }
 
