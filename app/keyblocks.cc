@@ -103,6 +103,8 @@ KeyblockRecorder::KeyblockRecorder(const dda::ModelDescription& model, FallCrite
     block_area.push_back(m.area);
     centroids.push_back(m.centroid);
   }
+  for (const std::size_t b : geometry.blocks)
+    keyblock_centroid.push_back(centroids[b]);
   for (std::size_t o = 0; o < geometry.openings.size(); ++o)
   {
     const OpeningOutline& opening = geometry.openings[o];
@@ -365,9 +367,17 @@ nlohmann::json KeyblockRecorder::keyblock_summary(std::size_t k, const dda::Syst
   const dda::FallVerdict verdict = dda::keyblock_fell({t.last, t.last_relative, v, held}, down,
                                                       criterion.fall_fraction * size, gravity);
   const bool fell = verdict != dda::FallVerdict::no;
+  // Where it is on the opening's perimeter: the angle of its centroid about the centre of the
+  // opening's bounding box, from straight up (against gravity) and clockwise, in [0, 360).
+  const OpeningOutline& opening = geometry.openings[geometry.opening_of[k]];
+  const Vector2 from_centre = keyblock_centroid[k] - 0.5 * (opening.lower + opening.upper);
+  const Vector2 up = -down, right(up.y(), -up.x());
+  const double angle = std::atan2(from_centre.dot(right), from_centre.dot(up)) * 180.0 / M_PI;
   return {{"id", id},
           {"name", system.get_model().blocks[id].origin},
           {"opening", geometry.opening_of[k]},
+          {"centroid_m", {keyblock_centroid[k].x(), keyblock_centroid[k].y()}},
+          {"angle_deg", angle < 0.0 ? angle + 360.0 : angle},
           {"peak_displacement_m", t.peak},
           {"peak_time_s", t.peak_time},
           {"residual_displacement_m", {t.last.x(), t.last.y()}},

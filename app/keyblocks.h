@@ -130,6 +130,7 @@ private:
   std::vector<dda::Vector2> ring_reference;  ///< per opening: ring displacement at the reference
   std::vector<dda::Vector2> block_reference; ///< per model block: displacement at the reference
   std::vector<double> block_area;            ///< per model block [m^2]
+  std::vector<dda::Point> keyblock_centroid; ///< per keyblock: its centroid at the start [m]
   std::vector<bool> removed;                 ///< per model block: a static stage removed it
   bool referenced = false;                   ///< the first row has set the references
   std::unordered_set<std::size_t> closed_contacts; ///< ids of contacts seen closed in some row

@@ -4,13 +4,17 @@
 //   ddafem run SCENE [-o DIR] [--quiet] [--allow-unstable] [--set key=value]...
 //   ddafem resume DIR [--quiet] [--max-wall-time S] [--max-memory SIZE]
 //   ddafem sweep SCENE --key KEY [--find first_fall|displacement] [--threshold M] [-o DIR] ...
+//   ddafem ensemble SCENE -n N [-o DIR] [--vary KEY=DIST]... [--roundoff [KEY]] [--seed S] ...
+//   ddafem fragility SCENE --key KEY [--levels V1,V2,...] [--members M] [-o DIR] ...
 //   ddafem scene-reference
 //
 // Exit codes: 0 success, 1 numerical failure (or an I/O failure while writing results),
 // 2 bad input (scene, command line, missing file, a scene too large for memory), 3 stopped at a
 // budget (--max-wall-time, --max-memory).
 #include "app/checkpoint.h"
+#include "app/ensemble.h"
 #include "app/far_field_module.h"
+#include "app/fragility.h"
 #include "app/run.h"
 #include "app/run_support.h"
 #include "app/scene.h"
@@ -19,6 +23,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <malloc.h>
@@ -113,9 +119,12 @@ int check_or_run(const CommandLine& cl, bool run)
   }
 }
 
-/// Continues the run whose checkpoint is in cl.directory; returns the exit code.
+/// Continues the run whose checkpoint is in cl.directory, or the ensemble whose report is there;
+/// returns the exit code.
 int resume(const CommandLine& cl)
 {
+  if (std::filesystem::exists(std::filesystem::path(cl.directory) / "ensemble.json"))
+    return ddafem::resume_ensemble(cl.directory, cl.options.quiet, cl.options.threads, std::cerr);
   ddafem::CheckpointReader checkpoint(cl.directory);
   const ddafem::CheckpointHeader& header = checkpoint.header();
   if (ddafem::scene_file_text(header.scene_file) != header.scene_text)
@@ -184,6 +193,104 @@ int sweep_command(const ddafem::SweepOptions& o)
   return ddafem::run_sweep(o, std::cerr);
 }
 
+/// The options that `ensemble` and `fragility` share: how each member differs and runs.
+void add_member_options(CLI::App& e, ddafem::EnsembleOptions& o)
+{
+  e.add_option("SCENE", o.scene, "the scene file (YAML)")->required();
+  e.add_option("--set", o.settings, "override a scene key in every member (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  e.add_option("--vary", o.vary,
+               "draw a numeric key for each member: normal(mean,sd), lognormal(median,beta), "
+               "uniform(low,high), truncnormal(mean,sd,low,high) (repeatable)")
+      ->type_name("KEY=DIST")
+      ->allow_extra_args(false);
+  e.add_option("--roundoff", o.roundoff,
+               "member k's KEY x (1 + k 1e-12), chaos apart from uncertainty (default key "
+               "tunnel.wave.velocity.amplitude)")
+      ->expected(0, 1)
+      ->type_name("[KEY]");
+  e.add_option("--seed", o.seed, "seed of the members' seeds and of every draw (default 1)");
+  e.add_option("-j,--jobs", o.jobs, "runs at a time (default 0: the cores)")
+      ->check(CLI::Range(0u, 256u));
+  e.add_option("--threads", o.threads, "threads of each run (default 0: the cores shared)")
+      ->check(CLI::Range(0u, 1024u));
+  e.add_option("--max-wall-time", o.max_wall_time, "budget of each member (exit code 3)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("SECONDS");
+  e.add_flag("--snapshots", o.snapshots,
+             "VTU snapshots at the scene's output.interval (default: first and last only)");
+  e.add_flag("-q,--quiet", o.quiet, "no line per member");
+}
+
+/// The `ensemble` command, its results by default in results/ensemble.
+CLI::App* add_ensemble_command(CLI::App& app, ddafem::EnsembleOptions& o)
+{
+  o.directory = "results/ensemble";
+  CLI::App* e = app.add_subcommand(
+      "ensemble", "run a scene N times, perturbed, in parallel: keyblock probabilities");
+  add_member_options(*e, o);
+  e->add_option("-n,--members", o.members, "members to run")
+      ->required()
+      ->check(CLI::Range(std::size_t(1), std::size_t(100000)));
+  e->add_option("-o,--output", o.directory, "output directory (default results/ensemble)")
+      ->type_name("DIR");
+  e->add_option("--sector", o.sector_deg,
+                "width of the sectors of an opening's perimeter in the report [deg] (default 10)")
+      ->check(CLI::Range(1.0, 180.0));
+  return e;
+}
+
+/// The `fragility` command, its results by default in results/fragility.
+CLI::App* add_fragility_command(CLI::App& app, ddafem::FragilityOptions& o)
+{
+  o.ensemble.directory = "results/fragility";
+  o.ensemble.members = 16;
+  CLI::App* f = app.add_subcommand(
+      "fragility", "fragility curves: an ensemble at each level of a key (e.g. the wave's "
+                   "amplitude), lognormal fits by maximum likelihood");
+  add_member_options(*f, o.ensemble);
+  f->add_option("--key", o.key,
+                "the key whose value is the intensity, e.g. "
+                "tunnel.wave.velocity.amplitude")
+      ->required();
+  f->add_option("--levels", o.levels,
+                "the key's values to run, e.g. --levels 0.5,1,1.5 "
+                "(default: chosen, bracketed as `sweep` does)")
+      ->delimiter(',')
+      ->type_name("V1,V2,...");
+  f->add_option("--n-levels", o.n_levels, "levels to choose (default 6)");
+  f->add_option("--low", o.low, "lowest value of the bracketing (with --high)");
+  f->add_option("--high", o.high, "highest value of the bracketing");
+  f->add_option("--members", o.ensemble.members, "members per level (default 16)")
+      ->check(CLI::Range(std::size_t(1), std::size_t(100000)));
+  f->add_option("--fallen-area", o.fallen_area, "also the damage state: fallen area above A [m^2]")
+      ->type_name("A");
+  f->add_option("--state", o.states,
+                "also the damage state block:ID:fell or block:ID:loosened "
+                "(repeatable)")
+      ->allow_extra_args(false);
+  f->add_option("-o,--output", o.ensemble.directory, "output directory (default results/fragility)")
+      ->type_name("DIR");
+  return f;
+}
+
+/// Runs the ensemble; returns the exit code.
+int ensemble_command(const CLI::App& command, ddafem::EnsembleOptions o)
+{
+  if (command.get_option("--roundoff")->count() > 0 && !o.roundoff)
+    o.roundoff = ""; // given without a key: the default key
+  return ddafem::run_ensemble(o, std::cerr);
+}
+
+/// Runs the fragility analysis; returns the exit code.
+int fragility_command(const CLI::App& command, ddafem::FragilityOptions o)
+{
+  if (command.get_option("--roundoff")->count() > 0 && !o.ensemble.roundoff)
+    o.ensemble.roundoff = ""; // given without a key: the default key
+  return ddafem::run_fragility(o, std::cerr);
+}
+
 /// The options of a run that `run` and `resume` share.
 void add_run_options(CLI::App& command, CommandLine& cl)
 {
@@ -218,6 +325,14 @@ CLI::App* add_run_command(CLI::App& app, CommandLine& cl)
   return run;
 }
 
+/// Whether `word` names one of the app's commands.
+bool is_command(CLI::App& app, const std::string& word)
+{
+  const std::vector<CLI::App*> commands = app.get_subcommands({});
+  return std::any_of(commands.begin(), commands.end(),
+                     [&](const CLI::App* c) { return c->get_name() == word; });
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -242,18 +357,17 @@ int main(int argc, char** argv)
       ->type_name("SIZE");
   ddafem::SweepOptions sweep_options;
   CLI::App* sweep = add_sweep_command(app, sweep_options);
+  ddafem::EnsembleOptions ensemble_options;
+  CLI::App* ensemble = add_ensemble_command(app, ensemble_options);
+  ddafem::FragilityOptions fragility_options;
+  CLI::App* fragility = add_fragility_command(app, fragility_options);
   CLI::App* reference =
       app.add_subcommand("scene-reference", "print the scene key reference (Markdown)");
-  const auto is_command = [&](const std::string& word)
-  {
-    return word == check->get_name() || word == run->get_name() ||
-           word == resume_command->get_name() || word == reference->get_name() ||
-           word == sweep->get_name();
-  };
-  if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1]))
+  if (argc > 1 && argv[1][0] != '-' && !is_command(app, argv[1]))
   {
     std::cerr << "error: unknown command '" << argv[1]
-              << "': expected check, run, resume, sweep or scene-reference (ddafem --help)\n";
+              << "': expected check, run, resume, sweep, ensemble, fragility or scene-reference "
+                 "(ddafem --help)\n";
     return 2;
   }
   try
@@ -278,6 +392,10 @@ int main(int argc, char** argv)
       return resume(cl);
     if (sweep->parsed())
       return sweep_command(sweep_options);
+    if (ensemble->parsed())
+      return ensemble_command(*ensemble, ensemble_options);
+    if (fragility->parsed())
+      return fragility_command(*fragility, fragility_options);
     return check_or_run(cl, run->parsed());
   }
   catch (const ddafem::InputError& e)

@@ -32,6 +32,27 @@ std::optional<unsigned int> mpi_rank_from_environment()
   return std::nullopt;
 }
 
+std::optional<MpiJob> mpi_job_from_environment()
+{
+  const std::optional<unsigned int> rank = mpi_rank_from_environment();
+  if (!rank)
+    return std::nullopt;
+  MpiJob job{*rank, 1, ""};
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* value = std::getenv(name); value != nullptr && *value != '\0')
+    {
+      job.size = static_cast<unsigned int>(std::strtoul(value, nullptr, 10));
+      break;
+    }
+  for (const char* name : {"PMIX_NAMESPACE", "OMPI_MCA_ess_base_jobid"})
+    if (const char* value = std::getenv(name); value != nullptr && *value != '\0')
+    {
+      job.name = value;
+      break;
+    }
+  return job;
+}
+
 double resident_memory_bytes()
 {
   std::ifstream status("/proc/self/status");

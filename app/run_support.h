@@ -26,6 +26,16 @@ double resident_memory_bytes();
 /// PMI_RANK); none otherwise: ddafem touches MPI only when started by mpirun.
 std::optional<unsigned int> mpi_rank_from_environment();
 
+/// The number of ranks mpirun started (OMPI_COMM_WORLD_SIZE, PMI_SIZE) and the job's name
+/// (PMIX_NAMESPACE, OMPI_MCA_ess_base_jobid; "" if neither), when mpirun started this process
+/// (mpi_rank_from_environment); none otherwise.
+struct MpiJob
+{
+  unsigned int rank = 0, size = 1;
+  std::string name;
+};
+std::optional<MpiJob> mpi_job_from_environment();
+
 /// Creates the output directory (and parents); InputError naming it on failure.
 void create_output_directory(const std::filesystem::path& directory);
 /// Writes `text` to `path` through a temporary file (`path` + ".tmp") renamed into place: a

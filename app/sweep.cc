@@ -1,31 +1,19 @@
 #include "app/sweep.h"
 
-#include "app/map_reader.h"
+#include "app/child_runs.h"
 #include "app/run_support.h"
 #include "app/scene.h"
-#include "app/scene_text.h"
 #include "common/format.h"
 #include "common/input_error.h"
 #include "common/stopwatch.h"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
-#include <thread>
-
-extern char** environ;
 
 namespace ddafem
 {
@@ -173,33 +161,6 @@ std::optional<double> CriticalValueSearch::next_outward(const std::vector<double
 
 namespace
 {
-using scene_reading::apply_override;
-using scene_reading::load_yaml;
-using scene_reading::parse_double;
-using scene_reading::split;
-using scene_reading::trim;
-
-/// The number at `key` of the scene file with `settings` applied, if there is one.
-std::optional<double> scene_value(const std::string& file, const std::vector<std::string>& settings,
-                                  const std::string& key)
-{
-  YAML::Node root = load_yaml(file);
-  for (const std::string& s : settings)
-    apply_override(root, parse_override(s));
-  YAML::Node node = root;
-  for (const std::string& c : split(key, '.'))
-  {
-    const bool digits = !c.empty() && c.find_first_not_of("0123456789") == std::string::npos;
-    YAML::Node child = node.IsSequence() && digits && c.size() < 10 ? node[std::stoul(c)]
-                       : node.IsMap()                               ? node[c]
-                                                                    : YAML::Node();
-    if (!child.IsDefined())
-      return std::nullopt;
-    node.reset(child);
-  }
-  return node.IsScalar() ? parse_double(node.Scalar()) : std::nullopt;
-}
-
 std::string value_text(double value)
 {
   std::ostringstream s;
@@ -213,18 +174,15 @@ struct Case
 {
   double value = 0.0;
   std::filesystem::path directory;
-  pid_t pid = 0;
-  std::chrono::steady_clock::time_point started;
-  int exit_code = -1;
+  child_runs::Child child;
   bool cancelled = false; ///< stopped once its verdict could no longer narrow the bracket
-  double wall_s = 0.0;
   std::string status;
   CaseVerdict verdict;
 };
 
 /// Starts `ddafem run` on the scene with the key at the case's value; its output goes to
 /// DIR/case_NN.log.
-pid_t start_case(const SweepOptions& o, const Case& c, unsigned threads)
+child_runs::Child start_case(const SweepOptions& o, const Case& c, unsigned threads)
 {
   std::vector<std::string> args = {"ddafem",
                                    "run",
@@ -239,43 +197,24 @@ pid_t start_case(const SweepOptions& o, const Case& c, unsigned threads)
   for (const std::string& s : o.settings)
     args.insert(args.end(), {"--set", s});
   args.insert(args.end(), {"--set", o.key + "=" + value_text(c.value)});
-  std::vector<char*> argv;
-  for (std::string& a : args)
-    argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const std::string log = c.directory.string() + ".log";
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  pid_t pid = 0;
-  const int error = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0)
-    throw std::runtime_error("cannot start a run of the sweep: " + std::string(strerror(error)));
-  return pid;
+  return child_runs::start(args, c.directory.string() + ".log");
 }
 
 /// Reads a finished case's summary.json and judges it; a run refused as bad input throws.
 void finish_case(const SweepOptions& o, Case& c)
 {
   const std::filesystem::path summary_file = c.directory / "summary.json";
-  if (c.exit_code == 2)
-  {
-    std::ifstream log(c.directory.string() + ".log");
-    std::stringstream text;
-    text << log.rdbuf();
+  const int exit_code = c.child.exit_code;
+  if (exit_code == 2)
     throw InputError("the run with " + o.key + " = " + value_text(c.value) +
-                     " was refused: " + trim(text.str()));
-  }
+                     " was refused: " + child_runs::file_text(c.directory.string() + ".log"));
   // 0 completed, 1 failed numerically, 3 stopped (--stop-at-first-fall): judged by summary.json.
   // Anything else (killed, an output error) says nothing about the shaking.
   std::ifstream in(summary_file);
-  if (!in || (c.exit_code != 0 && c.exit_code != 1 && c.exit_code != 3))
+  if (!in || (exit_code != 0 && exit_code != 1 && exit_code != 3))
     throw std::runtime_error(
         "the run with " + o.key + " = " + value_text(c.value) + " ended with exit code " +
-        std::to_string(c.exit_code) + " (128 + n: killed by signal n), its summary " +
+        std::to_string(exit_code) + " (128 + n: killed by signal n), its summary " +
         summary_file.string() + " cannot judge it: see " + c.directory.string() + ".log");
   const nlohmann::json summary = nlohmann::json::parse(in);
   c.status = summary.value("status", "");
@@ -283,14 +222,10 @@ void finish_case(const SweepOptions& o, Case& c)
 }
 
 /// Ends the runs still going (a sweep that stops on an error leaves none behind).
-void stop_running(const std::vector<Case>& cases)
+void stop_running(std::vector<Case>& cases)
 {
-  for (const Case& c : cases)
-    if (c.pid > 0 && c.exit_code < 0)
-    {
-      kill(c.pid, SIGTERM);
-      waitpid(c.pid, nullptr, 0);
-    }
+  for (Case& c : cases)
+    child_runs::stop(c.child);
 }
 
 /// The progress line of a case that ended.
@@ -308,8 +243,8 @@ void log_case(const SweepOptions& o, const Case& c, std::ostream& log)
                 : "held")
         << ", largest relative residual " << format_significant(1e3 * c.verdict.max_relative_m, 3)
         << " mm";
-  log << ", " << format_significant(c.wall_s, 3) << " s (" << c.directory.filename().string() << ")"
-      << std::endl;
+  log << ", " << format_significant(c.child.wall_s, 3) << " s (" << c.directory.filename().string()
+      << ")" << std::endl;
 }
 
 /// Starts values of the search while fewer than `jobs` run; `running` indexes `cases`.
@@ -329,8 +264,7 @@ void start_cases(const SweepOptions& o, const CriticalValueSearch& search, unsig
     const std::string number = std::to_string(cases.size() + 1);
     c.directory = std::filesystem::path(o.directory) /
                   ("case_" + std::string(number.size() < 2 ? 1 : 0, '0') + number);
-    c.started = std::chrono::steady_clock::now();
-    c.pid = start_case(o, c, threads);
+    c.child = start_case(o, c, threads);
     running.push_back(cases.size());
     cases.push_back(c);
   }
@@ -339,23 +273,13 @@ void start_cases(const SweepOptions& o, const CriticalValueSearch& search, unsig
 /// Waits for one of the running cases to end; returns its index in `cases`.
 std::size_t wait_for_case(std::vector<Case>& cases, std::vector<std::size_t>& running)
 {
-  while (true)
-  {
-    int status = 0;
-    const pid_t pid = waitpid(-1, &status, 0);
-    if (pid < 0)
-      throw std::runtime_error("waiting for the sweep's runs: " + std::string(strerror(errno)));
-    const auto it = std::find_if(running.begin(), running.end(),
-                                 [&](std::size_t i) { return cases[i].pid == pid; });
-    if (it == running.end())
-      continue; // not a run of this sweep
-    Case& c = cases[*it];
-    c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    c.wall_s = seconds_since(c.started);
-    const std::size_t index = *it;
-    running.erase(it);
-    return index;
-  }
+  std::vector<child_runs::Child*> children;
+  for (const std::size_t i : running)
+    children.push_back(&cases[i].child);
+  const std::size_t k = child_runs::wait_for_any(children);
+  const std::size_t index = running[k];
+  running.erase(running.begin() + static_cast<std::ptrdiff_t>(k));
+  return index;
 }
 
 /// Stops the running cases whose verdict can no longer narrow the bracket.
@@ -370,11 +294,7 @@ void cancel_cases(const SweepOptions& o, const CriticalValueSearch& search,
       ++it;
       continue;
     }
-    kill(c.pid, SIGTERM);
-    int status = 0;
-    waitpid(c.pid, &status, 0);
-    c.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    c.wall_s = seconds_since(c.started);
+    child_runs::stop(c.child);
     c.cancelled = true;
     log_case(o, c, log);
     it = running.erase(it);
@@ -416,18 +336,19 @@ nlohmann::json sweep_json(const SweepOptions& o, const std::vector<Case>& cases,
 {
   nlohmann::json list = nlohmann::json::array();
   for (const Case& c : cases)
-    list.push_back({{"value", c.value},
-                    {"directory", c.directory.filename().string()},
-                    {"exit_code", c.exit_code},
-                    {"cancelled", c.cancelled},
-                    {"status", c.status},
-                    {"exceeded", c.verdict.exceeded},
-                    {"failed", c.verdict.failed},
-                    {"fallen_keyblocks", c.verdict.fallen},
-                    {"max_relative_residual_m", c.verdict.max_relative_m},
-                    {"keyblock_peak_m", c.verdict.keyblock_peak_m},
-                    {"started_s", std::chrono::duration<double>(c.started - sweep_start).count()},
-                    {"wall_s", c.wall_s}});
+    list.push_back(
+        {{"value", c.value},
+         {"directory", c.directory.filename().string()},
+         {"exit_code", c.child.exit_code},
+         {"cancelled", c.cancelled},
+         {"status", c.status},
+         {"exceeded", c.verdict.exceeded},
+         {"failed", c.verdict.failed},
+         {"fallen_keyblocks", c.verdict.fallen},
+         {"max_relative_residual_m", c.verdict.max_relative_m},
+         {"keyblock_peak_m", c.verdict.keyblock_peak_m},
+         {"started_s", std::chrono::duration<double>(c.child.started - sweep_start).count()},
+         {"wall_s", c.child.wall_s}});
   const auto optional = [](std::optional<double> v)
   { return v ? nlohmann::json(*v) : nlohmann::json(); };
   return {{"scene", o.scene},
@@ -466,8 +387,7 @@ std::string sweep_markdown(const nlohmann::json& j)
                      format_significant(j["highest_holding"].get<double>(), 6) + " and at most " +
                      format_significant(j["lowest_exceeding"].get<double>(), 6) + " so far.");
   if (!j["non_monotonic"].empty())
-    md << " Not monotonic: held at " << j["non_monotonic"].dump()
-       << ", above the lowest value that exceeded.";
+    md << " " << non_monotonic_note(j["non_monotonic"], j["key"]);
   md << "\n\n| " << j["key"].get<std::string>()
      << " | verdict | fallen keyblocks | largest relative residual [mm] | keyblock peak [mm] | "
         "status | wall [s] | run |\n|---|---|---|---|---|---|---|---|\n";
@@ -489,13 +409,23 @@ std::string sweep_markdown(const nlohmann::json& j)
 }
 } // namespace
 
+std::string non_monotonic_note(const std::vector<double>& held_above, const std::string& key)
+{
+  std::ostringstream note;
+  note << "Not monotonic: held at " << nlohmann::json(held_above).dump()
+       << ", above the lowest value that exceeded. The critical value is a band, not a value: "
+          "`ddafem fragility SCENE --key "
+       << key << "` gives the probability of a fall at each value (docs/fragility.md).";
+  return note.str();
+}
+
 int run_sweep(const SweepOptions& o, std::ostream& log)
 {
   const auto wall_start = std::chrono::steady_clock::now();
   std::vector<Override> overrides;
   for (const std::string& s : o.settings)
     overrides.push_back(parse_override(s));
-  const std::optional<double> given = scene_value(o.scene, o.settings, o.key);
+  const std::optional<double> given = child_runs::scene_value(o.scene, o.settings, o.key);
   if (!o.low != !o.high)
     throw InputError("sweep: expected both --low and --high, or neither (then it starts from the "
                      "scene's " +
@@ -514,9 +444,7 @@ int run_sweep(const SweepOptions& o, std::ostream& log)
     with.push_back({o.key, value_text(v)});
     read_scene(o.scene, with);
   }
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned jobs = o.jobs > 0 ? o.jobs : cores;
-  const unsigned threads = std::max(1u, cores / jobs);
+  const auto [jobs, threads] = child_runs::jobs_and_threads(o.jobs);
   run_support::create_output_directory(o.directory);
   CriticalValueSearch search(start, o.low, o.high, o.tolerance);
   std::vector<Case> cases;
@@ -535,6 +463,8 @@ int run_sweep(const SweepOptions& o, std::ostream& log)
         << " and at most " << *search.lowest_exceeding();
   log << "; " << cases.size() << " runs in " << format_significant(seconds_since(wall_start), 3)
       << " s; " << (std::filesystem::path(o.directory) / "sweep.md").string() << "\n";
+  if (!search.non_monotonic().empty())
+    log << "sweep: " << non_monotonic_note(search.non_monotonic(), o.key) << "\n";
   return 0;
 }
 

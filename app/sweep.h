@@ -101,6 +101,11 @@ struct SweepOptions
   bool quiet = false;
 };
 
+/// The line sweep.md and the log add when values held above one that exceeded (`held_above`,
+/// CriticalValueSearch::non_monotonic()): the outcome is not monotonic in `key`, the critical
+/// value a band; `ddafem fragility` gives the probability at each value.
+std::string non_monotonic_note(const std::vector<double>& held_above, const std::string& key);
+
 /// Runs the sweep; writes DIR/sweep.json and DIR/sweep.md, one DIR/case_NN per run. Returns the
 /// exit code: 0, 1 if a run could not be judged (no summary.json), 2 for bad input (checked
 /// before the first run: the scene with the key set to each starting value).

@@ -154,6 +154,11 @@ TEST(CriticalValueSearch, AValueThatHoldsAboveOneThatExceededIsReported)
   search.add(3.0, false);
   EXPECT_EQ(search.non_monotonic(), (std::vector<double>{3.0}));
   EXPECT_EQ(*search.highest_holding(), 1.0); // below the lowest that exceeded
+  EXPECT_EQ(ddafem::non_monotonic_note(search.non_monotonic(), "tunnel.wave.velocity.amplitude"),
+            "Not monotonic: held at [3.0], above the lowest value that exceeded. The critical "
+            "value is a band, not a value: `ddafem fragility SCENE --key "
+            "tunnel.wave.velocity.amplitude` gives the probability of a fall at each value "
+            "(docs/fragility.md).");
 }
 
 TEST(SweepVerdict, ReleasedBlocksDoNotCountAndAFailedRunExceeds)
