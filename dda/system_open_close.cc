@@ -224,8 +224,12 @@ void System::update_trial_state(std::size_t k, unsigned iteration, double neglig
                            f.t_edge * solution.segment<6>(6 * c.edge_block);
   c.end_gap = c.gap + f.normal.dot(relative);
   c.step_slip = f.tangent.dot(relative);
+  // A sticking contact's dashpot is in its shear demand; from the third iteration on it may
+  // hold a contact at the limit but no longer push it to slide, or the contact flips on the
+  // dashpot's last newton between a lock (dashpot on) and a slide (off) for ever.
   const ContactForces law =
-      evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip, viscous_shear(k));
+      evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip, viscous_shear(k),
+                       iteration < 3 ? DashpotDemand::total : DashpotDemand::never_pushes);
   // With slip reversals localised, sliding that reverses between trials is taken as lock
   // (only on a slide of at least 10 steps: slides_long_enough).
   const ContactForces next = localising && slides_long_enough(c, matrix_dt)

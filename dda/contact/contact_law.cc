@@ -6,7 +6,7 @@
 namespace ddafem::dda
 {
 ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start, double gap,
-                               double slip, double viscous_shear)
+                               double slip, double viscous_shear, DashpotDemand demand)
 {
   ContactForces out;
   out.intact = start.intact;
@@ -29,9 +29,9 @@ ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start
                                          (out.intact ? law.cohesive_force : 0.0));
   const double previous_shear = was_closed ? start.shear_force : 0.0;
   const double trial = previous_shear + law.shear_stiffness * slip;
-  // The dashpot may hold the contact (spring and dashpot together within the limit), never
-  // push it to slide (the spring alone within the limit sticks).
-  if (std::min(std::abs(trial), std::abs(trial + viscous_shear)) <= limit)
+  const double with_dashpot = std::abs(trial + viscous_shear);
+  if ((demand == DashpotDemand::total ? with_dashpot : std::min(std::abs(trial), with_dashpot)) <=
+      limit)
   {
     out.state = ContactState::lock;
     out.shear_force = trial;

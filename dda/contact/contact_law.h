@@ -12,6 +12,13 @@ enum class ContactState
   lock   ///< closed, normal and shear springs (p and p_s) act
 };
 
+/// How a sticking contact's dashpot enters the decision to slide (evaluate_contact).
+enum class DashpotDemand
+{
+  total,       ///< the spring's and the dashpot's shear together against the limit
+  never_pushes ///< that, or the spring's alone within it: the dashpot may hold, never push
+};
+
 /// Properties of one contact point.
 struct ContactLaw
 {
@@ -47,16 +54,15 @@ struct ContactForces
 ///   direction of the trial; sliding ends cohesion and tensile strength.
 /// - `viscous_shear` [N], same sign convention as S: the shear force of a sticking contact's
 ///   dashpot at the step's end (dda/damping.h). The dashpot sits beside the shear spring, the
-///   two in series with the slider (a Kelvin-Voigt element and a Coulomb slider): the contact
-///   also sticks when the spring's and the dashpot's shear together are within the limit. The
-///   dashpot may so hold a contact but never push one to slide (a spring within the limit
-///   sticks whatever the dashpot carries); the strength is the springs' alone (N is the normal
-///   spring's force) and the stored S the spring's. Without it, a dashpot that slows the slip
-///   unloading an overloaded spring keeps the spring beyond the limit (slide), and the slide
-///   without the dashpot reverses (lock), for ever; with the dashpot in the demand alone, a
-///   contact at the limit flips on the dashpot's last newton (both seen on the tunnels).
+///   two in series with the slider (a Kelvin-Voigt element and a Coulomb slider): the demand
+///   the limit must hold is the spring's and the dashpot's shear together
+///   (DashpotDemand::total); the strength is the springs' alone (N is the normal spring's force)
+///   and the stored S the spring's. DashpotDemand::never_pushes also lets a contact stick whose
+///   spring alone is within the limit: the open-close iteration's fallback for a contact at the
+///   limit that would flip on the dashpot's last newton (System::update_trial_state).
 ContactForces evaluate_contact(const ContactLaw& law, const ContactForces& start, double gap,
-                               double slip, double viscous_shear = 0.0);
+                               double slip, double viscous_shear = 0.0,
+                               DashpotDemand demand = DashpotDemand::total);
 
 /// Whether forces beyond the law's strength act on an intact bond (a bonded joint's end spring):
 /// a pull beyond the tensile capacity, -normal_force > tensile_capacity, or a shear beyond

@@ -245,26 +245,38 @@ TEST(ContactLaw, BondShearStrengthIsNeverNegative)
   EXPECT_TRUE(exceeds_strength(l, -100.0, -1e-9));
 }
 
-TEST(ContactLaw, DashpotHoldsAStickingContactButNeverPushesItToSlide)
+TEST(ContactLaw, DashpotIsInTheShearDemandOfAStickingContact)
 {
   // A contact that has slid (no cohesion): N = 1000 N (gap -1e-6 m), limit 500 N. Its dashpot's
   // shear at the step's end (dda/damping.h) is beside the spring, the two in series with the
   // slider.
   const ContactForces start = closed(1000.0, 0.0, false);
-  // The spring within the limit (400 N at slip 1e-6 m), the dashpot 200 N more: sticks, and the
-  // stored force is the spring's.
-  const ContactForces held = evaluate_contact(law(), start, -1e-6, 1e-6, 200.0);
+  // The spring within the limit (400 N at slip 1e-6 m), the dashpot 50 N more: 450 N sticks,
+  // and the stored force is the spring's.
+  const ContactForces held = evaluate_contact(law(), start, -1e-6, 1e-6, 50.0);
   EXPECT_EQ(held.state, ContactState::lock);
   EXPECT_NEAR(held.shear_force, 400.0, tol);
-  // The spring beyond it (600 N at 1.5e-6 m), the dashpot -200 N (it resists the slip that
-  // unloads the spring): spring and dashpot together 400 N hold it.
-  const ContactForces relieved = evaluate_contact(law(), start, -1e-6, 1.5e-6, -200.0);
-  EXPECT_EQ(relieved.state, ContactState::lock);
-  EXPECT_NEAR(relieved.shear_force, 600.0, tol);
-  // Both beyond (600 N and 700 N): slides at the limit, in the direction of the demand.
-  const ContactForces slides = evaluate_contact(law(), start, -1e-6, 1.5e-6, 100.0);
+  // The dashpot 200 N more: 600 N slides at the limit...
+  const ContactForces pushed = evaluate_contact(law(), start, -1e-6, 1e-6, 200.0);
+  EXPECT_EQ(pushed.state, ContactState::slide);
+  EXPECT_NEAR(pushed.shear_force, 500.0, tol);
+  // ...unless the dashpot may only hold (the open-close iteration's fallback): the spring alone
+  // is within the limit.
+  EXPECT_EQ(evaluate_contact(law(), start, -1e-6, 1e-6, 200.0, DashpotDemand::never_pushes).state,
+            ContactState::lock);
+  // The spring beyond the limit (600 N at 1.5e-6 m), the dashpot -200 N (it resists the slip
+  // that unloads the spring): together 400 N hold it, in either demand.
+  for (const DashpotDemand demand : {DashpotDemand::total, DashpotDemand::never_pushes})
+  {
+    const ContactForces relieved = evaluate_contact(law(), start, -1e-6, 1.5e-6, -200.0, demand);
+    EXPECT_EQ(relieved.state, ContactState::lock);
+    EXPECT_NEAR(relieved.shear_force, 600.0, tol);
+  }
+  // Both beyond (600 N and 700 N): slides at the limit, in the direction of the demand; and
+  // without a dashpot the 600 N spring slides.
+  const ContactForces slides =
+      evaluate_contact(law(), start, -1e-6, 1.5e-6, 100.0, DashpotDemand::never_pushes);
   EXPECT_EQ(slides.state, ContactState::slide);
   EXPECT_NEAR(slides.shear_force, 500.0, tol);
-  // Without a dashpot, the 600 N spring slides.
   EXPECT_EQ(evaluate_contact(law(), start, -1e-6, 1.5e-6).state, ContactState::slide);
 }
