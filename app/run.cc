@@ -48,7 +48,13 @@ public:
       const std::size_t first_stage = resume_from ? open_resumed_outputs() : open_outputs();
       for (std::size_t k = first_stage; k < simulation->n_stages(); ++k)
         if (!simulation->run_stage(k, [this] { return after_step(); }))
+        {
+          // Under mpirun a budget that another rank reached stops this one after the same step
+          // (its own budget not reached): stopped too, not completed.
+          if (stop_reason.empty() && simulation->end().failure.empty())
+            stop_reason = "another MPI rank reached its budget";
           break;
+        }
       return write_summary();
     }
     catch (const std::exception& e)
