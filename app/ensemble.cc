@@ -551,8 +551,10 @@ EnsembleResult run_ensemble_members(const EnsembleOptions& o, std::ostream& log)
   for (std::size_t k = 0; k < o.members; ++k)
     members.push_back(plan_member(o, plan, k));
   // Under mpirun one run at a time per rank unless -j says otherwise: the ranks are the cores.
-  const auto [jobs, threads] =
+  // (Not a structured binding: the lambda below captures them, which C++17 does not allow.)
+  const std::pair<unsigned, unsigned> jobs_threads =
       child_runs::jobs_and_threads(share.job && o.jobs == 0 ? 1 : o.jobs, o.threads);
+  const unsigned jobs = jobs_threads.first, threads = jobs_threads.second;
   const std::vector<MemberOutcome> earlier = earlier_outcomes(o, plan);
   if (!earlier.empty() && !o.quiet && share.leads())
     log << "ensemble: continuing in " << o.directory << ": " << earlier.size() << " of "
