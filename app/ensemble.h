@@ -100,12 +100,19 @@ struct MemberOutcome
   double wall_s = 0.0;
   std::vector<KeyblockOutcome> keyblocks;
   std::vector<double> fallen_area_m2; ///< per opening: area of the blocks fallen [m^2 = m^3/m]
+  /// PGV of the wave arriving at the near field's base [m/s] (summary.json's
+  /// far_field.free_field_at_base; none without a free-field column)
+  std::optional<double> pgv_at_base_m_s;
   /// Counted in the probabilities: the run completed (failed and stopped ones are not).
   bool counted() const { return status == "completed"; }
 };
 
 /// The outcome of a member from its summary.json (null: the run left none).
 MemberOutcome member_outcome(std::size_t index, int exit_code, const nlohmann::json& summary);
+
+/// The PGV arriving at the near field's base over the counted members that have one (the
+/// quantiles of sample_json), null if none has.
+nlohmann::json pgv_at_base_json(const std::vector<MemberOutcome>& outcomes);
 
 /// A count `k` of `n` as a probability: {"count", "p" = k / n, "wilson_95": [low, high]}.
 nlohmann::json proportion_json(std::size_t k, std::size_t n);

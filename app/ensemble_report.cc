@@ -24,6 +24,9 @@ MemberOutcome member_outcome(const std::size_t index, const int exit_code,
   if (!summary.is_object())
     return m;
   m.status = summary.value("status", "");
+  const nlohmann::json::json_pointer base("/far_field/free_field_at_base/pgv_m_s");
+  if (summary.contains(base) && summary[base].is_number())
+    m.pgv_at_base_m_s = summary[base].get<double>();
   const nlohmann::json keyblocks = summary.value("keyblocks", nlohmann::json());
   if (!keyblocks.is_object())
     return m;
@@ -73,6 +76,15 @@ nlohmann::json sample_json(const std::vector<double>& sample)
 }
 
 } // namespace
+
+nlohmann::json pgv_at_base_json(const std::vector<MemberOutcome>& outcomes)
+{
+  std::vector<double> pgv;
+  for (const MemberOutcome& m : outcomes)
+    if (m.counted() && m.pgv_at_base_m_s)
+      pgv.push_back(*m.pgv_at_base_m_s);
+  return sample_json(pgv);
+}
 
 nlohmann::json proportion_json(std::size_t k, std::size_t n)
 {
@@ -353,6 +365,7 @@ nlohmann::json ensemble_json(const EnsembleOptions& o, const EnsemblePlan& plan,
                       {"sector_deg", o.sector_deg},
                       {"sectors", sectors_json(outcomes, o.sector_deg)},
                       {"openings", openings_json(outcomes)},
+                      {"pgv_at_base_m_s", pgv_at_base_json(outcomes)},
                       {"members", list},
                       {"wall_s", wall_s}};
   j["answer"] = answer_sentence(j);
@@ -469,6 +482,16 @@ std::string ensemble_markdown(const nlohmann::json& j)
        << format_significant(o["fallen_area_mean_m2"].get<double>(), 3) << " | "
        << format_significant(o["fallen_area_max_m2"].get<double>(), 3) << " |\n";
   }
+  const nlohmann::json& pgv = j["pgv_at_base_m_s"];
+  if (!pgv.is_null())
+    md << "\nThe wave arriving at the near field's base (the free-field column's PGV there, "
+          "damped on its way): median "
+       << format_significant(pgv["median"].get<double>(), 3)
+       << " m/s (5-95 %: " << format_significant(pgv["q05"].get<double>(), 3) << " to "
+       << format_significant(pgv["q95"].get<double>(), 3) << ").\n";
+  md << "\nThe picture: `python3 tools/plot_ensemble.py DIR` writes DIR/ensemble.png (the "
+        "opening, each keyblock or sector coloured by its probability of falling and of "
+        "loosening).\n";
   member_table(j, md);
   return md.str();
 }

@@ -35,8 +35,9 @@ public:
   virtual std::string impedance_warning() const = 0;
   /// The far field's and the interface's history channels (after the blocks').
   virtual void add_channels(std::vector<HistoryChannel>& channels) const = 0;
-  /// Their values now, in the order of add_channels.
-  virtual void append_row(std::vector<double>& row) const = 0;
+  /// Their values now, in the order of add_channels (each accepted step; a far field may keep
+  /// statistics of them for add_to_summary, e.g. peaks).
+  virtual void append_row(std::vector<double>& row) = 0;
   /// Writes the far field's VTU snapshot into `dir`; returns its file name.
   virtual std::string write_snapshot(const std::filesystem::path& dir,
                                      fem::VtuCompression compression) = 0;

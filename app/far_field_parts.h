@@ -94,7 +94,7 @@ public:
   {
     add_tied_channels(channels, *scene.far_field);
   }
-  void append_row(std::vector<double>& row) const override
+  void append_row(std::vector<double>& row) override
   {
     append_far_field_monitors(row, far_field, scene.far_field->monitors.size());
     append_tied_energies(row, far_field.energy(), ties);

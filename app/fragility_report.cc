@@ -159,6 +159,7 @@ nlohmann::json levels_json(const IntensityMeasure& im, const std::vector<DamageS
                     {"n_finished", l.outcomes.size()},
                     {"n_counted", n},
                     {"n_failed", n_failed},
+                    {"pgv_at_base_m_s", pgv_at_base_json(l.outcomes)},
                     {"states", reached_json}});
   }
   return list;
@@ -239,14 +240,18 @@ std::string fragility_markdown(const nlohmann::json& j)
        << (resolved ? pair(f["bootstrap"]["beta_90"]) : "") << " |\n";
   }
   md << "\n| " << j["key"].get<std::string>() << " | " << im["name"].get<std::string>()
-     << " | counted |";
+     << " | PGV at the near field's base [m/s] | counted |";
   for (const nlohmann::json& s : j["states"])
     md << " " << s["name"].get<std::string>() << " |";
-  md << "\n|---|---|---|"
+  md << "\n|---|---|---|---|"
      << scene_reading::join(std::vector<std::string>(j["states"].size(), "---"), "|") << "|\n";
   for (const nlohmann::json& l : j["levels"])
   {
     md << "| " << format_significant(l["value"], 6) << " | " << format_significant(l["im"], 4)
+       << " | "
+       << (l["pgv_at_base_m_s"].is_null()
+               ? std::string("-")
+               : format_significant(l["pgv_at_base_m_s"]["median"].get<double>(), 3))
        << " | " << l["n_counted"] << " of " << l["n_finished"] << " |";
     for (const nlohmann::json& p : l["states"])
       md << " " << p["count"] << ": " << percent_text(p) << " |";

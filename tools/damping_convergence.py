@@ -3,8 +3,9 @@
 damped against undamped (issue 53, must-have 3); regenerates
 docs/verification/damping_convergence.{md,json}.
 
-Each series is an ensemble of N runs of examples/tunnel/circular_sv.yaml whose incident
-amplitude is 0.5 m/s x (1 + k 1e-12), k = 0 .. N-1 (perturbations of round-off's size: equally
+Each series is an ensemble (`ddafem ensemble --roundoff`, docs/ensemble.md) of N runs of
+examples/tunnel/circular_sv.yaml whose incident amplitude is 0.5 m/s x (1 + k 1e-12),
+k = 0 .. N-1 (perturbations of round-off's size: equally
 valid models that differ where the system branches). Series: the default damping at dt, dt / 2
 and dt / 4 (`tunnel.dt`, the coupled ladder's top level), and undamped (`tunnel.damping.ratio=0`)
 at dt.
@@ -21,101 +22,58 @@ intervals. The envelope table gives the width of the 5-95 % band damped and unda
 much damping narrows it.
 
 usage: /usr/bin/python3 tools/damping_convergence.py [--build build] [--members 16] [--jobs 2]
-           [--dts 1,2,4] [--out docs/verification]
-Not part of CI: 4 x 16 tunnel runs, about an hour on 2 cores.
+           [--dts 1,2,4] [--work build/damping_convergence] [--out docs/verification]
+Not part of CI: 4 x 16 tunnel runs, about an hour on 2 cores. The ensembles stay in --work; an
+interrupted call, run again, resumes them (`ddafem resume`).
 """
 import argparse
-import concurrent.futures
 import json
-import math
 import os
 import re
 import subprocess
 import sys
-import tempfile
 import time
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENE = os.path.join(TOP, "examples", "tunnel", "circular_sv.yaml")
-AMPLITUDE = 0.5
-Z95 = 1.959963984540054
 AGREE_FRACTION, AGREE_FLOOR_M = 0.10, 2e-4
 
 
-def wilson(k, n, z=Z95):
-    """95 % Wilson score interval of a binomial proportion k / n (benchmarks.md E)."""
-    if n == 0:
-        return (0.0, 1.0)
-    p = k / n
-    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
-    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
-    return (max(0.0, centre - half), min(1.0, centre + half))
-
-
-def median_ranks(n):
-    """1-based ranks (r, n + 1 - r) of the distribution-free 95 % interval of the median."""
-    cdf, r = 0.0, 0
-    for k in range(n + 1):
-        cdf += math.comb(n, k) / 2.0 ** n   # P(Bin(n, 1/2) <= k)
-        if cdf > 0.025:
-            break
-        r = k + 1
-    return max(r, 1), n + 1 - max(r, 1)
-
-
-def quantile(sorted_values, q):
-    """Linear-interpolation quantile (numpy's default) of an ascending list."""
-    if not sorted_values:
-        return None
-    x = q * (len(sorted_values) - 1)
-    lo = int(math.floor(x))
-    hi = min(lo + 1, len(sorted_values) - 1)
-    return sorted_values[lo] + (x - lo) * (sorted_values[hi] - sorted_values[lo])
-
-
-def run_member(ddafem, settings, out):
-    cmd = [ddafem, "run", SCENE, "-o", out, "--quiet", "--threads", "1",
-           "--set", "output.interval=0"]
+def run_series(ddafem, work, name, settings, members, jobs):
+    """One series: `ddafem ensemble --roundoff` of the default tunnel into work/name (resumed
+    where an earlier call stopped); returns its ensemble.json."""
+    out = os.path.join(work, name.replace("/", "_"))
+    cmd = [ddafem, "ensemble", SCENE, "-n", str(members), "-o", out, "--roundoff",
+           "-j", str(jobs), "--quiet"]
     for key, value in settings.items():
         cmd += ["--set", f"{key}={value}"]
-    start = time.monotonic()
+    print(f"damping_convergence: {name}: {' '.join(cmd[1:])}", flush=True)
     proc = subprocess.run(cmd, capture_output=True, text=True)
-    try:
-        with open(os.path.join(out, "summary.json")) as f:
-            summary = json.load(f)
-    except (OSError, ValueError):
-        summary = {}
-    return {"exit": proc.returncode, "stderr": proc.stderr[-400:], "summary": summary,
-            "wall_s": time.monotonic() - start}
+    if proc.returncode not in (0, 1):
+        sys.exit(f"damping_convergence: {name} exited {proc.returncode}: {proc.stderr[-800:]}")
+    with open(os.path.join(out, "ensemble.json")) as f:
+        return json.load(f)
 
 
-def keyblock_outcomes(summary):
-    """{id: (residual_relative_m, loosened, fell)} of the keyblocks not released."""
-    blocks = summary.get("keyblocks", {}).get("blocks", [])
-    return {b["id"]: (b["residual_relative_m"], b["loosened"], b["fell"])
-            for b in blocks if not b.get("released")}
-
-
-def series_statistics(members):
-    """Per keyblock: median and its interval, 5-95 % envelope, P(loosened), P(fell)."""
-    ok = [m for m in members if m["exit"] == 0 and m["summary"].get("keyblocks")]
-    ids = sorted({i for m in ok for i in keyblock_outcomes(m["summary"])})
+def series_statistics(ensemble):
+    """Per keyblock the excavation left in place in every run: the median residual relative to
+    the rock with its 95 % order-statistic interval, the 5-95 % envelope, P(loosened) and
+    P(fell) with 95 % Wilson intervals, all as ensemble.json gives them."""
     stats = {}
-    for i in ids:
-        rows = [keyblock_outcomes(m["summary"]).get(i) for m in ok]
-        rows = [r for r in rows if r is not None]
-        n = len(rows)
-        residuals = sorted(r[0] for r in rows)
-        lo, hi = median_ranks(n)
-        loosened, fell = sum(r[1] for r in rows), sum(r[2] for r in rows)
-        stats[i] = {"n": n, "median_m": quantile(residuals, 0.5),
-                    "median_interval_m": [residuals[lo - 1], residuals[hi - 1]],
-                    "q05_m": quantile(residuals, 0.05), "q95_m": quantile(residuals, 0.95),
-                    "p_loosened": loosened / n, "loosened_interval": wilson(loosened, n),
-                    "p_fell": fell / n, "fell_interval": wilson(fell, n)}
-    return {"members": len(members), "completed": len(ok),
-            "failed": len(members) - len(ok), "keyblocks": stats,
-            "median_wall_s": quantile(sorted(m["wall_s"] for m in members), 0.5)}
+    for k in ensemble["keyblocks"]:
+        r = k["residual_relative_m"]
+        if k["released"] > 0 or r is None:
+            continue
+        interval = r["median_95"] or [r["q05"], r["q95"]]
+        stats[str(k["id"])] = {
+            "n": k["n"], "median_m": r["median"], "median_interval_m": interval,
+            "q05_m": r["q05"], "q95_m": r["q95"],
+            "p_loosened": k["loosened"]["p"], "loosened_interval": k["loosened"]["wilson_95"],
+            "p_fell": k["fell"]["p"], "fell_interval": k["fell"]["wilson_95"]}
+    walls = sorted(m["wall_s"] for m in ensemble["members"] if m.get("finished"))
+    return {"members": ensemble["members_requested"], "completed": ensemble["n_counted"],
+            "failed": len(ensemble["failed"]), "keyblocks": stats,
+            "median_wall_s": walls[len(walls) // 2] if walls else 0.0}
 
 
 def agree(a, b):
@@ -209,6 +167,8 @@ def main():
     parser.add_argument("--members", type=int, default=16)
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--dts", default="1,2,4", help="divisors of the tunnel's dt")
+    parser.add_argument("--work", default=os.path.join(TOP, "build", "damping_convergence"),
+                        help="the ensembles' folder (kept: a second call resumes them)")
     parser.add_argument("--out", default=os.path.join(TOP, "docs", "verification"))
     args = parser.parse_args()
     start = time.monotonic()
@@ -216,22 +176,12 @@ def main():
     proc = subprocess.run([ddafem, "check", SCENE], capture_output=True, text=True)
     dt = float(re.search(r"time: dt ([0-9.eE+-]+) s", proc.stdout).group(1))
     dts = [int(d) for d in args.dts.split(",")]
-    plans = {(f"dt/{d}" if d > 1 else "dt"): {"tunnel.dt": dt / d} for d in dts}
-    plans["undamped"] = {"tunnel.dt": dt, "tunnel.damping.ratio": 0}
-    jobs = []
-    with tempfile.TemporaryDirectory(prefix="damping_convergence_") as root:
-        with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
-            for name, settings in plans.items():
-                for k in range(args.members):
-                    s = {**settings,
-                         "tunnel.wave.velocity.amplitude": repr(AMPLITUDE * (1 + k * 1e-12))}
-                    jobs.append((name, pool.submit(run_member, ddafem, s,
-                                                   os.path.join(root, f"{name.replace('/', '_')}"
-                                                                      f"_{k:03d}"))))
-            members = {}
-            for name, future in jobs:
-                members.setdefault(name, []).append(future.result())
-    series = {name: series_statistics(m) for name, m in members.items()}
+    plans = {(f"dt/{d}" if d > 1 else "dt"): {"tunnel.dt": repr(dt / d)} for d in dts}
+    plans["undamped"] = {"tunnel.dt": repr(dt), "tunnel.damping.ratio": 0}
+    os.makedirs(args.work, exist_ok=True)
+    series = {name: series_statistics(run_series(ddafem, args.work, name, settings,
+                                                 args.members, args.jobs))
+              for name, settings in plans.items()}
     names = [n for n in plans if n != "undamped"]
     data = {"members": args.members, "jobs": args.jobs, "dt_s": dt, "dts": names,
             "series": series, "convergence": convergence_rows(series, dts),

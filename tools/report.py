@@ -179,6 +179,18 @@ def plot_bolt_forces(time_ms, h5, path):
     return True
 
 
+def frame_to_scale(ax, box):
+    """Axes to scale in metres, on box = (lower, upper) corners, or on the data (None)."""
+    if box is not None:
+        ax.set_xlim(box[0][0], box[1][0])
+        ax.set_ylim(box[0][1], box[1][1])
+    else:
+        ax.autoscale_view()
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+
+
 def plot_map(run_dir, summary, path):
     """The blocks of the last snapshot coloured by |u| since the first (the dynamic stage's
     start), keyblocks outlined and numbered. Returns a caption, or None without blocks.pvd."""
@@ -227,14 +239,7 @@ def plot_map(run_dir, summary, path):
                             ha="center", va="center", fontsize=6,
                             path_effects=[patheffects.withStroke(linewidth=2,
                                                                  foreground="white")])
-    if openings:
-        ax.set_xlim(lower[0], upper[0])
-        ax.set_ylim(lower[1], upper[1])
-    else:
-        ax.autoscale_view()
-    ax.set_aspect("equal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
+    frame_to_scale(ax, (lower, upper) if openings else None)
     ax.set_title("Blocks at t = %.4g s (deformed, to scale), keyblocks in red" % entries[-1][0],
                  fontsize="medium")
     figure.tight_layout()
@@ -535,6 +540,24 @@ def record_lines(records):
     return lines
 
 
+def incident_lines(far_field):
+    """The wave at the far field's base (the input) and arriving at the near field's base
+    (summary.json far_field.free_field_at_base: the free-field column's peak there)."""
+    base = (far_field or {}).get("free_field_at_base")
+    if not base:
+        return []
+    lines = ["- input at the far field's base: peak velocity of the upgoing wave %.3g m/s" %
+             base["input_pgv_m_s"],
+             "- arriving at the near field's base (y = %.4g m, %.4g m above the input; the "
+             "free-field column, without the opening): PGV %.3g m/s" %
+             (base["height_m"], base["travel_m"], base["pgv_m_s"])]
+    if base.get("ratio") is not None:
+        lines[-1] += (", %.1f %% of the input's: the rock's damping over the way (a plane wave "
+                      "there travels %.3g ms)" % (100 * base["ratio"],
+                                                  1e3 * base["travel_m"] / base["wave_speed_m_s"]))
+    return lines
+
+
 def write_report(run_dir, summary, figures, path):
     status = summary.get("status", "?")
     lines = ["# Run report: %s" % summary.get("name", os.path.basename(run_dir)), "",
@@ -561,6 +584,9 @@ def write_report(run_dir, summary, figures, path):
              "- wall time: %.3g s, peak memory %.0f MB"
              % (summary.get("wall_time_s", 0.0), summary.get("peak_memory_mb", 0.0)), ""]
     lines += ["## Model", ""] + model_lines(summary) + [""]
+    incident = incident_lines(summary.get("far_field"))
+    if incident:
+        lines += ["## Incident wave", ""] + incident + [""]
     if summary.get("records"):
         lines += ["## Ground motion", ""] + record_lines(summary["records"]) + [""]
     stages = stage_lines(summary)
