@@ -6,15 +6,28 @@
 #include "app/run_support.h"
 #include "common/input_error.h"
 
+#include <deal.II/base/multithread_info.h>
+
 namespace ddafem
 {
 namespace
 {
+/// deal.II's own threads (its vector operations and sparse products run on TBB's global arena)
+/// as many as the run's --threads (0: the cores): left at its default, deal.II spread a
+/// 8396-DOF far field's products over every core and TBB's idle workers kept spinning, taking
+/// the core of an ensemble's other member.
+void limit_deal_ii_threads(const Scene& scene)
+{
+  if (scene.model.solver.threads > 0)
+    dealii::MultithreadInfo::set_thread_limit(scene.model.solver.threads);
+}
+
 class FarFieldModuleImpl : public FarFieldModule
 {
 public:
   std::unique_ptr<TiedFarField> tie(const Scene& scene, dda::System& system) const override
   {
+    limit_deal_ii_threads(scene);
     if (!run_support::mpi_rank_from_environment())
       return make_tied_far_field(scene, system);
 #ifdef DDAFEM_WITHOUT_DISTRIBUTED_FAR_FIELD
@@ -26,10 +39,12 @@ public:
   }
   std::unique_ptr<Simulation> far_field_simulation(const Scene& scene) const override
   {
+    limit_deal_ii_threads(scene);
     return make_far_field_simulation(scene);
   }
   std::unique_ptr<Simulation> distributed_far_field_simulation(const Scene& scene) const override
   {
+    limit_deal_ii_threads(scene);
 #ifdef DDAFEM_WITHOUT_DISTRIBUTED_FAR_FIELD
     throw InputError(scene.file + ": this build (the sanitizer build) has no distributed far "
                                   "field: run it without mpirun, or with the release build");

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace ddafem::coupling
 {
@@ -230,6 +231,7 @@ void FarFieldTies::begin_stage(const dda::StageMode mode)
                        "and does not follow a frictional interface: expected no "
                        "`interface.joint_material`");
     held = true;
+    chain.valid = false;
     h = &k_bonded; // H = K for the whole stage
     bonded_terms_valid = false;
     return;
@@ -240,6 +242,7 @@ void FarFieldTies::begin_stage(const dda::StageMode mode)
   // tie displacements restart at 0 (System::begin_stage) with the far field at rest, and the
   // interface's books start again.
   held = false;
+  chain.valid = false; // the tie displacements restart at 0
   for (std::size_t k = 0; k < ties.size(); ++k)
   {
     Tie& t = ties[k];
@@ -278,6 +281,7 @@ std::string FarFieldTies::begin_step(const double dt, const Eigen::VectorXd& dis
   if (status.outcome != fem::StepOutcome::success)
     return status.message;
   const auto t0 = Clock::now();
+  step_dt = dt;
   w0 = Eigen::Map<const Eigen::VectorXd>(free.data(), static_cast<Eigen::Index>(free.size()));
   start = displacements;
   for (Tie& t : ties)
@@ -285,6 +289,16 @@ std::string FarFieldTies::begin_step(const double dt, const Eigen::VectorXd& dis
   build_terms();
   time_ties += seconds_since(t0);
   return {};
+}
+
+std::optional<std::uint64_t> FarFieldTies::stiffness_id() const
+{
+  if (held || !bonded_terms_valid || condensations.empty())
+    return std::nullopt;
+  std::uint64_t bits = 0;
+  const double dt = condensations.front_key();
+  std::memcpy(&bits, &dt, sizeof bits);
+  return bits;
 }
 
 void FarFieldTies::select_condensation(const double dt)
@@ -379,7 +393,18 @@ void FarFieldTies::build_terms()
   if (linear)
     f_trial.setZero();
   const Eigen::VectorXd w_f = linear ? r_w0 : Eigen::VectorXd(r_w0 + *m_matrix * f_trial);
-  g = preload + block_diagonal_times(k_ties, w_f) - f_trial - *h * start;
+  g = preload + block_diagonal_times(k_ties, w_f) - f_trial - h_times_start();
+}
+
+Eigen::VectorXd FarFieldTies::h_times_start()
+{
+  // On the chain the step starts where the last one ended (its z: the System's displacements
+  // of the tie points differ from it by round-off) and H z0 = K (z0 - G K z0).
+  step_on_chain = bonded_step() && chain.valid && chain.dt == step_dt;
+  if (!step_on_chain)
+    return *h * start;
+  start = chain.z;
+  return bonded_springs(chain.z - chain.g_k_z);
 }
 
 Eigen::VectorXd FarFieldTies::far_field_displacements(const Eigen::VectorXd& z) const
@@ -443,6 +468,9 @@ std::string FarFieldTies::end_step(const Eigen::VectorXd& delta)
     time_ties += seconds_since(t0);
     return {};
   }
+  if (bonded_step())
+    return end_bonded_step(z, delta);
+  chain.valid = false;
   const Eigen::VectorXd w = far_field_displacements(z);
   Eigen::VectorXd q(z.size()), f(z.size());
   for (std::size_t k = 0; k < ties.size(); ++k)
@@ -464,6 +492,37 @@ std::string FarFieldTies::end_step(const Eigen::VectorXd& delta)
   previous_force = f;
   for (std::size_t k = 0; k < ties.size(); ++k)
     set_accepted_forces(k, z.segment<2>(2 * k) - w.segment<2>(2 * k), f.segment<2>(2 * k));
+  time_ties += seconds_since(t0);
+  return {};
+}
+
+std::string FarFieldTies::end_bonded_step(const Eigen::VectorXd& z, const Eigen::VectorXd& delta)
+{
+  // Every tie bonded: P u = f + N^T q with q = K z (P holds K), and the ties' force on the far
+  // field F = K (z - w) with w = N u, the far field's displacements at the ties.
+  auto t0 = Clock::now();
+  const Eigen::VectorXd q = bonded_springs(z);
+  time_ties += seconds_since(t0);
+  const fem::StepStatus status =
+      far_field.finish_step(std::vector<double>(q.data(), q.data() + q.size()));
+  if (status.outcome != fem::StepOutcome::success)
+  {
+    chain.valid = false;
+    return status.message;
+  }
+  t0 = Clock::now();
+  const std::vector<double> at_ties = far_field.point_displacements();
+  const Eigen::VectorXd w =
+      Eigen::Map<const Eigen::VectorXd>(at_ties.data(), static_cast<Eigen::Index>(at_ties.size()));
+  const Eigen::VectorXd f = bonded_springs(z - w);
+  work_blocks -= 0.5 * (previous_force + f).dot(delta);
+  previous_force = f;
+  for (std::size_t k = 0; k < ties.size(); ++k)
+    set_accepted_forces(k, z.segment<2>(2 * k) - w.segment<2>(2 * k), f.segment<2>(2 * k));
+  chain.valid = true;
+  chain.dt = step_dt;
+  chain.z = z;
+  chain.g_k_z = w - w0;
   time_ties += seconds_since(t0);
   return {};
 }

@@ -100,6 +100,9 @@ public:
   bool stiffness_is_block_diagonal() const override { return held; }
   std::string begin_step(double dt, const Eigen::VectorXd& displacements) override;
   const Eigen::MatrixXd& stiffness() const override { return *h; }
+  /// Every tie bonded, the far field free: H is the condensation's for this dt, named by dt's
+  /// bits.
+  std::optional<std::uint64_t> stiffness_id() const override;
   const Eigen::VectorXd& force() const override { return g; }
   std::size_t update_trial_states(const Eigen::VectorXd& delta, unsigned iteration,
                                   double negligible, std::size_t& n_ignored) override;
@@ -199,6 +202,29 @@ private:
   Eigen::VectorXd g;               ///< [N]
   bool bonded_terms_valid = false; ///< h holds the current condensation's all-bonded H
 
+  /// The bonded chain: with every tie bonded, a step's H z0 = K z0 - K G K z0 needs G K z0 for
+  /// the tie displacements z0 at its start. The last accepted step ended at z0 = its own z, and
+  /// its far field moved the ties by G K z from their free displacements w0 (w = w0 + G q,
+  /// q = K z): G K z0 = w - w0, read off the far field (N u) instead of two dense products of
+  /// (2m)^2 per step. The steps of one dt that follow each other take the chain.
+  struct BondedChain
+  {
+    bool valid = false;
+    double dt = 0.0;       ///< of the step that left it [s]
+    Eigen::VectorXd z;     ///< tie displacements at its end [m]
+    Eigen::VectorXd g_k_z; ///< G K z = w - w0 [m]
+  };
+  BondedChain chain;
+  double step_dt = 0.0;       ///< of the step in progress [s]
+  bool step_on_chain = false; ///< the step in progress started from the chain's z
+  /// Whether the step in progress is bonded and linear on the current condensation (no dense
+  /// terms of a trial state).
+  bool bonded_step() const { return linear && !held && bonded_terms_valid; }
+  /// H c for the step's start c: on the chain, without the dense product (and c := the chain's
+  /// z).
+  Eigen::VectorXd h_times_start();
+  /// end_step of a bonded linear step: the far field first (q = K z needs no w), then w = N u.
+  std::string end_bonded_step(const Eigen::VectorXd& z, const Eigen::VectorXd& delta);
   Eigen::VectorXd preload;      ///< P: constant forces on the blocks (x, y per tie) [N]
   bool held = false;            ///< static stage: the far field is held, the ties are fixed springs
   bool dynamic_started = false; ///< the far field has taken a step

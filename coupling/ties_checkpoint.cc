@@ -15,6 +15,7 @@ void FarFieldTies::transfer_state(Archive& a)
                     [&a](Tie& t) { transfer_all(a, t.forces, t.trial, t.stretch); });
   transfer_all(a, preload, held, dynamic_started, previous_force, work_blocks, work_preloads);
   transfer_all(a, time_condensation, time_ties, condensation_count);
+  transfer_all(a, chain.valid, chain.dt, chain.z, chain.g_k_z);
   if constexpr (Archive::is_loading::value)
     bonded_terms_valid = false;
 }

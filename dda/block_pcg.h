@@ -77,9 +77,8 @@ private:
   /// y = A x over the non-zero couplings (those of contacts that are all open add nothing);
   /// returns x^T y.
   double multiply(const BlockSparseMatrix& a, const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
-  /// Block rows [begin, end) of y = A x.
-  void multiply_rows(const BlockSparseMatrix& a, const Eigen::VectorXd& x, Eigen::VectorXd& y,
-                     std::size_t begin, std::size_t end) const;
+  /// The product's table for `a` (product_blocks, product_columns, transposed).
+  void index_product(const BlockSparseMatrix& a);
 
   Parallel parallel;
   std::vector<Matrix6> inverses;     ///< of the diagonal blocks
@@ -89,6 +88,12 @@ private:
   std::vector<std::pair<std::size_t, std::size_t>> indexed_couplings; ///< its couplings
   std::vector<std::size_t> row_start; ///< per block row into row_entries, and the end
   std::vector<RowEntry> row_entries;  ///< by row, in ascending coupling order
+  /// The product's table, made by set_preconditioner for its matrix: per block row (from
+  /// row_start[i] + i), its diagonal block and then its entries, each a column-major 6 x 6
+  /// (a transposed upper block as a copy in `transposed`) with its column block.
+  std::vector<const double*> product_blocks;
+  std::vector<std::size_t> product_columns;
+  std::vector<Matrix6> transposed;
   Eigen::VectorXd r, z, p, q;
 };
 

@@ -310,13 +310,7 @@ void System::tie(TiedBody& body, const std::vector<MaterialPoint>& points)
   tie_blocks.erase(std::unique(tie_blocks.begin(), tie_blocks.end()), tie_blocks.end());
   // Runs of consecutive tie points on one block (FarFieldTies places each block's points
   // together: one run per tie block).
-  tie_runs.clear();
-  for (std::size_t k = 0; k < points.size(); ++k)
-    if (tie_runs.empty() || tie_runs.back().block != points[k].block)
-      tie_runs.push_back({points[k].block, static_cast<Eigen::Index>(k), 1});
-    else
-      ++tie_runs.back().count;
-  tie_stacks.resize(tie_runs.size());
+  tie_pairs.set_points(points);
   tied_body = &body;
   tie_points = points;
   tie_origins.clear();

@@ -18,6 +18,7 @@
 #include "dda/model_description.h"
 #include "dda/snapshot.h"
 #include "dda/step_solver.h"
+#include "dda/tie_terms.h"
 #include "dda/tied_body.h"
 #include "dda/viscous_boundary.h"
 
@@ -438,8 +439,6 @@ private:
   void index_contact_terms();
   /// The tied body's H and g on the blocks of the tie points (T at the step start).
   void add_tie_terms();
-  /// Y's columns of run r (add_tie_terms): H(:, points of r) T_r over the rows up to r's.
-  void compute_tie_products(std::size_t r);
   /// The tie points' displacement increments T d (2m) of a solution.
   Eigen::VectorXd tie_increments(const Eigen::VectorXd& d) const;
   /// Sets each trial from the solution; returns the number of state changes that hold the
@@ -626,22 +625,8 @@ private:
   std::vector<Point> tie_origins;
   std::vector<Matrix26> tie_matrices;  ///< T of each tie point at the step start
   std::vector<std::size_t> tie_blocks; ///< blocks with tie points, sorted
-  /// Consecutive tie points on one block: points first .. first + count - 1
-  struct TieRun
-  {
-    std::size_t block = 0;
-    Eigen::Index first = 0, count = 0;
-  };
-  std::vector<TieRun> tie_runs;
-  /// Y = H T of add_tie_terms: 2m rows, 6 columns per run of tie_runs
-  Eigen::MatrixXd tie_products;
-  /// T of each run's points stacked (2 count x 6)
-  std::vector<Eigen::Matrix<double, Eigen::Dynamic, 6>> tie_stacks;
-  /// X = T_a^T Y(points of a, columns of b) of add_tie_terms for each pair of runs a <= b, at
-  /// tie_pair_start[a] + b - a.
-  std::vector<Matrix6> tie_pair_terms;
-  std::vector<std::size_t> tie_pair_start;
-  std::vector<Contact> contacts;       ///< of the last accepted step
+  TieTerms tie_pairs;            ///< T^T H T of the tied body, pair by pair of its runs of points
+  std::vector<Contact> contacts; ///< of the last accepted step
   std::vector<Contact> trial_contacts; ///< of the step being tried
   std::vector<ContactFrame> frames;    ///< of trial_contacts
   /// find_trial_contacts' scratch per chunk of candidate pairs, kept from step to step (a cache

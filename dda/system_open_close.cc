@@ -109,46 +109,22 @@ void System::add_tie_terms()
     timings.tie_terms += seconds_since(start);
     return;
   }
-  // (A + T^T H T) d = b + T^T g over the runs of tie points on one block, T_r the stacked T
-  // of run r's points: Y(:, r) = H(:, points of r) T_r, and the blocks of runs a <= b gain
-  // X = T_a^T Y(points of a, columns of b) (its transpose into the stored upper block when a's
-  // block comes after b's; X + X^T on the diagonal for two runs on one block). H is symmetric, so
-  // the columns of run b need only the rows of the runs up to b: half of H is read, in products
-  // of whole runs (three times faster than point by point on the default tunnel). Y's columns
-  // and the X are computed run by run on the threads, each alone, and added to the matrix in
-  // one order: the same bits on any number of threads.
-  const std::size_t n_runs = tie_runs.size();
-  tie_products.resize(2 * m, static_cast<Eigen::Index>(6 * n_runs));
-  parallel.for_chunks(n_runs, 1,
-                      [&](std::size_t begin, std::size_t end)
-                      {
-                        for (std::size_t r = begin; r < end; ++r)
-                          compute_tie_products(r);
-                      });
-  tie_pair_start.resize(n_runs);
-  for (std::size_t a = 0, offset = 0; a < n_runs; offset += n_runs - a, ++a)
-    tie_pair_start[a] = offset;
-  tie_pair_terms.resize(n_runs * (n_runs + 1) / 2);
-  parallel.for_chunks(n_runs, 1,
-                      [&](std::size_t begin, std::size_t end)
-                      {
-                        for (std::size_t a = begin; a < end; ++a)
-                          for (std::size_t b = a; b < n_runs; ++b)
-                            tie_pair_terms[tie_pair_start[a] + b - a] =
-                                tie_stacks[a].transpose() *
-                                tie_products.block(2 * tie_runs[a].first,
-                                                   static_cast<Eigen::Index>(6 * b),
-                                                   2 * tie_runs[a].count, 6);
-                      });
-  for (std::size_t a = 0; a < n_runs; ++a)
+  // (A + T^T H T) d = b + T^T g over the runs of tie points on one block: the blocks of runs
+  // a <= b gain X_ab = T_a^T H_ab T_b (its transpose into the stored upper block when a's block
+  // comes after b's; X + X^T on the diagonal for two runs on one block), computed pair by pair
+  // (dda/tie_terms.h) and added to the matrix in one order: the same bits on any number of
+  // threads.
+  tie_pairs.compute(h, tied_body->stiffness_id(), tie_matrices, tie_points, blocks,
+                    small_displacement(), parallel);
+  const std::vector<TieRun>& runs = tie_pairs.runs();
+  for (std::size_t a = 0; a < runs.size(); ++a)
   {
-    const TieRun& ra = tie_runs[a];
-    rhs.segment<6>(static_cast<Eigen::Index>(6 * ra.block)).noalias() +=
-        tie_stacks[a].transpose() * g.segment(2 * ra.first, 2 * ra.count);
-    for (std::size_t b = a; b < n_runs; ++b)
+    const TieRun& ra = runs[a];
+    rhs.segment<6>(static_cast<Eigen::Index>(6 * ra.block)).noalias() += tie_pairs.force(a, g);
+    for (std::size_t b = a; b < runs.size(); ++b)
     {
-      const std::size_t bb = tie_runs[b].block;
-      const Matrix6& x = tie_pair_terms[tie_pair_start[a] + b - a];
+      const std::size_t bb = runs[b].block;
+      const Matrix6& x = tie_pairs.pair(a, b);
       if (b == a)
         matrix.diagonal(ra.block) += x;
       else if (bb == ra.block)
@@ -160,18 +136,6 @@ void System::add_tie_terms()
     }
   }
   timings.tie_terms += seconds_since(start);
-}
-
-void System::compute_tie_products(std::size_t r)
-{
-  const TieRun& run = tie_runs[r];
-  Eigen::Matrix<double, Eigen::Dynamic, 6>& t_r = tie_stacks[r];
-  t_r.resize(2 * run.count, 6);
-  for (Eigen::Index k = 0; k < run.count; ++k)
-    t_r.middleRows<2>(2 * k) = tie_matrices[static_cast<std::size_t>(run.first + k)];
-  const Eigen::Index rows = 2 * (run.first + run.count);
-  tie_products.block(0, static_cast<Eigen::Index>(6 * r), rows, 6).noalias() =
-      tied_body->stiffness().block(0, 2 * run.first, rows, 2 * run.count) * t_r;
 }
 
 Eigen::VectorXd System::tie_increments(const Eigen::VectorXd& d) const

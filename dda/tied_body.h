@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 
 namespace ddafem::dda
@@ -44,6 +46,11 @@ public:
   /// Whether H couples no two tie points (its only non-zero entries are the 2 x 2 blocks on its
   /// diagonal, e.g. ties to a held body): the System then adds the tie terms point by point.
   virtual bool stiffness_is_block_diagonal() const { return false; }
+  /// An id of H's contents when they repeat from step to step (e.g. the ties bonded, one H per
+  /// dt): equal ids, equal H, bit for bit, also after a checkpoint's resume. The System then
+  /// keeps H's terms at the blocks' initial geometry per id and turns them with the blocks
+  /// (dda/tie_terms.h). None: H is taken as new at every call.
+  virtual std::optional<std::uint64_t> stiffness_id() const { return std::nullopt; }
   /// g of the ties' trial states [N].
   virtual const Eigen::VectorXd& force() const = 0;
   /// Sets the ties' trial states from the trial increments `delta` (2m) [m] in open-close

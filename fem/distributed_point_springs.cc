@@ -295,6 +295,11 @@ StepStatus DistributedWaveModel::finish_step(const std::vector<double>& point_lo
   }
 }
 
+std::vector<double> DistributedWaveModel::point_displacements() const
+{
+  return impl->evaluate_at_springs(impl->u);
+}
+
 void DistributedWaveModel::set_condensation_width(const unsigned int width)
 {
   AssertThrow(width > 0, ExcMessage("set_condensation_width(): width 0"));

@@ -89,6 +89,7 @@ public:
   /// 1: one solve each, for comparison in bench/far_field_scaling).
   void set_condensation_width(unsigned int width);
   StepStatus prepare_step(double dt, std::vector<double>& free_point_displacements) override;
+  std::vector<double> point_displacements() const override;
   /// Takes rank 0's point loads, and fails on every rank if the ranks' loads differ (the blocks
   /// replicated on the ranks would have parted).
   StepStatus finish_step(const std::vector<double>& point_loads) override;

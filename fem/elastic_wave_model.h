@@ -117,7 +117,7 @@ public:
   StepStatus prepare_step(double dt, std::vector<double>& free_point_displacements) override;
   StepStatus finish_step(const std::vector<double>& point_loads) override;
   /// N u: displacements at the spring points [m] (2m).
-  std::vector<double> point_displacements() const;
+  std::vector<double> point_displacements() const override;
   /// The springs' forces F on the far field at the current time [N] (2m).
   std::vector<double> spring_forces() const;
 

@@ -208,6 +208,10 @@ public:
   std::vector<double> spring_force; ///< F on the far field at the current time [N] (2m)
   /// out = N x (2m).
   std::vector<double> evaluate_at_springs(const Vector<double>& x) const;
+  /// P^-1 e_d at `dofs` for each d of `dofs` (by_dof), or P^-1 N^T e_j at `dofs` for each
+  /// spring component j: the columns of (P^-1)_DD or of (P^-1 N^T)_D.
+  std::vector<std::vector<double>>
+  unit_load_responses(const std::vector<types::global_dof_index>& dofs, bool by_dof);
   /// rhs += N^T q.
   void add_spring_loads(const std::vector<double>& q, Vector<double>& rhs) const;
 
@@ -226,6 +230,16 @@ public:
   /// (in active-cell order), where it is evaluated in the column.
   std::unique_ptr<ElasticWaveModel> column;
   std::vector<std::unique_ptr<FEValues<2>>> column_probes;
+  /// A quadrature point of a free_field face, with what its load needs at every step: the
+  /// face's outward normal and, for each DOF of its cell, N_i JxW and N_i's component.
+  struct FreeFieldPoint
+  {
+    Tensor<1, 2> normal;
+    std::vector<types::global_dof_index> dofs;
+    std::vector<double> weight;          ///< N_i(x_q) JxW_q [m]
+    std::vector<unsigned int> component; ///< the component of N_i
+  };
+  std::vector<FreeFieldPoint> free_field_points; ///< one per column probe, in the same order
   State column_start;        ///< the column's state at the start of the step in progress
   bool column_ahead = false; ///< the column has advanced into a step not finished yet
   void make_free_field_column();

@@ -27,9 +27,15 @@ void ElasticWaveModel::Impl::make_free_field_column()
   // The column: one far-size element wide, the model's material, base and top, rollers.
   column = std::make_unique<ElasticWaveModel>(free_field_column_description(d, h));
 
+  // The faces' shape values, weights and normals are the same at every step: kept with the
+  // probes instead of an FEFaceValues built and reinit'd per face each step.
   const Impl& col = *column->impl;
   const QGauss<1> face_quadrature(fe.degree + 1);
-  FEFaceValues<2> face_values(fe, face_quadrature, update_quadrature_points);
+  FEFaceValues<2> face_values(fe, face_quadrature,
+                              update_values | update_quadrature_points | update_normal_vectors |
+                                  update_JxW_values);
+  const unsigned int n = fe.n_dofs_per_cell();
+  std::vector<types::global_dof_index> dofs(n);
   const double x = d.lower[0] + 0.5 * h;
   for (const auto& cell : dof_handler.active_cell_iterators())
     for (const unsigned int f : cell->face_indices())
@@ -37,10 +43,23 @@ void ElasticWaveModel::Impl::make_free_field_column()
       if (!is_free_field_face(cell, f))
         continue;
       face_values.reinit(cell, f);
+      cell->get_dof_indices(dofs);
       for (const unsigned int q : face_values.quadrature_point_indices())
       {
         const double y = std::clamp(face_values.quadrature_point(q)[1], d.lower[1], d.upper[1]);
         column_probes.push_back(col.make_probe(x, y));
+        FreeFieldPoint point;
+        point.normal = face_values.normal_vector(q);
+        for (unsigned int i = 0; i < n; ++i)
+        {
+          const double weight = face_values.shape_value(i, q) * face_values.JxW(q);
+          if (weight == 0.0)
+            continue;
+          point.dofs.push_back(dofs[i]);
+          point.weight.push_back(weight);
+          point.component.push_back(fe.system_to_component_index(i).first);
+        }
+        free_field_points.push_back(std::move(point));
       }
     }
 }
@@ -110,36 +129,18 @@ void ElasticWaveModel::return_to_remembered_state()
 
 void ElasticWaveModel::Impl::add_free_field_load(Vector<double>& f) const
 {
+  // The points in the order of the cells and faces: each DOF's sum in the same order as when
+  // the faces were integrated cell by cell.
   const double rho = description.density;
-  const QGauss<1> face_quadrature(fe.degree + 1);
-  FEFaceValues<2> face_values(fe, face_quadrature,
-                              update_values | update_normal_vectors | update_JxW_values);
-  const unsigned int n = fe.n_dofs_per_cell();
-  Vector<double> cell_load(n);
-  std::vector<types::global_dof_index> dofs(n);
-  std::size_t probe = 0;
-  for (const auto& cell : dof_handler.active_cell_iterators())
-    for (const unsigned int face : cell->face_indices())
-    {
-      if (!is_free_field_face(cell, face))
-        continue;
-      face_values.reinit(cell, face);
-      cell_load = 0.0;
-      for (const unsigned int q : face_values.quadrature_point_indices())
-      {
-        const MonitorSample ff = column_sample(*column_probes[probe++]);
-        const std::array<double, 2> traction =
-            free_field_traction(ff.stress, ff.velocity, face_values.normal_vector(q), rho, vp, vs);
-        for (unsigned int i = 0; i < n; ++i)
-        {
-          const unsigned int c = fe.system_to_component_index(i).first;
-          cell_load(i) += face_values.shape_value(i, q) * traction[c] * face_values.JxW(q);
-        }
-      }
-      cell->get_dof_indices(dofs);
-      for (unsigned int i = 0; i < n; ++i)
-        f(dofs[i]) += cell_load(i);
-    }
+  for (std::size_t k = 0; k < free_field_points.size(); ++k)
+  {
+    const FreeFieldPoint& point = free_field_points[k];
+    const MonitorSample ff = column_sample(*column_probes[k]);
+    const std::array<double, 2> traction =
+        free_field_traction(ff.stress, ff.velocity, point.normal, rho, vp, vs);
+    for (std::size_t i = 0; i < point.dofs.size(); ++i)
+      f(point.dofs[i]) += point.weight[i] * traction[point.component[i]];
+  }
 }
 
 std::array<double, 2> ElasticWaveModel::free_field_velocity(const double y) const

@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace ddafem::fem
 {
@@ -20,6 +21,18 @@ public:
   virtual void initialize(const dealii::SparseMatrix<double>& matrix) = 0;
   /// Solves A x = b. On entry x is the initial guess (used by iterative solvers only).
   virtual void solve(const dealii::Vector<double>& b, dealii::Vector<double>& x) = 0;
+  /// Solves A x_j = b_j for each column j (x_j start as zero guesses); direct solvers may solve
+  /// them together, reading their factor once for several columns.
+  virtual void solve_columns(const std::vector<dealii::Vector<double>>& b,
+                             std::vector<dealii::Vector<double>>& x)
+  {
+    x.resize(b.size());
+    for (std::size_t j = 0; j < b.size(); ++j)
+    {
+      x[j].reinit(b[j].size());
+      solve(b[j], x[j]);
+    }
+  }
   /// Iterations of the last solve (0 for direct solvers).
   virtual unsigned int last_iterations() const { return 0; }
   virtual std::string name() const = 0;

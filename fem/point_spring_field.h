@@ -58,6 +58,9 @@ public:
   /// Second half: u = y + P^-1 N^T q with the point loads q [N] (2m), then velocities,
   /// accelerations and energies. Only after prepare_step().
   virtual StepStatus finish_step(const std::vector<double>& point_loads) = 0;
+  /// N u: the far field's displacements at the spring points now [m] (2m; a collective call
+  /// across MPI ranks).
+  virtual std::vector<double> point_displacements() const = 0;
   /// Work of the springs on the far field since t = 0 [J].
   virtual double work_of_springs() const = 0;
   /// Whether prepare_step may run on a thread other than the caller's (not across MPI ranks).

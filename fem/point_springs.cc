@@ -105,6 +105,45 @@ std::vector<double> ElasticWaveModel::add_point_springs(const BoundaryPart part,
   return distances;
 }
 
+std::vector<std::vector<double>>
+ElasticWaveModel::Impl::unit_load_responses(const std::vector<types::global_dof_index>& dofs,
+                                            const bool by_dof)
+{
+  // Column j of the response: P^-1 applied to unit load j, restricted to `dofs`; solved a
+  // batch of columns at a time (direct solvers read their factor once for several).
+  const std::size_t n = 2 * springs.size();
+  const std::size_t n_loads = by_dof ? dofs.size() : n;
+  std::vector<std::vector<double>> response(n_loads, std::vector<double>(dofs.size()));
+  constexpr std::size_t batch = 64;
+  std::vector<double> unit(n, 0.0);
+  std::vector<Vector<double>> rhs, x;
+  for (std::size_t first = 0; first < n_loads; first += batch)
+  {
+    rhs.assign(std::min(batch, n_loads - first), Vector<double>(u.size()));
+    for (std::size_t j = first; j < first + rhs.size(); ++j)
+    {
+      Vector<double>& r = rhs[j - first];
+      if (by_dof)
+        r(dofs[j]) = 1.0;
+      else
+      {
+        unit[j] = 1.0;
+        add_spring_loads(unit, r);
+        unit[j] = 0.0;
+      }
+      condense_rhs(r);
+    }
+    solver().solve_columns(rhs, x);
+    for (std::size_t j = first; j < first + rhs.size(); ++j)
+    {
+      constraints.distribute(x[j - first]);
+      for (std::size_t b = 0; b < dofs.size(); ++b)
+        response[j][b] = x[j - first](dofs[b]);
+    }
+  }
+  return response;
+}
+
 std::vector<double> ElasticWaveModel::point_flexibility(const double dt)
 {
   Impl& m = *impl;
@@ -121,7 +160,6 @@ std::vector<double> ElasticWaveModel::point_flexibility(const double dt)
   std::sort(dofs.begin(), dofs.end());
   dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
   const bool by_dof = dofs.size() < n;
-  const std::size_t n_loads = by_dof ? dofs.size() : n;
 
   // Row i of N: (position in `dofs`, shape value) of spring i / 2, component i % 2.
   std::vector<std::vector<std::pair<std::size_t, double>>> rows(n);
@@ -135,28 +173,7 @@ std::vector<double> ElasticWaveModel::point_flexibility(const double dt)
           sp.phi[a]);
   }
 
-  // Column j of the response: P^-1 applied to unit load j, restricted to `dofs`.
-  std::vector<std::vector<double>> response(n_loads, std::vector<double>(dofs.size()));
-  Vector<double> rhs(m.u.size()), x(m.u.size());
-  std::vector<double> unit(n, 0.0);
-  for (std::size_t j = 0; j < n_loads; ++j)
-  {
-    rhs = 0.0;
-    if (by_dof)
-      rhs(dofs[j]) = 1.0;
-    else
-    {
-      unit[j] = 1.0;
-      m.add_spring_loads(unit, rhs);
-      unit[j] = 0.0;
-    }
-    m.condense_rhs(rhs);
-    x = 0.0;
-    m.solver().solve(rhs, x);
-    m.constraints.distribute(x);
-    for (std::size_t b = 0; b < dofs.size(); ++b)
-      response[j][b] = x(dofs[b]);
-  }
+  const std::vector<std::vector<double>> response = m.unit_load_responses(dofs, by_dof);
 
   // G_ij = sum_a N_ia (response of load j)_a, with load j = sum_b N_jb e_b when by DOF.
   std::vector<double> g(n * n, 0.0);

@@ -486,7 +486,13 @@ TEST(FrictionalInterface, StrongInterfaceMatchesBonded)
     const double scale = bonded.displacement().norm();
     EXPECT_NEAR(b.displacement().x(), bonded.displacement().x(), 1e-9 * scale) << t;
     EXPECT_NEAR(b.displacement().y(), bonded.displacement().y(), 1e-9 * scale) << t;
-    EXPECT_NEAR(b.ties->tie_energy(), bonded.ties->tie_energy(), 1e-9 * bonded.ties->tie_energy());
+    // The tie energy is the difference of the works on the blocks and on the far field (each
+    // about 16 times larger here), which the bonded interface takes from the far field's
+    // displacements at the ties (N u) and the nonlinear path from the condensation: round-off
+    // of those works, not of the tie energy, sets the scale.
+    const double works =
+        std::abs(bonded.ties->work_on_blocks()) + std::abs(bonded.ties->work_on_far_field());
+    EXPECT_NEAR(b.ties->tie_energy(), bonded.ties->tie_energy(), 1e-9 * works);
   }
   b.print("strong");
   bonded.print("bonded");
