@@ -400,8 +400,7 @@ Eigen::VectorXd FarFieldTies::h_times_start()
 {
   // On the chain the step starts where the last one ended (its z: the System's displacements
   // of the tie points differ from it by round-off) and H z0 = K (z0 - G K z0).
-  step_on_chain = bonded_step() && chain.valid && chain.dt == step_dt;
-  if (!step_on_chain)
+  if (!(bonded_step() && chain.valid && chain.dt == step_dt))
     return *h * start;
   start = chain.z;
   return bonded_springs(chain.z - chain.g_k_z);

@@ -215,8 +215,7 @@ private:
     Eigen::VectorXd g_k_z; ///< G K z = w - w0 [m]
   };
   BondedChain chain;
-  double step_dt = 0.0;       ///< of the step in progress [s]
-  bool step_on_chain = false; ///< the step in progress started from the chain's z
+  double step_dt = 0.0; ///< of the step in progress [s]
   /// Whether the step in progress is bonded and linear on the current condensation (no dense
   /// terms of a trial state).
   bool bonded_step() const { return linear && !held && bonded_terms_valid; }
