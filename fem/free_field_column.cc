@@ -129,8 +129,8 @@ void ElasticWaveModel::return_to_remembered_state()
 
 void ElasticWaveModel::Impl::add_free_field_load(Vector<double>& f) const
 {
-  // The points in the order of the cells and faces: each DOF's sum in the same order as when
-  // the faces were integrated cell by cell.
+  // The points in the order of the cells and faces, each added to f on its own (the faces used
+  // to be summed per cell first: the last bits of f changed with that).
   const double rho = description.density;
   for (std::size_t k = 0; k < free_field_points.size(); ++k)
   {
