@@ -99,7 +99,10 @@ struct MemberOutcome
   std::string status; ///< summary.json's status: completed, failed, stopped; "" if none
   double wall_s = 0.0;
   std::vector<KeyblockOutcome> keyblocks;
-  std::vector<double> fallen_area_m2; ///< per opening: area of the blocks fallen [m^2 = m^3/m]
+  /// per opening: area of the blocks fallen that no static stage released [m^2 = m^3/m]
+  std::vector<double> fallen_area_m2;
+  /// per opening: area of the fallen blocks a static stage (the excavation) released [m^2]
+  std::vector<double> released_area_m2;
   /// PGV of the wave arriving at the near field's base [m/s] (summary.json's
   /// far_field.free_field_at_base; none without a free-field column)
   std::optional<double> pgv_at_base_m_s;

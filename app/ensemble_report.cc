@@ -36,7 +36,13 @@ MemberOutcome member_outcome(const std::size_t index, const int exit_code,
                            b.value("released", false), b.value("residual_relative_m", 0.0),
                            b.value("angle_deg", std::nan(""))});
   for (const nlohmann::json& o : keyblocks.value("openings", nlohmann::json::array()))
-    m.fallen_area_m2.push_back(o.value("fallen_area_m2", 0.0));
+  {
+    // The blocks a static stage released (the excavation's) fall in every member alike: they
+    // are counted apart, not as the member's damage.
+    const double released = o.value("released_area_m2", 0.0);
+    m.released_area_m2.push_back(released);
+    m.fallen_area_m2.push_back(std::max(0.0, o.value("fallen_area_m2", 0.0) - released));
+  }
   return m;
 }
 
@@ -178,13 +184,15 @@ nlohmann::json sectors_json(const std::vector<MemberOutcome>& outcomes, const do
 /// Per opening: the fallen area of the counted members and how often anything fell there.
 nlohmann::json openings_json(const std::vector<MemberOutcome>& outcomes)
 {
-  std::vector<std::vector<double>> areas;
+  std::vector<std::vector<double>> areas, released;
   for (const MemberOutcome& m : outcomes)
     if (m.counted())
       for (std::size_t o = 0; o < m.fallen_area_m2.size(); ++o)
       {
         areas.resize(std::max(areas.size(), o + 1));
+        released.resize(areas.size());
         areas[o].push_back(m.fallen_area_m2[o]);
+        released[o].push_back(o < m.released_area_m2.size() ? m.released_area_m2[o] : 0.0);
       }
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t o = 0; o < areas.size(); ++o)
@@ -198,7 +206,8 @@ nlohmann::json openings_json(const std::vector<MemberOutcome>& outcomes)
                     {"any_fell", proportion_json(n_any, areas[o].size())},
                     {"fallen_area_m2", sample_json(areas[o])},
                     {"fallen_area_mean_m2", mean},
-                    {"fallen_area_max_m2", *std::max_element(areas[o].begin(), areas[o].end())}});
+                    {"fallen_area_max_m2", *std::max_element(areas[o].begin(), areas[o].end())},
+                    {"released_area_m2", sample_json(released[o])}});
   }
   return list;
 }
@@ -275,7 +284,8 @@ std::string answer_sentence(const nlohmann::json& j)
       s << "; opening " << o["opening"] << " loses a median "
         << format_significant(o["fallen_area_m2"]["median"].get<double>(), 3)
         << " m^3/m (5-95 %: " << format_significant(o["fallen_area_m2"]["q05"].get<double>(), 3)
-        << " to " << format_significant(o["fallen_area_m2"]["q95"].get<double>(), 3) << ")";
+        << " to " << format_significant(o["fallen_area_m2"]["q95"].get<double>(), 3)
+        << ") besides what the excavation released";
   s << ".";
   return s.str();
 }
@@ -470,8 +480,10 @@ std::string ensemble_markdown(const nlohmann::json& j)
   keyblock_table(j, md);
   sector_table(j, md);
   md << "\n## Openings\n\nFallen area per opening [m^2, = m^3 per metre of tunnel] over the "
-        "completed runs.\n\n| opening | P(anything fell) | median | 5-95 % | mean | max |\n"
-        "|---|---|---|---|---|---|\n";
+        "completed runs: the blocks that fell in the run, apart from those a static stage (the "
+        "excavation) released, whose area is the last column (median).\n\n"
+        "| opening | P(anything fell) | median | 5-95 % | mean | max | released [m^2] |\n"
+        "|---|---|---|---|---|---|---|\n";
   for (const nlohmann::json& o : j["openings"])
   {
     const nlohmann::json& a = o["fallen_area_m2"];
@@ -480,7 +492,8 @@ std::string ensemble_markdown(const nlohmann::json& j)
        << format_significant(a["q05"].get<double>(), 3) << " to "
        << format_significant(a["q95"].get<double>(), 3) << " | "
        << format_significant(o["fallen_area_mean_m2"].get<double>(), 3) << " | "
-       << format_significant(o["fallen_area_max_m2"].get<double>(), 3) << " |\n";
+       << format_significant(o["fallen_area_max_m2"].get<double>(), 3) << " | "
+       << format_significant(o["released_area_m2"]["median"].get<double>(), 3) << " |\n";
   }
   const nlohmann::json& pgv = j["pgv_at_base_m_s"];
   if (!pgv.is_null())

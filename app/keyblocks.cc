@@ -279,6 +279,7 @@ nlohmann::json KeyblockRecorder::fallen_per_opening(const dda::System& system) c
   const std::vector<dda::Block>& blocks = system.get_blocks();
   nlohmann::json openings = nlohmann::json::array();
   std::vector<double> area(geometry.openings.size(), 0.0);
+  std::vector<double> area_released(geometry.openings.size(), 0.0); // by a static stage [m^2]
   for (std::size_t o = 0; o < geometry.openings.size(); ++o)
     openings.push_back({{"fallen_blocks", nlohmann::json::array()}});
   for (std::size_t b = 0; b < blocks.size(); ++b)
@@ -295,9 +296,14 @@ nlohmann::json KeyblockRecorder::fallen_per_opening(const dda::System& system) c
       continue;
     openings[o]["fallen_blocks"].push_back(b);
     area[o] += block_area[b];
+    if (slot[b] != npos && released[slot[b]])
+      area_released[o] += block_area[b];
   }
   for (std::size_t o = 0; o < area.size(); ++o)
+  {
     openings[o]["fallen_area_m2"] = area[o];
+    openings[o]["released_area_m2"] = area_released[o];
+  }
   return openings;
 }
 

@@ -106,7 +106,8 @@ private:
   void update_joints(const dda::System& system);
   /// Per opening, the area-weighted mean displacement of its ring of surrounding rock [m].
   std::vector<dda::Vector2> ring_displacements(const std::vector<dda::Block>& blocks) const;
-  /// Per opening: {"fallen_blocks": [ids], "fallen_area_m2"} at the end.
+  /// Per opening: {"fallen_blocks": [ids], "fallen_area_m2", "released_area_m2"} at the end
+  /// (the second: the part of the first that a static stage released).
   nlohmann::json fallen_per_opening(const dda::System& system) const;
   /// Track::thrown_out of every keyblock after a row.
   void update_thrown_out(const dda::System& system);

@@ -264,7 +264,9 @@ CLI::App* add_fragility_command(CLI::App& app, ddafem::FragilityOptions& o)
   f->add_option("--high", o.high, "highest value of the bracketing");
   f->add_option("--members", o.ensemble.members, "members per level (default 16)")
       ->check(CLI::Range(std::size_t(1), std::size_t(100000)));
-  f->add_option("--fallen-area", o.fallen_area, "also the damage state: fallen area above A [m^2]")
+  f->add_option("--fallen-area", o.fallen_area,
+                "also the damage state: fallen area above A [m^2] (blocks the "
+                "excavation released not counted)")
       ->type_name("A");
   f->add_option("--state", o.states,
                 "also the damage state block:ID:fell or block:ID:loosened "

@@ -151,7 +151,7 @@ nlohmann::json summary(const std::string& status, bool fell_50, double residual_
            {{"blocks",
              {block(47, false, loosened_47, false, residual_47),
               block(50, fell_50, false, false, 0.5), block(60, true, false, true, 1.0)}},
-            {"openings", {{{"fallen_area_m2", fell_50 ? 1.5 : 0.5}}}}}}};
+            {"openings", {{{"fallen_area_m2", fell_50 ? 1.5 : 0.5}, {"released_area_m2", 0.5}}}}}}};
 }
 
 TEST(Ensemble, ReportCountsCompletedMembers)
@@ -208,10 +208,12 @@ TEST(Ensemble, ReportCountsCompletedMembers)
   EXPECT_EQ(sectors[2]["loosened"]["count"], 6);
   EXPECT_EQ(sectors[2]["fell"]["count"], 0);
   EXPECT_EQ(sectors[2]["with_keyblock"], 10);
-  // Opening 0 loses 1.5 m^2 in the 4 members where block 50 fell, else 0.5 (block 60).
+  // Opening 0 loses 1.5 m^2 in the 4 members where block 50 fell, else 0.5: block 60, which
+  // the excavation released and which is counted apart (0.5 in every member), not as damage.
   const nlohmann::json& opening = j["openings"][0];
-  EXPECT_EQ(opening["any_fell"]["count"], 10);
-  EXPECT_NEAR(opening["fallen_area_mean_m2"].get<double>(), 0.9, 1e-15);
+  EXPECT_EQ(opening["any_fell"]["count"], 4);
+  EXPECT_NEAR(opening["fallen_area_mean_m2"].get<double>(), 0.4, 1e-15);
+  EXPECT_EQ(opening["released_area_m2"]["median"].get<double>(), 0.5);
   // The answer quotes block 50 (block 60 falls only where released), as a percentage with its
   // interval rounded to two digits: 40 % [17, 69].
   const std::string answer = j["answer"];
