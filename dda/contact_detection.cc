@@ -394,12 +394,23 @@ void System::set_contact_frame(std::size_t k)
 void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings)
 {
   // The tied body couples every pair of blocks with tie points (its condensed stiffness is
-  // dense over them).
+  // dense over them): those pairs, sorted by construction (tie_blocks is), merged into the
+  // contacts' sorted couplings in one pass (a sort of both took 2.5 % of a tunnel's run).
+  std::vector<std::pair<std::size_t, std::size_t>> tied_block_pairs;
+  tied_block_pairs.reserve(tie_blocks.size() * tie_blocks.size() / 2);
   for (std::size_t i = 0; i < tie_blocks.size(); ++i)
     for (std::size_t j = i + 1; j < tie_blocks.size(); ++j)
-      couplings.emplace_back(tie_blocks[i], tie_blocks[j]);
+      tied_block_pairs.emplace_back(tie_blocks[i], tie_blocks[j]);
   if (!std::is_sorted(couplings.begin(), couplings.end()))
     std::sort(couplings.begin(), couplings.end());
+  if (!tied_block_pairs.empty())
+  {
+    std::vector<std::pair<std::size_t, std::size_t>> merged(couplings.size() +
+                                                            tied_block_pairs.size());
+    std::merge(couplings.begin(), couplings.end(), tied_block_pairs.begin(), tied_block_pairs.end(),
+               merged.begin());
+    couplings = std::move(merged);
+  }
   couplings.erase(std::unique(couplings.begin(), couplings.end()), couplings.end());
   if (couplings != coupling_pairs || matrix.n_blocks() != blocks.size())
   {
