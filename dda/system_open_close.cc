@@ -34,16 +34,20 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
   base_rhs = rhs;
   // A tied body's terms (dense over the tied blocks) change only when its ties change state:
   // the iterations start from the matrix with them, rebuilt only then.
-  const auto add_ties_to_start = [&]
+  // (matrix_is_base: matrix and rhs hold base_matrix and base_rhs already, no copy needed.)
+  const auto add_ties_to_start = [&](const bool matrix_is_base)
   {
-    matrix = base_matrix;
-    rhs = base_rhs;
+    if (!matrix_is_base)
+    {
+      matrix = base_matrix;
+      rhs = base_rhs;
+    }
     add_tie_terms();
     tied_matrix = matrix;
     tied_rhs = rhs;
   };
   if (tied_body)
-    add_ties_to_start();
+    add_ties_to_start(true);
   bool ties_changed = false;
   StepStatus status;
   const unsigned max_iterations = std::max(1u, model.contacts.max_open_close_iterations);
@@ -52,7 +56,7 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
     if (iteration == 1 || ties_changed)
     {
       if (iteration > 1)
-        add_ties_to_start();
+        add_ties_to_start(false);
       add_contact_terms();
     }
     else
