@@ -78,8 +78,18 @@ std::string im_text(const double v, const nlohmann::json& im)
   return format_significant(v, 3) + (unit.empty() ? "" : " " + unit);
 }
 
-/// The sentence of one damage state: its median and beta, or what the data allow.
-std::string state_sentence(const nlohmann::json& s, const nlohmann::json& im)
+/// A bootstrap bound: "unbounded" where resamples drove it to infinity (JSON null).
+std::string bound_text(const nlohmann::json& v, const int digits)
+{
+  if (!v.is_number() || !std::isfinite(v.get<double>()))
+    return "unbounded";
+  return format_significant(v.get<double>(), digits);
+}
+
+/// The sentence of one damage state: its median and beta, or what the data allow. `highest_im`:
+/// the highest level run, beyond which a median is an extrapolation of the fit.
+std::string state_sentence(const nlohmann::json& s, const nlohmann::json& im,
+                           const double highest_im)
 {
   const nlohmann::json& f = s["fit"];
   const std::string status = f["status"], name = im["name"];
@@ -88,11 +98,13 @@ std::string state_sentence(const nlohmann::json& s, const nlohmann::json& im)
   {
     const nlohmann::json& b = f["bootstrap"];
     t << "the median " << name << " at which " << s["name"].get<std::string>() << " is "
-      << im_text(f["theta"], im) << " [" << format_significant(b["theta_90"][0], 3) << ", "
-      << format_significant(b["theta_90"][1], 3) << "], beta "
-      << format_significant(f["beta"].get<double>(), 2) << " ["
-      << format_significant(b["beta_90"][0], 2) << ", " << format_significant(b["beta_90"][1], 2)
-      << "] (90 % bootstrap)";
+      << im_text(f["theta"], im) << " [" << bound_text(b["theta_90"][0], 3) << ", "
+      << bound_text(b["theta_90"][1], 3) << "], beta "
+      << format_significant(f["beta"].get<double>(), 2) << " [" << bound_text(b["beta_90"][0], 2)
+      << ", " << bound_text(b["beta_90"][1], 2) << "] (90 % bootstrap)";
+    if (f["theta"].get<double>() > highest_im)
+      t << ", extrapolated beyond the highest level run (" << im_text(highest_im, im)
+        << "): more levels above it would pin it down";
   }
   else if (status == "separated")
     t << s["name"].get<std::string>() << " between " << name << " "
@@ -117,7 +129,10 @@ std::string answer_sentence(const nlohmann::json& j)
   if (j["levels"].empty())
     return "No level has run yet.";
   const nlohmann::json& fell = j["states"][1]; // any keyblock fell
-  std::string s = state_sentence(fell, j["intensity_measure"]);
+  double highest_im = 0.0;
+  for (const nlohmann::json& l : j["levels"])
+    highest_im = std::max(highest_im, l["im"].get<double>());
+  std::string s = state_sentence(fell, j["intensity_measure"], highest_im);
   s[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(s[0])));
   const nlohmann::json* nearest = nullptr;
   for (const nlohmann::json& l : j["levels"])
@@ -129,7 +144,7 @@ std::string answer_sentence(const nlohmann::json& j)
     s += "; at " + im_text((*nearest)["im"], j["intensity_measure"]) + " a keyblock fell in " +
          percent_text((*nearest)["states"][1]) + " of " +
          std::to_string((*nearest)["n_counted"].get<std::size_t>()) + " runs (95 % Wilson)";
-  return s + "; " + state_sentence(j["states"][0], j["intensity_measure"]) + ".";
+  return s + "; " + state_sentence(j["states"][0], j["intensity_measure"], highest_im) + ".";
 }
 
 /// The levels: key value, IM, members, and per damage state its proportion.
@@ -225,7 +240,7 @@ std::string fragility_markdown(const nlohmann::json& j)
     const nlohmann::json& f = s["fit"];
     const bool resolved = f["status"] == "resolved";
     const auto pair = [](const nlohmann::json& p)
-    { return "[" + format_significant(p[0], 3) + ", " + format_significant(p[1], 3) + "]"; };
+    { return "[" + bound_text(p[0], 3) + ", " + bound_text(p[1], 3) + "]"; };
     const std::string bracket =
         "(" +
         (f["highest_none"].is_null() ? std::string("-")

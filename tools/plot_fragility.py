@@ -25,6 +25,8 @@ def phi(x):
 
 
 def curve(theta, beta, xs):
+    if math.isinf(theta):  # the median beyond every level: nothing reached anywhere
+        return [0.0 for _ in xs]
     return [phi(math.log(x / theta) / beta) for x in xs]
 
 
@@ -44,7 +46,10 @@ def plot_state(ax, f, k, state, xs):
         ax.plot(xs, curve(fit["theta"], fit["beta"], xs), "-", color=color,
                 label="fit: theta %.3g, beta %.2g" % (fit["theta"], fit["beta"]))
         b = fit["bootstrap"]
-        corners = [curve(t, s, xs) for t in b["theta_90"] for s in b["beta_90"]]
+        # an unbounded bound (null: resamples drove it to infinity) shades to the plot's edge
+        thetas = [float("inf") if t is None else t for t in b["theta_90"]]
+        betas = [float("inf") if s is None else s for s in b["beta_90"]]
+        corners = [curve(t, s, xs) for t in thetas for s in betas]
         ax.fill_between(xs, [min(c[i] for c in corners) for i in range(len(xs))],
                         [max(c[i] for c in corners) for i in range(len(xs))], color=color,
                         alpha=0.15, lw=0)

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace
 {
@@ -63,6 +64,12 @@ TEST(Statistics, QuantilesInterpolateOrderStatistics)
   EXPECT_EQ(quantile(x, 0.0), 1.0);
   EXPECT_EQ(quantile(x, 1.0), 11.0);
   EXPECT_EQ(quantile({4.0}, 0.3), 4.0);
+  // Bootstrap fits that run off to an infinite median: a quantile between two of them is
+  // infinite, not inf - inf = NaN (the default tunnel's fragility bound printed "-nan").
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(quantile({1.0, 2.0, inf, inf}, 0.95), inf);
+  EXPECT_EQ(quantile({1.0, 2.0, inf, inf}, 0.5), inf); // between 2 and inf: inf, not NaN
+  EXPECT_EQ(quantile({1.0, 2.0, inf, inf}, 0.25), 1.75);
   const SampleSummary s = summarize(x);
   EXPECT_EQ(s.n, 11u);
   EXPECT_EQ(s.median, 6.0);
