@@ -12,14 +12,16 @@ namespace ddafem
 {
 namespace
 {
-/// deal.II's own threads (its vector operations and sparse products run on TBB's global arena)
-/// as many as the run's --threads (0: the cores): left at its default, deal.II spread a
-/// 8396-DOF far field's products over every core and TBB's idle workers kept spinning, taking
-/// the core of an ensemble's other member.
-void limit_deal_ii_threads(const Scene& scene)
+/// deal.II's own threads (its vector operations and sparse products run on TBB's global arena):
+/// one, whatever the run's --threads. With as many as --threads, a run at --threads 1 and one at
+/// 2 differed in their last bits from the first step (deal.II's threaded operations sum in
+/// another order), so an ensemble's members under mpirun and with -j differed too; ddafem's
+/// results must not depend on --threads. Left at deal.II's default (every core), TBB's idle
+/// workers spun on an ensemble's other member's core. The far field's products are small (8396
+/// DOFs on the default tunnel); the blocks' contact detection and solver take --threads.
+void limit_deal_ii_threads(const Scene&)
 {
-  if (scene.model.solver.threads > 0)
-    dealii::MultithreadInfo::set_thread_limit(scene.model.solver.threads);
+  dealii::MultithreadInfo::set_thread_limit(1);
 }
 
 class FarFieldModuleImpl : public FarFieldModule
