@@ -103,6 +103,9 @@ struct MemberOutcome
   std::vector<double> fallen_area_m2;
   /// per opening: area of the fallen blocks a static stage (the excavation) released [m^2]
   std::vector<double> released_area_m2;
+  /// the summary kept the released area apart (summaries before it did not: their fallen area
+  /// includes the excavation's releases)
+  bool released_area_known = true;
   /// PGV of the wave arriving at the near field's base [m/s] (summary.json's
   /// far_field.free_field_at_base; none without a free-field column)
   std::optional<double> pgv_at_base_m_s;

@@ -39,6 +39,7 @@ MemberOutcome member_outcome(const std::size_t index, const int exit_code,
   {
     // The blocks a static stage released (the excavation's) fall in every member alike: they
     // are counted apart, not as the member's damage.
+    m.released_area_known = m.released_area_known && o.contains("released_area_m2");
     const double released = o.value("released_area_m2", 0.0);
     m.released_area_m2.push_back(released);
     m.fallen_area_m2.push_back(std::max(0.0, o.value("fallen_area_m2", 0.0) - released));
@@ -185,8 +186,11 @@ nlohmann::json sectors_json(const std::vector<MemberOutcome>& outcomes, const do
 nlohmann::json openings_json(const std::vector<MemberOutcome>& outcomes)
 {
   std::vector<std::vector<double>> areas, released;
+  bool released_known = true;
   for (const MemberOutcome& m : outcomes)
     if (m.counted())
+    {
+      released_known = released_known && m.released_area_known;
       for (std::size_t o = 0; o < m.fallen_area_m2.size(); ++o)
       {
         areas.resize(std::max(areas.size(), o + 1));
@@ -194,6 +198,7 @@ nlohmann::json openings_json(const std::vector<MemberOutcome>& outcomes)
         areas[o].push_back(m.fallen_area_m2[o]);
         released[o].push_back(o < m.released_area_m2.size() ? m.released_area_m2[o] : 0.0);
       }
+    }
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t o = 0; o < areas.size(); ++o)
   {
@@ -207,7 +212,8 @@ nlohmann::json openings_json(const std::vector<MemberOutcome>& outcomes)
                     {"fallen_area_m2", sample_json(areas[o])},
                     {"fallen_area_mean_m2", mean},
                     {"fallen_area_max_m2", *std::max_element(areas[o].begin(), areas[o].end())},
-                    {"released_area_m2", sample_json(released[o])}});
+                    {"released_area_m2", sample_json(released[o])},
+                    {"released_area_known", released_known}});
   }
   return list;
 }
@@ -285,7 +291,10 @@ std::string answer_sentence(const nlohmann::json& j)
         << format_significant(o["fallen_area_m2"]["median"].get<double>(), 3)
         << " m^3/m (5-95 %: " << format_significant(o["fallen_area_m2"]["q05"].get<double>(), 3)
         << " to " << format_significant(o["fallen_area_m2"]["q95"].get<double>(), 3)
-        << ") besides what the excavation released";
+        << (o.value("released_area_known", true)
+                ? ") besides what the excavation released"
+                : "), the blocks the excavation released included (these runs' summaries "
+                  "predate keeping them apart)");
   s << ".";
   return s.str();
 }

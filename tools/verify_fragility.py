@@ -190,10 +190,35 @@ def write_page(path, data):
         f.write("\n".join(lines) + "\n")
 
 
-def page_only(out):
-    """Rewrites fragility.md from fragility.json (the page's layout changed, not the runs)."""
+def page_only(out, work):
+    """Rewrites fragility.md from fragility.json (the page's layout changed, not the runs), the
+    answers and the copied reports taken again from the runs' own reports in work (rewritten by
+    `ddafem resume` of a finished ensemble, which runs nothing)."""
     with open(os.path.join(out, "fragility.json")) as f:
-        write_page(os.path.join(out, "fragility.md"), json.load(f))
+        data = json.load(f)
+    for name in ("friction", "joint_sets"):
+        source = os.path.join(work, "ensemble_" + name)
+        data["answers"][name] = answer(os.path.join(source, "ensemble.md"))
+        copy_report(source, os.path.join(out, "fragility", name),
+                    ["ensemble.md", "ensemble.json", "ensemble.png"])
+    with open(os.path.join(out, "fragility.json"), "w") as f:
+        json.dump(data, f, indent=1)
+    write_page(os.path.join(out, "fragility.md"), data)
+
+
+def mpirun_only(ddafem, work, out):
+    """Runs the mpirun check again (a new binary) and rewrites fragility.json's entry and the
+    page, the ensembles and the curve as they are."""
+    for way in ("np2", "j2"):
+        wall_file = os.path.join(work, "mpirun_" + way + ".wall_s")
+        if os.path.isfile(wall_file):
+            os.remove(wall_file)
+    with open(os.path.join(out, "fragility.json")) as f:
+        data = json.load(f)
+    data["mpirun"] = compare_mpirun(ddafem, work)
+    with open(os.path.join(out, "fragility.json"), "w") as f:
+        json.dump(data, f, indent=1)
+    write_page(os.path.join(out, "fragility.md"), data)
 
 
 def main():
@@ -202,6 +227,9 @@ def main():
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--work", default=os.path.join(TOP, "build", "verification_fragility"))
     parser.add_argument("--out", default=os.path.join(TOP, "docs", "verification"))
+    parser.add_argument("--mpirun-only", action="store_true",
+                        help="only the mpirun check again (e.g. with a new binary), the page "
+                             "rewritten with it")
     parser.add_argument("--no-fragility", action="store_true",
                         help="the ensembles and the mpirun check only; the page says the curve "
                              "was not run and gives what its bracketing sweep found, if any")
@@ -209,9 +237,11 @@ def main():
                         help="rewrite fragility.md from fragility.json, running nothing")
     args = parser.parse_args()
     if args.page_only:
-        return page_only(args.out) or 0
+        return page_only(args.out, os.path.abspath(args.work)) or 0
     ddafem = os.path.join(os.path.abspath(args.build), "ddafem")
     work = os.path.abspath(args.work)
+    if args.mpirun_only:
+        return mpirun_only(ddafem, work, args.out) or 0
     os.makedirs(work, exist_ok=True)
     jobs = ["-j", str(args.jobs), "--quiet"]
     dirs = {name: os.path.join(work, "ensemble_" + name) for name in ("friction", "joint_sets")}

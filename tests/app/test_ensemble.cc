@@ -228,6 +228,24 @@ TEST(Ensemble, ReportCountsCompletedMembers)
   EXPECT_NE(md.find("| 50 | 0 | 10 | 40 % [17, 69] |"), std::string::npos) << md;
 }
 
+TEST(Ensemble, SummariesBeforeTheReleasedAreaSayTheirAreaIncludesIt)
+{
+  // A summary.json without keyblocks.openings[].released_area_m2 (written before it existed):
+  // its fallen area cannot be split, and the outcome says so instead of calling it damage.
+  const nlohmann::json old = {
+      {"status", "completed"},
+      {"keyblocks",
+       {{"blocks", nlohmann::json::array()}, {"openings", {{{"fallen_area_m2", 0.344}}}}}}};
+  const MemberOutcome m = member_outcome(0, 0, old);
+  EXPECT_FALSE(m.released_area_known);
+  EXPECT_EQ(m.fallen_area_m2, std::vector<double>{0.344});
+  nlohmann::json now = old;
+  now["keyblocks"]["openings"][0]["released_area_m2"] = 0.344;
+  const MemberOutcome n = member_outcome(0, 0, now);
+  EXPECT_TRUE(n.released_area_known);
+  EXPECT_EQ(n.fallen_area_m2, std::vector<double>{0.0});
+}
+
 TEST(Ensemble, ReportWithoutFallsGivesTheUpperBound)
 {
   EnsembleOptions o = roof_wedge_options();
