@@ -19,7 +19,7 @@ namespace
 /// results must not depend on --threads. Left at deal.II's default (every core), TBB's idle
 /// workers spun on an ensemble's other member's core. The far field's products are small (8396
 /// DOFs on the default tunnel); the blocks' contact detection and solver take --threads.
-void limit_deal_ii_threads(const Scene&)
+void limit_deal_ii_threads()
 {
   dealii::MultithreadInfo::set_thread_limit(1);
 }
@@ -29,7 +29,7 @@ class FarFieldModuleImpl : public FarFieldModule
 public:
   std::unique_ptr<TiedFarField> tie(const Scene& scene, dda::System& system) const override
   {
-    limit_deal_ii_threads(scene);
+    limit_deal_ii_threads();
     if (!run_support::mpi_rank_from_environment())
       return make_tied_far_field(scene, system);
 #ifdef DDAFEM_WITHOUT_DISTRIBUTED_FAR_FIELD
@@ -41,12 +41,12 @@ public:
   }
   std::unique_ptr<Simulation> far_field_simulation(const Scene& scene) const override
   {
-    limit_deal_ii_threads(scene);
+    limit_deal_ii_threads();
     return make_far_field_simulation(scene);
   }
   std::unique_ptr<Simulation> distributed_far_field_simulation(const Scene& scene) const override
   {
-    limit_deal_ii_threads(scene);
+    limit_deal_ii_threads();
 #ifdef DDAFEM_WITHOUT_DISTRIBUTED_FAR_FIELD
     throw InputError(scene.file + ": this build (the sanitizer build) has no distributed far "
                                   "field: run it without mpirun, or with the release build");

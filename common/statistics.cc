@@ -76,8 +76,9 @@ double quantile(std::vector<double> sample, const double p)
   std::sort(sample.begin(), sample.end());
   const double h = (static_cast<double>(sample.size()) - 1.0) * p;
   const std::size_t i = std::min(static_cast<std::size_t>(std::floor(h)), sample.size() - 1);
+  // (Equal neighbours returned as they are: two infinite ones would interpolate to NaN.)
   if (i + 1 >= sample.size() || sample[i + 1] == sample[i])
-    return sample[i + 1 >= sample.size() ? sample.size() - 1 : i]; // (inf - inf would be NaN)
+    return sample[i];
   return sample[i] + (h - static_cast<double>(i)) * (sample[i + 1] - sample[i]);
 }
 

@@ -18,6 +18,7 @@ Runs, each resumed where an earlier call stopped (the runs stay in --work):
 
     /usr/bin/python3 tools/verify_fragility.py [--build build] [--jobs 2]
         [--work build/verification_fragility] [--out docs/verification]
+        [--no-fragility | --mpirun-only | --page-only]
 Not part of CI: about 160 tunnel runs, some 2 hours on 2 cores.
 """
 import argparse
@@ -190,20 +191,27 @@ def write_page(path, data):
         f.write("\n".join(lines) + "\n")
 
 
+def rewrite_page(out, update):
+    """fragility.json changed by update(data) and fragility.md written again from it."""
+    with open(os.path.join(out, "fragility.json")) as f:
+        data = json.load(f)
+    update(data)
+    with open(os.path.join(out, "fragility.json"), "w") as f:
+        json.dump(data, f, indent=1)
+    write_page(os.path.join(out, "fragility.md"), data)
+
+
 def page_only(out, work):
     """Rewrites fragility.md from fragility.json (the page's layout changed, not the runs), the
     answers and the copied reports taken again from the runs' own reports in work (rewritten by
     `ddafem resume` of a finished ensemble, which runs nothing)."""
-    with open(os.path.join(out, "fragility.json")) as f:
-        data = json.load(f)
-    for name in ("friction", "joint_sets"):
-        source = os.path.join(work, "ensemble_" + name)
-        data["answers"][name] = answer(os.path.join(source, "ensemble.md"))
-        copy_report(source, os.path.join(out, "fragility", name),
-                    ["ensemble.md", "ensemble.json", "ensemble.png"])
-    with open(os.path.join(out, "fragility.json"), "w") as f:
-        json.dump(data, f, indent=1)
-    write_page(os.path.join(out, "fragility.md"), data)
+    def update(data):
+        for name in ("friction", "joint_sets"):
+            source = os.path.join(work, "ensemble_" + name)
+            data["answers"][name] = answer(os.path.join(source, "ensemble.md"))
+            copy_report(source, os.path.join(out, "fragility", name),
+                        ["ensemble.md", "ensemble.json", "ensemble.png"])
+    rewrite_page(out, update)
 
 
 def mpirun_only(ddafem, work, out):
@@ -213,12 +221,7 @@ def mpirun_only(ddafem, work, out):
         wall_file = os.path.join(work, "mpirun_" + way + ".wall_s")
         if os.path.isfile(wall_file):
             os.remove(wall_file)
-    with open(os.path.join(out, "fragility.json")) as f:
-        data = json.load(f)
-    data["mpirun"] = compare_mpirun(ddafem, work)
-    with open(os.path.join(out, "fragility.json"), "w") as f:
-        json.dump(data, f, indent=1)
-    write_page(os.path.join(out, "fragility.md"), data)
+    rewrite_page(out, lambda data: data.update(mpirun=compare_mpirun(ddafem, work)))
 
 
 def main():
