@@ -154,6 +154,50 @@ std::optional<double> record_pga_g_per_pgv(const nlohmann::json& summary)
 
 namespace
 {
+const DamageState& fall_state(const std::vector<DamageState>& states)
+{
+  return *std::find_if(states.begin(), states.end(),
+                       [](const DamageState& s) { return s.kind == DamageKind::any_fell; });
+}
+
+/// The share of a level's completed members reaching `state` (0 when none completed).
+double share_reached(const DamageState& state, const FragilityLevelRun& level)
+{
+  std::size_t n = 0, k = 0;
+  for (const MemberOutcome& m : level.outcomes)
+    if (m.counted())
+    {
+      ++n;
+      k += reached(state, m) ? 1 : 0;
+    }
+  return n > 0 ? static_cast<double>(k) / static_cast<double>(n) : 0.0;
+}
+} // namespace
+
+std::optional<double> level_beyond(const FragilityOptions& o,
+                                   const std::vector<DamageState>& states,
+                                   const std::vector<FragilityLevelRun>& runs)
+{
+  const DamageState& fall = fall_state(states);
+  if (!o.levels.empty() || o.n_levels < 2 || runs.size() < o.n_levels ||
+      runs.size() >= 2 * o.n_levels)
+    return std::nullopt;
+  const auto by_value = [](const FragilityLevelRun& a, const FragilityLevelRun& b)
+  { return a.value < b.value; };
+  const FragilityLevelRun& lowest = *std::min_element(runs.begin(), runs.end(), by_value);
+  const FragilityLevelRun& highest = *std::max_element(runs.begin(), runs.end(), by_value);
+  // Half the chosen levels' span in ln IM: they are spread densely over a bracket that may sit
+  // well inside the band sought; one of their spacings at a time would creep.
+  const double ratio = std::sqrt(runs[o.n_levels - 1].value / runs[0].value);
+  if (share_reached(fall, highest) < 0.9)
+    return std::stod(format_significant(highest.value * ratio, 4));
+  if (share_reached(fall, lowest) > 0.1)
+    return std::stod(format_significant(lowest.value / ratio, 4));
+  return std::nullopt;
+}
+
+namespace
+{
 /// DIR/level_NN, 1-based.
 std::filesystem::path level_directory(const FragilityOptions& o, const std::size_t index)
 {
@@ -218,6 +262,21 @@ void check_options(const FragilityOptions& o)
   plan_ensemble(first);
 }
 
+/// sweep.json of an earlier call's bracketing into the same directory, if it ran to a conclusion
+/// for the same scene, key and --set (a fragility run again resumes: the same levels); else null.
+nlohmann::json earlier_bracket(const SweepOptions& s)
+{
+  std::ifstream in(std::filesystem::path(s.directory) / "sweep.json");
+  if (!in)
+    return nullptr;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  const bool same = j.is_object() && !j.value("conclusion", std::string()).empty() &&
+                    j.value("scene", std::string()) == s.scene &&
+                    j.value("key", std::string()) == s.key &&
+                    j.value("settings", std::vector<std::string>()) == s.settings;
+  return same ? j : nlohmann::json();
+}
+
 /// The levels: given, or spread across the band where a sweep's single runs change outcome.
 std::vector<double> choose_levels(const FragilityOptions& o, std::ostream& log)
 {
@@ -237,9 +296,16 @@ std::vector<double> choose_levels(const FragilityOptions& o, std::ostream& log)
   s.jobs = o.ensemble.jobs;
   s.directory = (std::filesystem::path(o.ensemble.directory) / "bracket").string();
   s.quiet = o.ensemble.quiet;
-  run_sweep(s, log);
-  std::ifstream in(std::filesystem::path(s.directory) / "sweep.json");
-  const nlohmann::json sweep = nlohmann::json::parse(in, nullptr, false);
+  nlohmann::json sweep = earlier_bracket(s);
+  if (sweep.is_object())
+    log << "fragility: the bracketing in " << s.directory
+        << " is reused (the same scene, key and --set; delete it to bracket again)" << std::endl;
+  else
+  {
+    run_sweep(s, log);
+    std::ifstream in(std::filesystem::path(s.directory) / "sweep.json");
+    sweep = nlohmann::json::parse(in, nullptr, false);
+  }
   std::vector<std::pair<double, bool>> verdicts;
   for (const nlohmann::json& c : sweep.value("cases", nlohmann::json::array()))
     if (!c.value("cancelled", false) && !c.value("status", "").empty())
@@ -272,11 +338,14 @@ int run_fragility(const FragilityOptions& o, std::ostream& log)
   if (job && job->size > 1 && o.levels.empty())
     throw InputError("fragility under mpirun: expected --levels (the bracketing that chooses "
                      "them runs on one process: run it without mpirun, or give the levels)");
-  const std::vector<double> values = choose_levels(o, log);
+  std::vector<double> values = choose_levels(o, log);
   std::vector<FragilityLevelRun> levels;
   const auto write_report = [&]
   {
-    const nlohmann::json j = fragility_json(o, im, states, levels, seconds_since(wall_start));
+    std::vector<FragilityLevelRun> sorted = levels; // levels added beyond come last
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const auto& a, const auto& b) { return a.value < b.value; });
+    const nlohmann::json j = fragility_json(o, im, states, sorted, seconds_since(wall_start));
     const std::filesystem::path dir(o.ensemble.directory);
     if (leads) // the other ranks know only their own members
     {
@@ -302,6 +371,15 @@ int run_fragility(const FragilityOptions& o, std::ostream& log)
     if (!im.pga_g_per_im && im.name == "PGV (record)")
       im.pga_g_per_im = member_pga_g_per_pgv(level_directory(o, i));
     write_report();
+    if (i + 1 == values.size())
+      if (const std::optional<double> beyond = level_beyond(o, states, levels))
+      {
+        if (leads)
+          log << "fragility: the chosen levels do not cover where 10 to 90 % of the runs drop a "
+                 "keyblock: adding "
+              << o.key << " = " << *beyond << std::endl;
+        values.push_back(*beyond);
+      }
   }
   const nlohmann::json j = write_report();
   if (!leads)

@@ -115,6 +115,17 @@ struct FragilityLevelRun
   std::vector<MemberOutcome> outcomes;
 };
 
+/// Chosen levels are spread over the band that single runs bracketed, and the curve's 10-90 %
+/// band of a keyblock falling can lie beyond it (a perturbed model may fall less often than the
+/// bracket's unperturbed run): the level to add after `runs` (in the order run, the o.n_levels
+/// chosen first), a step of half the chosen levels' span in ln IM (sqrt(last / first)) above
+/// the highest while fewer than 90 % of its completed members had a keyblock fall, else below the
+/// lowest while more than 10 % had; none once covered, after o.n_levels levels added, before
+/// the chosen levels have run, or when the levels were given.
+std::optional<double> level_beyond(const FragilityOptions& o,
+                                   const std::vector<DamageState>& states,
+                                   const std::vector<FragilityLevelRun>& runs);
+
 /// fragility.json: the question, the intensity measure, per level and damage state the count
 /// with its Wilson interval, per damage state the fit (theta in IM, beta, status and bracket)
 /// and its bootstrap bounds, the HAZUS bored-tunnel curves for context, and `answer`.

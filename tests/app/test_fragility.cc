@@ -205,6 +205,31 @@ TEST(Fragility, SeparatedDataLeaveBetaUnresolvedWithTheBracket)
             std::string::npos);
 }
 
+TEST(Fragility, ChosenLevelsExtendUntilTheFallsTenToNinetyPercentBandIsCovered)
+{
+  FragilityOptions o;
+  o.n_levels = 2; // chosen: 1 and 4, a step of sqrt(4 / 1) = 2 beyond
+  const std::vector<DamageState> states = damage_states(o);
+  const auto beyond = [&](const std::vector<double>& values, const std::vector<std::size_t>& fell)
+  { return level_beyond(o, states, synthetic_levels(values, fell, 8)); };
+  // Half of the highest level's runs dropped a keyblock: a step above it.
+  EXPECT_EQ(beyond({1.0, 4.0}, {0, 4}), std::optional<double>(8.0));
+  EXPECT_EQ(beyond({1.0, 4.0}, {0, 7}), std::optional<double>(8.0)); // 7 / 8 < 0.9
+  EXPECT_EQ(beyond({1.0, 4.0}, {0, 8}), std::nullopt);               // 0 and 1: covered
+  // The top covered, the lowest level's 2 of 8 (> 0.1) is not: a step below it, also after a
+  // level was added above (the levels in the order run).
+  EXPECT_EQ(beyond({1.0, 4.0}, {2, 8}), std::optional<double>(0.5));
+  EXPECT_EQ(beyond({1.0, 4.0, 8.0}, {1, 4, 8}), std::optional<double>(0.5));
+  EXPECT_EQ(beyond({1.0, 4.0, 8.0}, {0, 4, 8}), std::nullopt);
+  // At most n_levels added; none before the chosen levels ran, none to levels given.
+  EXPECT_EQ(beyond({1.0, 4.0, 8.0, 16.0}, {0, 1, 2, 3}), std::nullopt);
+  o.n_levels = 3;
+  EXPECT_EQ(beyond({1.0, 4.0}, {0, 4}), std::nullopt);
+  o.n_levels = 2;
+  o.levels = {1.0, 4.0};
+  EXPECT_EQ(beyond({1.0, 4.0}, {0, 4}), std::nullopt);
+}
+
 TEST(Fragility, IntensityMeasureOfTheTunnelsSinePulse)
 {
   const double g = 9.80665;
