@@ -76,6 +76,7 @@ void DistributedTiedFarField::add_to_summary(nlohmann::json& summary) const
                             {"solve", t.solve},
                             {"update", t.update}}},
                           {"energy_J", far_field_energy_summary(fe)}};
+  add_arrival_summary(summary);
   summary["interface"] = interface_summary(ties, fe);
   summary["mpi"] = {{"ranks", dealii::Utilities::MPI::n_mpi_processes(comm)},
                     {"rank", rank},

@@ -11,8 +11,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -57,6 +59,33 @@ std::vector<HistoryChannel> far_field_channels(const fem::FarFieldDescription& d
 /// (app/far_field_outputs.cc).
 std::string check_far_field(const Scene& scene);
 
+/// The wave arriving at the near field's base beside the input's (issue 53), where the far field
+/// has a free_field side: the velocity of its free-field column (no opening, no blocks) at the
+/// blocks' lowest initial height, a history channel, and its peak against the peak of the
+/// incident wave's v_in at the far field's base over the rows. The column's motion there is the
+/// upgoing wave, damped on its way, plus what the ground surface sends back down (apart in time
+/// where the wave is shorter than twice the depth).
+class BaseArrival
+{
+public:
+  BaseArrival(const Scene& scene, const dda::System& system);
+  bool recorded() const { return has_column; }
+  double height() const { return base; } ///< the near field's base [m]
+  void add_channel(std::vector<HistoryChannel>& channels) const;
+  /// A row's values: the column's velocity `v` at height() [m/s] at time `t` [s].
+  void append(std::vector<double>& row, const std::array<double, 2>& v, double t);
+  /// summary.json's far_field.free_field_at_base, with the far field's wave speeds [m/s].
+  nlohmann::json summary(double p_wave_speed, double s_wave_speed) const;
+  void save(CheckpointOut& archive) const; ///< the peaks
+  void load(CheckpointIn& archive);
+
+private:
+  const Scene& scene;
+  double base = std::numeric_limits<double>::infinity();
+  bool has_column = false;
+  double peak_at_base = 0.0, peak_input = 0.0; ///< [m/s]
+};
+
 /// Appends the displacement, velocity and stress of the far field's first `n_monitors` monitors
 /// to a history row (the channels of run_support::add_monitor_channels); Model is
 /// fem::ElasticWaveModel or fem::DistributedWaveModel (collective).
@@ -82,7 +111,7 @@ public:
   template <class... ModelArguments>
   TiedFarFieldOf(const Scene& scene_, dda::System& system_, ModelArguments&&... arguments)
       : scene(scene_), system(system_), far_field(std::forward<ModelArguments>(arguments)...),
-        ties(system, far_field, *scene.interface)
+        ties(system, far_field, *scene.interface), arrival(scene_, system_)
   {
   }
 
@@ -93,11 +122,14 @@ public:
   void add_channels(std::vector<HistoryChannel>& channels) const override
   {
     add_tied_channels(channels, *scene.far_field);
+    arrival.add_channel(channels);
   }
   void append_row(std::vector<double>& row) override
   {
     append_far_field_monitors(row, far_field, scene.far_field->monitors.size());
     append_tied_energies(row, far_field.energy(), ties);
+    if (arrival.recorded())
+      arrival.append(row, far_field.free_field_velocity(arrival.height()), far_field.time());
   }
   std::vector<dda::ContactSnapshot> tie_snapshot() const override
   {
@@ -105,6 +137,13 @@ public:
   }
 
 protected:
+  /// summary.json's far_field.free_field_at_base, where recorded.
+  void add_arrival_summary(nlohmann::json& summary) const
+  {
+    if (arrival.recorded())
+      summary["far_field"]["free_field_at_base"] =
+          arrival.summary(far_field.p_wave_speed(), far_field.s_wave_speed());
+  }
   /// summary.json's "model": the far field's mesh and the ties.
   void add_model_summary(nlohmann::json& summary) const
   {
@@ -120,6 +159,7 @@ protected:
   dda::System& system;
   Model far_field;
   coupling::FarFieldTies ties; ///< after far_field: it holds a reference to it
+  BaseArrival arrival;
 };
 
 /// The far field's timings for summary.json [s]: setup, assemble, solve, update.

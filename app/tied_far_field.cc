@@ -33,32 +33,8 @@ class TiedFarFieldModel : public TiedFarFieldOf<fem::ElasticWaveModel>
 {
 public:
   TiedFarFieldModel(const Scene& scene_, dda::System& system_)
-      : TiedFarFieldOf(scene_, system_, *scene_.far_field), base(blocks_base(system_))
+      : TiedFarFieldOf(scene_, system_, *scene_.far_field)
   {
-    const auto& sides = scene_.far_field->boundaries;
-    has_column = std::any_of(sides.begin(), sides.end(),
-                             [](const fem::BoundaryCondition& b)
-                             { return b.kind == fem::BoundaryKind::free_field; });
-  }
-
-  void add_channels(std::vector<HistoryChannel>& channels) const override
-  {
-    TiedFarFieldOf::add_channels(channels);
-    if (has_column)
-      channels.push_back({"free_field/base_velocity", 2, "m/s",
-                          "(vx, vy) of the free-field column at the height of the blocks' "
-                          "lowest point (the near field's base): the wave that arrives there"});
-  }
-  void append_row(std::vector<double>& row) override
-  {
-    TiedFarFieldOf::append_row(row);
-    if (!has_column)
-      return;
-    const std::array<double, 2> v = far_field.free_field_velocity(base);
-    row.insert(row.end(), v.begin(), v.end());
-    peak_at_base = std::max(peak_at_base, std::hypot(v[0], v[1]));
-    peak_input =
-        std::max(peak_input, std::abs(scene.far_field->incident.velocity.value(far_field.time())));
   }
 
   std::string write_snapshot(const std::filesystem::path& dir,
@@ -76,37 +52,16 @@ public:
   {
     far_field.save(archive);
     ties.save(archive);
-    double peaks[2] = {peak_at_base, peak_input};
-    transfer_all(archive, peaks);
+    arrival.save(archive);
   }
   void load(CheckpointIn& archive) override
   {
     far_field.load(archive);
     ties.load(archive);
-    double peaks[2] = {0.0, 0.0};
-    transfer_all(archive, peaks);
-    peak_at_base = peaks[0];
-    peak_input = peaks[1];
+    arrival.load(archive);
   }
 
 private:
-  /// The lowest initial vertex of the blocks [m]: the near field's base.
-  static double blocks_base(const dda::System& system)
-  {
-    double y = std::numeric_limits<double>::infinity();
-    for (const dda::Block& b : system.get_blocks())
-      for (const dda::Point& p : b.initial_vertices)
-        y = std::min(y, p.y());
-    return y;
-  }
-  nlohmann::json free_field_at_base() const;
-
-  const double base;       ///< the near field's base [m]
-  bool has_column = false; ///< a free_field side: the far field solves a free-field column
-  /// Over the rows so far: peak |v| of the free-field column at `base` and of the incident
-  /// wave's input v_in [m/s].
-  double peak_at_base = 0.0, peak_input = 0.0;
-
   std::optional<coupling::InterfaceImpedance> impedance() const
   {
     return coupling::interface_impedance(scene.model, system, ties,
@@ -229,26 +184,8 @@ void TiedFarFieldModel::add_to_summary(nlohmann::json& summary) const
                           {"factorizations", ft.n_factorizations},
                           {"timings_s", far_field_timings(ft)},
                           {"energy_J", far_field_energy_summary(fe)}};
-  if (has_column)
-    summary["far_field"]["free_field_at_base"] = free_field_at_base();
+  add_arrival_summary(summary);
   summary["interface"] = interface_summary(ties, fe);
-}
-
-/// The wave arriving at the near field's base beside the input's (issue 53): the peak velocity
-/// of the free-field column (no opening, no blocks) at the blocks' lowest height, against the
-/// peak of the incident wave's v_in at the base of the far field, both over the recorded rows.
-/// The column's motion there is the upgoing wave, damped on its way, plus what the ground
-/// surface sends back down (apart in time where the wave is shorter than twice the depth).
-nlohmann::json TiedFarFieldModel::free_field_at_base() const
-{
-  return {
-      {"height_m", base},
-      {"travel_m", base - scene.far_field->lower[1]},
-      {"wave_speed_m_s", scene.far_field->incident.type == WaveType::p ? far_field.p_wave_speed()
-                                                                       : far_field.s_wave_speed()},
-      {"pgv_m_s", peak_at_base},
-      {"input_pgv_m_s", peak_input},
-      {"ratio", peak_input > 0.0 ? nlohmann::json(peak_at_base / peak_input) : nlohmann::json()}};
 }
 
 /// The far field (mesh, solver, material, resolution).
@@ -307,6 +244,58 @@ void TiedFarFieldModel::describe_interface(std::ostream& out) const
 std::unique_ptr<TiedFarField> make_tied_far_field(const Scene& scene, dda::System& system)
 {
   return std::make_unique<TiedFarFieldModel>(scene, system);
+}
+
+BaseArrival::BaseArrival(const Scene& scene_, const dda::System& system) : scene(scene_)
+{
+  for (const dda::Block& b : system.get_blocks())
+    for (const dda::Point& p : b.initial_vertices)
+      base = std::min(base, p.y());
+  const auto& sides = scene.far_field->boundaries;
+  has_column = std::any_of(sides.begin(), sides.end(),
+                           [](const fem::BoundaryCondition& b)
+                           { return b.kind == fem::BoundaryKind::free_field; });
+}
+
+void BaseArrival::add_channel(std::vector<HistoryChannel>& channels) const
+{
+  if (has_column)
+    channels.push_back({"free_field/base_velocity", 2, "m/s",
+                        "(vx, vy) of the free-field column at the height of the blocks' lowest "
+                        "point (the near field's base): the wave that arrives there"});
+}
+
+void BaseArrival::append(std::vector<double>& row, const std::array<double, 2>& v, double t)
+{
+  row.insert(row.end(), v.begin(), v.end());
+  peak_at_base = std::max(peak_at_base, std::hypot(v[0], v[1]));
+  peak_input = std::max(peak_input, std::abs(scene.far_field->incident.velocity.value(t)));
+}
+
+nlohmann::json BaseArrival::summary(const double p_wave_speed, const double s_wave_speed) const
+{
+  const bool p = scene.far_field->incident.type == WaveType::p;
+  return {
+      {"height_m", base},
+      {"travel_m", base - scene.far_field->lower[1]},
+      {"wave_speed_m_s", p ? p_wave_speed : s_wave_speed},
+      {"pgv_m_s", peak_at_base},
+      {"input_pgv_m_s", peak_input},
+      {"ratio", peak_input > 0.0 ? nlohmann::json(peak_at_base / peak_input) : nlohmann::json()}};
+}
+
+void BaseArrival::save(CheckpointOut& archive) const
+{
+  double peaks[2] = {peak_at_base, peak_input};
+  transfer_all(archive, peaks);
+}
+
+void BaseArrival::load(CheckpointIn& archive)
+{
+  double peaks[2] = {0.0, 0.0};
+  transfer_all(archive, peaks);
+  peak_at_base = peaks[0];
+  peak_input = peaks[1];
 }
 
 } // namespace ddafem

@@ -101,4 +101,12 @@ void DistributedWaveModel::Impl::add_free_field_load(TrilinosWrappers::MPI::Vect
   f += free_field_load;
 }
 
+std::array<double, 2> DistributedWaveModel::free_field_velocity(const double y) const
+{
+  AssertThrow(impl->column, ExcMessage("free_field_velocity: the model has no free_field side"));
+  const FarFieldDescription& d = impl->description;
+  return impl->column->velocity_at(d.lower[0] + 0.5 * impl->h,
+                                   std::clamp(y, d.lower[1], d.upper[1]));
+}
+
 } // namespace ddafem::fem

@@ -298,6 +298,16 @@ double DistributedWaveModel::time() const
   return impl->t;
 }
 
+double DistributedWaveModel::p_wave_speed() const
+{
+  return impl->vp;
+}
+
+double DistributedWaveModel::s_wave_speed() const
+{
+  return impl->vs;
+}
+
 std::size_t DistributedWaveModel::n_dofs() const
 {
   return impl->dof_handler.n_dofs();

@@ -93,8 +93,13 @@ public:
   /// Takes rank 0's point loads, and fails on every rank if the ranks' loads differ (the blocks
   /// replicated on the ranks would have parted).
   StepStatus finish_step(const std::vector<double>& point_loads) override;
-  double work_of_springs() const override;   ///< not collective
-  double time() const;                       ///< not collective
+  double work_of_springs() const override; ///< not collective
+  double time() const;                     ///< not collective
+  double p_wave_speed() const;             ///< [m/s] of the plane mode; not collective
+  double s_wave_speed() const;             ///< [m/s]; not collective
+  /// Velocity [m/s] of the free-field column at height y (a model with a free_field side; every
+  /// rank has the column): not collective.
+  std::array<double, 2> free_field_velocity(double y) const;
   std::size_t n_dofs() const;                ///< of the whole model; not collective
   std::size_t n_locally_owned_dofs() const;  ///< of this rank; not collective
   std::size_t n_cells() const;               ///< active cells of the whole model; not collective

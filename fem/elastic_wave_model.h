@@ -94,6 +94,8 @@ public:
   MonitorSample sample_monitor(std::size_t monitor) const;
   /// Velocity [m/s] of the free-field column at height y (a model with a free_field part).
   std::array<double, 2> free_field_velocity(double y) const;
+  /// Velocity [m/s] at the point (x, y) of the mesh.
+  std::array<double, 2> velocity_at(double x, double y) const;
   /// L2 norm over the far field of (displacement - exact) [m^2 per unit thickness, square
   /// rooted: m^2], the displacement relative to any static stage; Gauss quadrature of degree + 2
   /// points per direction.

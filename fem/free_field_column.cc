@@ -146,10 +146,14 @@ void ElasticWaveModel::Impl::add_free_field_load(Vector<double>& f) const
 std::array<double, 2> ElasticWaveModel::free_field_velocity(const double y) const
 {
   AssertThrow(impl->column, ExcMessage("free_field_velocity: the model has no free_field part"));
-  const auto probe = impl->column->impl->make_probe(
+  return impl->column->velocity_at(
       impl->description.lower[0] + 0.5 * impl->h,
       std::clamp(y, impl->description.lower[1], impl->description.upper[1]));
-  return impl->column_sample(*probe).velocity;
+}
+
+std::array<double, 2> ElasticWaveModel::velocity_at(const double x, const double y) const
+{
+  return impl->probe_sample(*impl->make_probe(x, y)).velocity;
 }
 
 } // namespace ddafem::fem
