@@ -106,6 +106,18 @@ std::string state_sentence(const nlohmann::json& s, const nlohmann::json& im,
       t << ", extrapolated beyond the highest level run (" << im_text(highest_im, im)
         << "): more levels above it would pin it down";
   }
+  else if (status == "separated" && f["lowest_all"].is_null()) // none, then one level partly
+    t << "no run had " << s["name"].get<std::string>() << " up to " << name << " "
+      << im_text(f["highest_none"], im)
+      << " and some runs above it: the runs separate, so beta is unresolved (smaller than the "
+         "levels resolve) and the median lies above "
+      << im_text(f["highest_none"], im) << " (more levels above would bound it)";
+  else if (status == "separated" && f["highest_none"].is_null()) // one level partly, then all
+    t << s["name"].get<std::string>() << " in every run from " << name << " "
+      << im_text(f["lowest_all"], im)
+      << " and in some runs below it: the runs separate, so beta is unresolved (smaller than "
+         "the levels resolve) and the median lies below "
+      << im_text(f["lowest_all"], im) << " (more levels below would bound it)";
   else if (status == "separated")
     t << s["name"].get<std::string>() << " between " << name << " "
       << im_text(f["highest_none"], im) << " (never) and " << im_text(f["lowest_all"], im)

@@ -205,6 +205,31 @@ TEST(Fragility, SeparatedDataLeaveBetaUnresolvedWithTheBracket)
             std::string::npos);
 }
 
+TEST(Fragility, SeparationWithOnePartialLevelAtAnEndGivesTheBoundItHas)
+{
+  // None at the lower level, some at the upper and no level where all fell: separated without a
+  // level of all (it crashed the report on JSON null before).
+  FragilityOptions o;
+  o.ensemble.scene = roof_wedge;
+  o.key = "tunnel.wave.velocity.amplitude";
+  const IntensityMeasure im{"PGV (outcrop)", "m/s", 2.0, "", std::nullopt};
+  const nlohmann::json up =
+      fragility_json(o, im, damage_states(o), synthetic_levels({0.5, 1.0}, {0, 2}, 4), 1.0);
+  EXPECT_EQ(up["states"][1]["fit"]["status"], "separated");
+  EXPECT_NE(up["answer"].get<std::string>().find(
+                "No run had a keyblock fell up to PGV (outcrop) 1 m/s and some runs above it"),
+            std::string::npos)
+      << up["answer"];
+  EXPECT_NE(fragility_markdown(up).find("| a keyblock fell | separated | in (1, -] |"),
+            std::string::npos);
+  const nlohmann::json down =
+      fragility_json(o, im, damage_states(o), synthetic_levels({0.5, 1.0}, {2, 4}, 4), 1.0);
+  EXPECT_NE(down["answer"].get<std::string>().find(
+                "A keyblock fell in every run from PGV (outcrop) 2 m/s and in some runs below it"),
+            std::string::npos)
+      << down["answer"];
+}
+
 TEST(Fragility, ChosenLevelsExtendUntilTheFallsTenToNinetyPercentBandIsCovered)
 {
   FragilityOptions o;
