@@ -11,8 +11,8 @@ Runs, each resumed where an earlier call stopped (the runs stay in --work):
    (spacing +-10 % uniform on both sets, the traces of the non-persistent set shifted by up to
    1/4 of their period), reported by 10 deg sector of the perimeter;
 3. `fragility`: `ddafem fragility --key tunnel.wave.velocity.amplitude`, the levels chosen (a
-   bracketing sweep, then 6 levels across the estimated 10-90 % band) x 16 members, the members
-   drawn as in 1;
+   bracketing sweep, then 6 levels across the estimated 10-90 % band, and levels added beyond
+   them until that band of falls is covered) x 16 members, the members drawn as in 1;
 4. `mpirun`: 1's first 4 members by `mpirun -np 2 ddafem ensemble` and by `-j 2`: the same
    member values, verdicts and histories.h5 bit for bit.
 
@@ -257,10 +257,12 @@ def main():
         "joint_sets", [ddafem, "ensemble", SCENE, "-n", "32", "-o", dirs["joint_sets"]] +
         JOINT_SETS + jobs, os.path.join(work, "joint_sets.log"))
     if not args.no_fragility:
-        walls["fragility (sweep + 6 x 16)"] = run(
-            "fragility", [ddafem, "fragility", SCENE, "--key", "tunnel.wave.velocity.amplitude",
-                          "-o", dirs["fragility"]] + FRICTION + jobs,
-            os.path.join(work, "fragility.log"))
+        wall = run("fragility", [ddafem, "fragility", SCENE, "--key",
+                                 "tunnel.wave.velocity.amplitude", "-o", dirs["fragility"]] +
+                   FRICTION + jobs, os.path.join(work, "fragility.log"))
+        with open(os.path.join(dirs["fragility"], "fragility.json")) as f:
+            n_levels = len(json.load(f)["levels"])
+        walls["fragility (sweep + %d x 16)" % n_levels] = wall
     mpirun = compare_mpirun(ddafem, work)
     walls["mpirun check (2 x %d)" % MPI_MEMBERS] = mpirun["wall_s"]
     python = sys.executable
