@@ -356,8 +356,10 @@ void write_report(const EnsembleOptions& o, const EnsemblePlan& plan,
 }
 
 /// The members that finished (completed or failed) in an earlier run of this ensemble into the
-/// same directory, from its ensemble.json and their summary.json; none if there is none. Throws
-/// InputError if that was another ensemble (another scene, -n, --vary, --seed, --set,
+/// same directory, from its ensemble.json and their summary.json; none if there is none. A
+/// larger -n extends the ensemble: member k draws the same values whatever -n is (its seed
+/// mixes --seed and k alone), so the earlier members stand and only the new ones run. Throws
+/// InputError if that was another ensemble (another scene, a smaller -n, --vary, --seed, --set,
 /// --roundoff or --snapshots).
 std::vector<MemberOutcome> earlier_outcomes(const EnsembleOptions& o, const EnsemblePlan& plan)
 {
@@ -368,8 +370,13 @@ std::vector<MemberOutcome> earlier_outcomes(const EnsembleOptions& o, const Ense
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
   if (j.is_discarded() || !j.is_object())
     throw InputError(file.string() + ": not an ensemble's report: expected an empty or new -o DIR");
+  const std::size_t earlier_members = j.value("members_requested", std::size_t(0));
+  if (o.members < earlier_members)
+    throw InputError(file.string() + ": the ensemble in this directory has members_requested = " +
+                     std::to_string(earlier_members) + ", not " + std::to_string(o.members) +
+                     ": expected -n " + std::to_string(earlier_members) +
+                     " or more to continue or extend it, or another -o DIR");
   const nlohmann::json now = {{"scene_path", scene_path(o.scene)},
-                              {"members_requested", o.members},
                               {"vary", o.vary},
                               {"seed", o.seed},
                               {"settings", o.settings},

@@ -5,8 +5,8 @@ truncnormal(35, 3, 25, 45) and the wave's amplitude perturbed by k 1e-12. Checks
 directories, that each member.json holds the values drawn for it and
 that ensemble.json's values, verdicts and probabilities are those of the members' own
 summary.json, recounted here; that the scene's seed warning is printed once; that `ddafem
-resume` of an interrupted ensemble runs only the member missing and gives the same report, and
-another -n into the same directory exits 2; that bad --vary texts exit 2 naming them, before
+resume` of an interrupted ensemble runs only the member missing and gives the same report, a
+larger -n into the same directory runs only the members added, a smaller one exits 2; that bad --vary texts exit 2 naming them, before
 any member runs; that members failing numerically give exit 1, listed and not counted, and
 one stopped at its budget exit 3.
 
@@ -68,8 +68,8 @@ def main():
     shutil.rmtree(out, ignore_errors=True)
     friction = "joint_materials.clean.friction_angle"
 
-    def ensemble(*extra):
-        return [ddafem, "ensemble", scene, "-n", "4", "-j", "2", "-o", out,
+    def ensemble(*extra, n=4):
+        return [ddafem, "ensemble", scene, "-n", str(n), "-j", "2", "-o", out,
                 "--set", "tunnel.settle.enabled=false", *extra]
 
     r = subprocess.run(ensemble("--vary", friction + "=truncnormal(35,3,25,45)", "--roundoff"),
@@ -100,11 +100,20 @@ def main():
     resumed = json.load(open(ensemble_json))
     assert resumed["keyblocks"] == result["keyblocks"], "the resumed ensemble differs"
     assert [m["values"] for m in resumed["members"]] == [m["values"] for m in result["members"]]
-    r = subprocess.run([ddafem, "ensemble", scene, "-n", "5", "-o", out, "--set",
-                        "tunnel.settle.enabled=false", "--vary",
-                        friction + "=truncnormal(35,3,25,45)", "--roundoff"],
+    # A larger -n extends it: only member 4 runs, the first four stand with their values; a
+    # smaller -n is refused.
+    r = subprocess.run(ensemble("--vary", friction + "=truncnormal(35,3,25,45)", "--roundoff", n=5),
                        capture_output=True, text=True)
-    assert r.returncode == 2 and "members_requested = 4, not 5" in r.stderr, r.stderr
+    assert r.returncode in (0, 1), (r.returncode, r.stderr)
+    assert "4 of 5 members finished earlier" in r.stderr, r.stderr
+    assert r.stderr.count("ensemble: member_") == 1 and "member_004" in r.stderr, r.stderr
+    extended = json.load(open(ensemble_json))
+    assert extended["members_requested"] == 5 and extended["n_finished"] == 5, extended
+    assert [m["values"] for m in extended["members"][:4]] == [m["values"] for m in result["members"]]
+    check_probabilities(extended, check_members(out, extended))
+    r = subprocess.run(ensemble("--vary", friction + "=truncnormal(35,3,25,45)", "--roundoff", n=3),
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "members_requested = 5, not 3" in r.stderr, r.stderr
 
     # Bad --vary texts: exit 2 naming the text and what was expected; nothing run.
     shutil.rmtree(out)
