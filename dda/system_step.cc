@@ -183,14 +183,20 @@ void System::check_motion_limits(StepStatus& status, const StepLabel& when)
     status.message = m.str();
     return;
   }
+  const Contact* deepest = nullptr;
   for (const Contact& c : trial_contacts)
-    if (c.trial.state != ContactState::open)
-      status.max_penetration = std::max(status.max_penetration, -c.end_gap);
+    if (c.trial.state != ContactState::open && -c.end_gap > status.max_penetration)
+    {
+      status.max_penetration = -c.end_gap;
+      deepest = &c;
+    }
   if (status.max_penetration > penetration_limit)
   {
     std::ostringstream m;
-    m << "a contact penetrates " << status.max_penetration << " m, deeper than the "
-      << penetration_limit << " m allowed " << when.text()
+    m << "a contact (vertex " << deepest->vertex << " of block " << deepest->vertex_block
+      << " on edge " << deepest->edge << " of block " << deepest->edge_block << ", gap "
+      << deepest->gap << " m at the step's start) penetrates " << status.max_penetration
+      << " m, deeper than the " << penetration_limit << " m allowed " << when.text()
       << " (a stiffer joint normal_stiffness or a smaller dt reduces it)";
     status.penalty_raised = raise_penalties();
     status.outcome = StepOutcome::penetration_too_large;

@@ -146,6 +146,23 @@ TEST(NarrowPhase, VertexBesideAnAcuteEndIsNoPenetrationOfThatEdge)
                          {{0, 0, 2, 0.9938, 0.001 / std::sqrt(5.0), ContactKind::vertex_edge}});
 }
 
+TEST(NarrowPhase, CornersOverlappingAlongAJointPairOnlyWithTheJointsEdges)
+{
+  // b = [0, 1] x [-1, 0], its corner w = (0, 0) between top edge 2, (1, 0) -> (0, 0) (normal
+  // +y), and left edge 3, (0, 0) -> (0, -1) (normal -x). a = [-0.994, 0.006] x [-0.0005, 0.9995]
+  // on top of it, their corners overlapping along the joint y = 0 by 6 mm: a's corner p =
+  // (0.006, -0.0005) is 0.5 mm behind edge 2, 6 mm behind edge 3's line and 6.02 mm from w
+  // (beyond d0 = 6.01 mm, so no vertex-vertex pair). It entered through edge 2: ratio 0.994,
+  // distance -0.5 mm, a leg along it (edge_edge). On edge 3 it would be 6 mm deep (a tunnel's
+  // pair of blocks, cornered so at 4.95 m/s, failed with such a contact at dt_min). Likewise w
+  // on a's bottom edge 0 only, not on a's right edge 1.
+  const std::vector<Point> a = rectangle(-0.994, -0.0005, 1, 1);
+  const std::vector<Point> b = rectangle(0, -1, 1, 1);
+  expect_pairs_both_ways(a, b, 0.00601, 0.01,
+                         {{0, 1, 2, 0.994, -0.0005, ContactKind::edge_edge},
+                          {1, 3, 0, 0.994, -0.0005, ContactKind::edge_edge}});
+}
+
 TEST(NarrowPhase, AlignedStackedSquaresGiveOnePairPerCorner)
 {
   // a = [0, 1]^2, b = [0, 1] x [1.004, 2.004]: corners a2 = (1, 1) ~ b1 and a3 = (0, 1) ~ b0,
