@@ -163,16 +163,23 @@ const DamageState& fall_state(const std::vector<DamageState>& states)
 /// The share of a level's completed members reaching `state` (0 when none completed).
 double share_reached(const DamageState& state, const FragilityLevelRun& level)
 {
-  std::size_t n = 0, k = 0;
+  const statistics::FragilityLevel c = level_count(state, level, level.value);
+  return c.n > 0 ? static_cast<double>(c.exceeded) / static_cast<double>(c.n) : 0.0;
+}
+} // namespace
+
+statistics::FragilityLevel level_count(const DamageState& state, const FragilityLevelRun& level,
+                                       const double im)
+{
+  statistics::FragilityLevel c{im, 0, 0};
   for (const MemberOutcome& m : level.outcomes)
     if (m.counted())
     {
-      ++n;
-      k += reached(state, m) ? 1 : 0;
+      ++c.n;
+      c.exceeded += reached(state, m) ? 1 : 0;
     }
-  return n > 0 ? static_cast<double>(k) / static_cast<double>(n) : 0.0;
+  return c;
 }
-} // namespace
 
 std::optional<double> level_beyond(const FragilityOptions& o,
                                    const std::vector<DamageState>& states,

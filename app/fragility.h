@@ -8,6 +8,7 @@
 #pragma once
 
 #include "app/ensemble.h"
+#include "common/statistics.h"
 
 #include <nlohmann/json.hpp>
 
@@ -114,6 +115,11 @@ struct FragilityLevelRun
   std::string directory;
   std::vector<MemberOutcome> outcomes;
 };
+
+/// The members of `level` counted (completed) and those of them reaching `state`, at intensity
+/// `im` (the level's value in the intensity measure).
+statistics::FragilityLevel level_count(const DamageState& state, const FragilityLevelRun& level,
+                                       double im);
 
 /// Chosen levels are spread over the band that single runs bracketed, and the curve's 10-90 %
 /// band of a keyblock falling can lie beyond it (a perturbed model may fall less often than the

@@ -35,17 +35,8 @@ std::vector<statistics::FragilityLevel> counts(const IntensityMeasure& im, const
 {
   std::vector<statistics::FragilityLevel> c;
   for (const FragilityLevelRun& l : levels)
-  {
-    statistics::FragilityLevel f{im.factor * l.value, 0, 0};
-    for (const MemberOutcome& m : l.outcomes)
-      if (m.counted())
-      {
-        ++f.n;
-        f.exceeded += reached(state, m) ? 1 : 0;
-      }
-    if (f.n > 0)
+    if (const statistics::FragilityLevel f = level_count(state, l, im.factor * l.value); f.n > 0)
       c.push_back(f);
-  }
   return c;
 }
 
@@ -174,12 +165,7 @@ nlohmann::json levels_json(const IntensityMeasure& im, const std::vector<DamageS
     }
     nlohmann::json reached_json = nlohmann::json::array();
     for (const DamageState& s : states)
-    {
-      std::size_t k = 0;
-      for (const MemberOutcome& m : l.outcomes)
-        k += m.counted() && reached(s, m) ? 1 : 0;
-      reached_json.push_back(proportion_json(k, n));
-    }
+      reached_json.push_back(proportion_json(level_count(s, l, l.value).exceeded, n));
     list.push_back({{"value", l.value},
                     {"im", im.factor * l.value},
                     {"directory", l.directory},

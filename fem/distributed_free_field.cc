@@ -46,9 +46,10 @@ void DistributedWaveModel::Impl::make_free_field_column()
       {
         values.reinit(cell, f);
         for (const unsigned int q : values.quadrature_point_indices())
-          column_probes.push_back(
-              column->add_probe(d.lower[0] + 0.5 * h,
-                                std::clamp(values.quadrature_point(q)[1], d.lower[1], d.upper[1])));
+        {
+          const auto [x, y] = free_field_column_point(d, h, values.quadrature_point(q)[1]);
+          column_probes.push_back(column->add_probe(x, y));
+        }
       }
   free_field_load.reinit(owned, comm);
 }
@@ -104,9 +105,8 @@ void DistributedWaveModel::Impl::add_free_field_load(TrilinosWrappers::MPI::Vect
 std::array<double, 2> DistributedWaveModel::free_field_velocity(const double y) const
 {
   AssertThrow(impl->column, ExcMessage("free_field_velocity: the model has no free_field side"));
-  const FarFieldDescription& d = impl->description;
-  return impl->column->velocity_at(d.lower[0] + 0.5 * impl->h,
-                                   std::clamp(y, d.lower[1], d.upper[1]));
+  const auto [x, y_column] = free_field_column_point(impl->description, impl->h, y);
+  return impl->column->velocity_at(x, y_column);
 }
 
 } // namespace ddafem::fem

@@ -35,6 +35,12 @@ unsigned int element_intervals(const double length, const double size)
   return static_cast<unsigned int>(std::max(1.0, std::ceil(length / size - 1e-9)));
 }
 
+std::array<double, 2> free_field_column_point(const FarFieldDescription& d, const double h,
+                                              const double y)
+{
+  return {{d.lower[0] + 0.5 * h, std::clamp(y, d.lower[1], d.upper[1])}};
+}
+
 FarFieldDescription free_field_column_description(const FarFieldDescription& d, const double h)
 {
   FarFieldDescription c;

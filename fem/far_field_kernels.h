@@ -31,6 +31,11 @@ unsigned int element_intervals(double length, double size);
 /// wide, the far field's material, base and top, rollers on its sides.
 FarFieldDescription free_field_column_description(const FarFieldDescription& description, double h);
 
+/// Where the column of free_field_column_description(description, h) is read for height y [m]:
+/// its middle, x = lower x + h / 2, at y within the model's base and top.
+std::array<double, 2> free_field_column_point(const FarFieldDescription& description, double h,
+                                              double y);
+
 /// The constraints of the supports: `fixed` parts both components zero, `roller` parts the
 /// component the incident wave does not move (BoundaryKind::roller). `constraints` is not closed.
 void add_support_constraints(const dealii::DoFHandler<2>& dof_handler,

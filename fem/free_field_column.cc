@@ -36,7 +36,6 @@ void ElasticWaveModel::Impl::make_free_field_column()
                                   update_JxW_values);
   const unsigned int n = fe.n_dofs_per_cell();
   std::vector<types::global_dof_index> dofs(n);
-  const double x = d.lower[0] + 0.5 * h;
   for (const auto& cell : dof_handler.active_cell_iterators())
     for (const unsigned int f : cell->face_indices())
     {
@@ -46,7 +45,7 @@ void ElasticWaveModel::Impl::make_free_field_column()
       cell->get_dof_indices(dofs);
       for (const unsigned int q : face_values.quadrature_point_indices())
       {
-        const double y = std::clamp(face_values.quadrature_point(q)[1], d.lower[1], d.upper[1]);
+        const auto [x, y] = free_field_column_point(d, h, face_values.quadrature_point(q)[1]);
         column_probes.push_back(col.make_probe(x, y));
         FreeFieldPoint point;
         point.normal = face_values.normal_vector(q);
@@ -146,9 +145,8 @@ void ElasticWaveModel::Impl::add_free_field_load(Vector<double>& f) const
 std::array<double, 2> ElasticWaveModel::free_field_velocity(const double y) const
 {
   AssertThrow(impl->column, ExcMessage("free_field_velocity: the model has no free_field part"));
-  return impl->column->velocity_at(
-      impl->description.lower[0] + 0.5 * impl->h,
-      std::clamp(y, impl->description.lower[1], impl->description.upper[1]));
+  const auto [x, y_column] = free_field_column_point(impl->description, impl->h, y);
+  return impl->column->velocity_at(x, y_column);
 }
 
 std::array<double, 2> ElasticWaveModel::velocity_at(const double x, const double y) const
