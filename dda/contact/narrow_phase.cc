@@ -117,21 +117,22 @@ private:
     return legs[0].dot(n) >= -sin_tolerance && legs[1].dot(n) >= -sin_tolerance;
   }
 
-  /// Vertex p of polygon s behind edge e's line (the penetrating side) did not enter the other
-  /// polygon through e when, at a convex end of e, it lies
+  /// Vertex v of polygon s, behind edge e's line (the penetrating side), did not enter the
+  /// other polygon through e when, at a convex end of e, it lies
   /// - in front of the adjacent edge's line: outside the polygon, beside that end, so its
   ///   distance to e's line is no penetration. Near an acute end (a wedge of 28 deg) a vertex
   ///   just beyond d0 from it would otherwise be taken as millimetres deep in a block it does
   ///   not touch;
-  /// - or behind the adjacent edge's line by less than behind e's: inside the corner, it entered
-  ///   through the adjacent edge (that pair is the contact). Two blocks whose corners overlap
-  ///   along a joint by just beyond d0 (a vertex 0.23 mm behind the joint's edge and 5.9 mm
-  ///   along it from the corner) would otherwise pair the vertex with the corner's other edge,
-  ///   5.9 mm deep.
+  /// - or behind the adjacent edge's line by less than behind e's, and entering that edge (rule
+  ///   2): inside the corner, it entered through the adjacent edge (that pair is the contact).
+  ///   Two blocks whose corners overlap along a joint by just beyond d0 (a vertex 0.23 mm
+  ///   behind the joint's edge and 5.9 mm along it from the corner) would otherwise pair the
+  ///   vertex with the corner's other edge, 5.9 mm deep.
   /// `edge` is edge e of the other polygon (the caller has it).
-  bool not_entered_through(const Point& p, std::size_t s, std::size_t e,
+  bool not_entered_through(std::size_t s, std::size_t v, std::size_t e,
                            const PolygonEdge& edge) const
   {
+    const Point& p = polygons[s]->vertices[v];
     const double depth = -(p - edge.start).dot(edge.normal);
     if (depth <= 0.0)
       return false;
@@ -144,7 +145,8 @@ private:
       if (shape(1 - s, shared) != VertexShape::convex)
         continue;
       const PolygonEdge& side = other.edges[adjacent];
-      if (-(p - side.start).dot(side.normal) < depth)
+      const double side_depth = -(p - side.start).dot(side.normal);
+      if (side_depth < 0.0 || (side_depth < depth && enters(s, v, adjacent)))
         return true;
     }
     return false;
@@ -165,7 +167,7 @@ private:
       const PolygonEdge& edge = polygons[1 - s]->edges[e];
       const double along = std::clamp((p - edge.start).dot(edge.tangent), 0.0, edge.length);
       if ((p - (edge.start + along * edge.tangent)).norm() > d0 || !enters(s, v, e) ||
-          not_entered_through(p, s, e, edge))
+          not_entered_through(s, v, e, edge))
         continue;
       const bool parallel_leg = std::abs(legs[0].dot(edge.normal)) <= sin_tolerance ||
                                 std::abs(legs[1].dot(edge.normal)) <= sin_tolerance;
