@@ -181,6 +181,25 @@ statistics::FragilityLevel level_count(const DamageState& state, const Fragility
   return c;
 }
 
+nlohmann::json earlier_bracket(const SweepOptions& s)
+{
+  std::ifstream in(std::filesystem::path(s.directory) / "sweep.json");
+  if (!in)
+    return nullptr;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (!j.is_object() || j.value("conclusion", std::string()).empty() ||
+      j.value("scene", std::string()) != s.scene || j.value("key", std::string()) != s.key ||
+      j.value("settings", std::vector<std::string>()) != s.settings)
+    return nullptr;
+  const auto ran = [&](const std::optional<double>& v)
+  {
+    const nlohmann::json& cases = j.value("cases", nlohmann::json::array());
+    return !v || std::any_of(cases.begin(), cases.end(),
+                             [&](const nlohmann::json& c) { return c.value("value", 0.0) == *v; });
+  };
+  return ran(s.low) && ran(s.high) ? j : nlohmann::json();
+}
+
 std::optional<double> level_beyond(const FragilityOptions& o,
                                    const std::vector<DamageState>& states,
                                    const std::vector<FragilityLevelRun>& runs)
@@ -267,28 +286,6 @@ void check_options(const FragilityOptions& o)
   if (!o.levels.empty())
     first.settings.push_back(o.key + "=" + format_significant(o.levels[0], 17));
   plan_ensemble(first);
-}
-
-/// sweep.json of an earlier call's bracketing into the same directory, if it ran to a conclusion
-/// for the same scene, key and --set, and ran --low and --high when they are given (a fragility
-/// run again resumes: the same levels); else null.
-nlohmann::json earlier_bracket(const SweepOptions& s)
-{
-  std::ifstream in(std::filesystem::path(s.directory) / "sweep.json");
-  if (!in)
-    return nullptr;
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-  if (!j.is_object() || j.value("conclusion", std::string()).empty() ||
-      j.value("scene", std::string()) != s.scene || j.value("key", std::string()) != s.key ||
-      j.value("settings", std::vector<std::string>()) != s.settings)
-    return nullptr;
-  const auto ran = [&](const std::optional<double>& v)
-  {
-    const nlohmann::json& cases = j.value("cases", nlohmann::json::array());
-    return !v || std::any_of(cases.begin(), cases.end(),
-                             [&](const nlohmann::json& c) { return c.value("value", 0.0) == *v; });
-  };
-  return ran(s.low) && ran(s.high) ? j : nlohmann::json();
 }
 
 /// The levels: given, or spread across the band where a sweep's single runs change outcome.

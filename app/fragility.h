@@ -8,6 +8,7 @@
 #pragma once
 
 #include "app/ensemble.h"
+#include "app/sweep.h"
 #include "common/statistics.h"
 
 #include <nlohmann/json.hpp>
@@ -120,6 +121,11 @@ struct FragilityLevelRun
 /// `im` (the level's value in the intensity measure).
 statistics::FragilityLevel level_count(const DamageState& state, const FragilityLevelRun& level,
                                        double im);
+
+/// sweep.json of an earlier call's bracketing in `sweep.directory`, if it ran to a conclusion
+/// for the same scene, key and --set, and ran --low and --high when they are given (a fragility
+/// run again into the same directory resumes with the same levels); else null.
+nlohmann::json earlier_bracket(const SweepOptions& sweep);
 
 /// Chosen levels are spread over the band that single runs bracketed, and the curve's 10-90 %
 /// band of a keyblock falling can lie beyond it (a perturbed model may fall less often than the

@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 namespace
 {
@@ -253,6 +255,46 @@ TEST(Fragility, ChosenLevelsExtendUntilTheFallsTenToNinetyPercentBandIsCovered)
   o.n_levels = 2;
   o.levels = {1.0, 4.0};
   EXPECT_EQ(beyond({1.0, 4.0}, {0, 4}), std::nullopt);
+}
+
+TEST(Fragility, AnEarlierBracketIsReusedOnlyForTheSameQuestion)
+{
+  // A sweep.json as run_sweep writes it (the fields earlier_bracket reads): the roof-wedge
+  // tunnel's amplitude bracketed with one --set, cases at 0.1 and 0.4 m/s.
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "ddafem_test_fragility_bracket";
+  std::filesystem::create_directories(dir);
+  const nlohmann::json sweep = {
+      {"scene", roof_wedge},
+      {"key", "tunnel.wave.velocity.amplitude"},
+      {"settings", {"tunnel.settle.enabled=false"}},
+      {"conclusion", "critical value between 0.1 and 0.4"},
+      {"cases", {{{"value", 0.1}, {"exceeded", false}}, {{"value", 0.4}, {"exceeded", true}}}}};
+  std::ofstream(dir / "sweep.json") << sweep.dump();
+  SweepOptions s;
+  s.scene = roof_wedge;
+  s.key = "tunnel.wave.velocity.amplitude";
+  s.settings = {"tunnel.settle.enabled=false"};
+  s.directory = dir.string();
+  EXPECT_EQ(earlier_bracket(s), sweep);
+  s.low = 0.1;
+  s.high = 0.4;
+  EXPECT_EQ(earlier_bracket(s), sweep) << "--low and --high among its cases";
+  s.high = 0.5;
+  EXPECT_TRUE(earlier_bracket(s).is_null()) << "--high 0.5 was not run";
+  s.high.reset();
+  s.settings = {"tunnel.settle.enabled=true"};
+  EXPECT_TRUE(earlier_bracket(s).is_null()) << "another --set";
+  s.settings = {"tunnel.settle.enabled=false"};
+  s.key = "tunnel.wave.velocity.frequency";
+  EXPECT_TRUE(earlier_bracket(s).is_null()) << "another key";
+  s.key = "tunnel.wave.velocity.amplitude";
+  nlohmann::json unfinished = sweep;
+  unfinished.erase("conclusion");
+  std::ofstream(dir / "sweep.json") << unfinished.dump();
+  EXPECT_TRUE(earlier_bracket(s).is_null()) << "a sweep that did not conclude";
+  std::filesystem::remove_all(dir);
+  EXPECT_TRUE(earlier_bracket(s).is_null()) << "no sweep.json";
 }
 
 TEST(Fragility, IntensityMeasureOfTheTunnelsSinePulse)
