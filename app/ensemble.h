@@ -120,6 +120,9 @@ MemberOutcome member_outcome(std::size_t index, int exit_code, const nlohmann::j
 /// quantiles of sample_json), null if none has.
 nlohmann::json pgv_at_base_json(const std::vector<MemberOutcome>& outcomes);
 
+/// The members' wall times summed [s] (of every member finished, counted or not).
+double members_wall_s(const std::vector<MemberOutcome>& outcomes);
+
 /// A count `k` of `n` as a probability: {"count", "p" = k / n, "wilson_95": [low, high]}.
 nlohmann::json proportion_json(std::size_t k, std::size_t n);
 

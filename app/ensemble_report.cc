@@ -84,6 +84,14 @@ nlohmann::json sample_json(const std::vector<double>& sample)
 
 } // namespace
 
+double members_wall_s(const std::vector<MemberOutcome>& outcomes)
+{
+  double sum = 0.0;
+  for (const MemberOutcome& m : outcomes)
+    sum += m.wall_s;
+  return sum;
+}
+
 nlohmann::json pgv_at_base_json(const std::vector<MemberOutcome>& outcomes)
 {
   std::vector<double> pgv;
@@ -386,7 +394,8 @@ nlohmann::json ensemble_json(const EnsembleOptions& o, const EnsemblePlan& plan,
                       {"openings", openings_json(outcomes)},
                       {"pgv_at_base_m_s", pgv_at_base_json(outcomes)},
                       {"members", list},
-                      {"wall_s", wall_s}};
+                      {"wall_s", wall_s},
+                      {"members_wall_s", members_wall_s(outcomes)}};
   j["answer"] = answer_sentence(j);
   return j;
 }
@@ -471,7 +480,9 @@ std::string ensemble_markdown(const nlohmann::json& j)
      << "\n\n**" << j["answer"].get<std::string>() << "**\n\n"
      << "Scene `" << j["scene"].get<std::string>() << "`, " << j["n_finished"] << " of "
      << j["members_requested"] << " members run in "
-     << format_significant(j["wall_s"].get<double>(), 3) << " s, seed " << j["seed"] << ".";
+     << format_significant(j["wall_s"].get<double>(), 3)
+     << " s (this call; the members' wall times, of this call and any it resumed, sum to "
+     << format_significant(j.value("members_wall_s", 0.0), 3) << " s), seed " << j["seed"] << ".";
   for (const nlohmann::json& v : j["varied"])
     md << " `" << v["key"].get<std::string>() << "` drawn from "
        << v["distribution"].get<std::string>() << ".";

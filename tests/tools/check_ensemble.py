@@ -111,6 +111,10 @@ def main():
     assert extended["members_requested"] == 5 and extended["n_finished"] == 5, extended
     assert [m["values"] for m in extended["members"][:4]] == [m["values"] for m in result["members"]]
     check_probabilities(extended, check_members(out, extended))
+    # Its report's time: this call's, and the members' of both calls summed.
+    summed = sum(m["wall_s"] for m in extended["members"] if m["finished"])
+    assert abs(extended["members_wall_s"] - summed) < 1e-9 * summed, (extended["members_wall_s"], summed)
+    assert extended["members_wall_s"] > extended["wall_s"] > 0, extended
     r = subprocess.run(ensemble("--vary", friction + "=truncnormal(35,3,25,45)", "--roundoff", n=3),
                        capture_output=True, text=True)
     assert r.returncode == 2 and "members_requested = 5, not 3" in r.stderr, r.stderr
