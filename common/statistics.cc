@@ -65,9 +65,10 @@ Interval wilson_interval(const std::size_t k, const std::size_t n, const double 
   const double centre = p + z2 / (2.0 * nn);
   const double half = z * std::sqrt(p * (1.0 - p) / nn + z2 / (4.0 * nn * nn));
   const double denominator = 1.0 + z2 / nn;
-  // Clipped for round-off: at k = 0 the lower end is 0 exactly, at k = n the upper end 1.
-  return {std::max(0.0, (centre - half) / denominator),
-          std::min(1.0, (centre + half) / denominator)};
+  // At k = 0 the lower end is 0 and at k = n the upper end 1, exactly (in floating point
+  // (centre + half) / denominator gives 1 - 2e-16 at k = n = 48, below the p = 1 it bounds).
+  return {k == 0 ? 0.0 : std::max(0.0, (centre - half) / denominator),
+          k == n ? 1.0 : std::min(1.0, (centre + half) / denominator)};
 }
 
 double quantile(std::vector<double> sample, const double p)

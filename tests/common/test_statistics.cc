@@ -48,6 +48,13 @@ TEST(Statistics, WilsonIntervalAgainstHandValues)
   const Interval d = wilson_interval(3, 32);
   EXPECT_NEAR(d.low, 0.0324009626, 1e-10);
   EXPECT_NEAR(d.high, 0.2421849934, 1e-10);
+  // The ends exactly 0 and 1 at every n (the formula's rounding gave 1 - 2e-16 at k = n = 48,
+  // so that p = 1 lay outside its own interval).
+  for (std::size_t n = 1; n <= 200; ++n)
+  {
+    EXPECT_EQ(wilson_interval(0, n).low, 0.0) << n;
+    EXPECT_EQ(wilson_interval(n, n).high, 1.0) << n;
+  }
   const Interval none = wilson_interval(0, 0);
   EXPECT_EQ(none.low, 0.0);
   EXPECT_EQ(none.high, 1.0);
