@@ -33,8 +33,13 @@ System::ReversalScan System::scan_slip_reversals(double dt) const
   for (std::size_t k = 0; k < trial_contacts.size(); ++k)
   {
     const Contact& c = trial_contacts[k];
-    if (c.forces.state != ContactState::slide || c.trial.state == ContactState::open ||
-        std::abs(c.forces.shear_force) <= negligible)
+    // A contact that stuck at the step's start after a slide (a lock as short as the step
+    // that ended at the reversal) still holds the old friction in its spring: sliding the
+    // other way at the step's end, friction turns around within the step as from a slide.
+    const bool stuck_after_slide =
+        c.forces.state == ContactState::lock && slides_long_enough(c, dt);
+    if ((c.forces.state != ContactState::slide && !stuck_after_slide) ||
+        c.trial.state == ContactState::open || std::abs(c.forces.shear_force) <= negligible)
       continue;
     const ContactFrame& f = frames[k];
     const Block& v = blocks[c.vertex_block];

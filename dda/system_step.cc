@@ -224,9 +224,12 @@ std::string System::accept_step(double dt)
     const bool slides_on = c.forces.state == ContactState::slide &&
                            c.trial.state == ContactState::slide &&
                            std::signbit(c.forces.shear_force) == std::signbit(c.trial.shear_force);
-    c.slide_duration = c.trial.state != ContactState::slide ? 0.0
-                       : slides_on                          ? c.slide_duration + dt
-                                                            : dt;
+    // A lock keeps the duration of the slide it ended (scan_slip_reversals: friction that
+    // turns around after a short stick); an opening forgets it.
+    c.slide_duration = c.trial.state == ContactState::open   ? 0.0
+                       : c.trial.state == ContactState::lock ? c.slide_duration
+                       : slides_on                           ? c.slide_duration + dt
+                                                             : dt;
     c.forces = c.trial;
   }
   contacts.swap(trial_contacts);

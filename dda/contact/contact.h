@@ -35,7 +35,8 @@ struct Contact
   double end_gap = 0.0;
   double step_slip = 0.0;
   double total_slip = 0.0; ///< accumulated sliding since the contact formed [m], along t
-  /// How long the contact has slid the same way, up to the last accepted step [s]
+  /// How long the contact has slid the same way, up to the last accepted step; while it sticks,
+  /// how long the slide it ended lasted; 0 once it opens [s]
   double slide_duration = 0.0;
   /// Multiple of the joint material's springs this contact's penalty has been raised to after
   /// too deep a penetration [-]
