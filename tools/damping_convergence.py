@@ -39,6 +39,8 @@ import sys
 import time
 
 TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(TOP, "tools"))
+import verify_failure as VF  # noqa: E402
 FRICTION = ["--vary", "joint_materials.joint.friction_angle=truncnormal(35,2,25,45)"]
 # The incident amplitude uncertain by 0.1 % (sd): of the order of the scheme's relative phase
 # error over the 25 Hz pulse at dt, (dt / T)^2 = 6e-4; far above round-off, far below what is
@@ -206,7 +208,8 @@ def write_markdown(path, data):
              f"members' wall time, {data['jobs']} at a time; this call "
              f"{data['elapsed_s'] / 60:.0f} min, resuming the series where they stood). "
              "Each series: the incident amplitude 0.5 m/s x (1 + k 1e-12), k = 0 .. N - 1 (the "
-             "input series: drawn, below). Damping: the tunnel default (docs/damping.md).", "",
+             "input series: drawn, below). Damping: the tunnel default (docs/damping.md). "
+             f"Binary: `{data['version']}`.", "",
              "| series | runs | completed | median wall [s] |", "|---|---|---|---|"]
     for n in names:
         s = data["series"][n]
@@ -276,6 +279,7 @@ def main():
             "friction_convergence": convergence_rows(series, friction),
             "input_convergence": convergence_rows(series, uncertain_input),
             "envelope": envelope_rows(series["dt"], series["undamped"]),
+            "version": VF.binary_version(ddafem),
             "elapsed_s": time.monotonic() - start}
     with open(os.path.join(args.out, "damping_convergence.json"), "w") as f:
         json.dump(data, f, indent=1)
