@@ -66,8 +66,9 @@ System::ReversalScan System::scan_slip_reversals(double dt) const
         slip_error(r.speed_error, duration) > reversal_tolerance &&
         (scan.earliest == 0.0 || r.at < scan.earliest))
       scan.earliest = r.at;
-    // Friction turned around in this step (from slide to slide: a lock force changes with the
-    // displacement, continuously): generalized-alpha's velocity lag alpha_f Delta v.
+    // Friction turned around in this step, from a slide or from a stuck spring that still
+    // holds the old friction (a spring loaded through a long stick reaches the new side's
+    // limit continuously, with no jump): generalized-alpha's velocity lag alpha_f Delta v.
     const bool turns = c.trial.state == ContactState::slide &&
                        std::signbit(c.forces.shear_force) != std::signbit(c.trial.shear_force);
     if (turns && slides_long_enough(c, dt) &&

@@ -224,8 +224,8 @@ def write_markdown(path, data):
         "", "## Convergence in dt over a 0.1 % uncertainty of the input (damped)", "",
         "The same at each dt with the incident amplitude drawn from normal(0.5, 0.0005) m/s, "
         "without round-off: a perturbation of the order of the scheme's relative phase error "
-        "over the pulse at dt ((dt / T)^2 = 6e-4), where round-off and 1e-6 are too small to "
-        "leave the branch a dt picks.", ""] + convergence_table(
+        "over the pulse at dt ((dt / T)^2 = 6e-4): far above round-off, far below what is "
+        "known of an input.", ""] + convergence_table(
         data["input_convergence"], data["input_dts"], data["dts"]) + ["",
               "## Round-off envelope, damped against undamped (at dt)", "",
               "Width of the 5-95 % band of each keyblock's residual [mm].", "",
