@@ -57,6 +57,35 @@ inline double norm_square(const SparseMatrix<double>& a, const Vector<double>& x
   return x * ax;
 }
 
+/// A point of the mesh with what sampling a field there needs, fixed with the mesh: the DOFs of
+/// the cell around it and their shape functions' values, gradients [1/m] and components there.
+/// sample() sums over the cell's DOFs in their order, as FEValues::get_function_values and
+/// get_function_gradients do, without reading the DOF values through the cell each time.
+struct PointProbe
+{
+  std::vector<types::global_dof_index> dofs;
+  std::vector<unsigned int> component;
+  std::vector<double> value;
+  std::vector<Tensor<1, 2>> gradient;
+
+  /// The vector field x at the point.
+  std::array<double, 2> values(const Vector<double>& x) const
+  {
+    std::array<double, 2> out{{0.0, 0.0}};
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      out[component[i]] += x(dofs[i]) * value[i];
+    return out;
+  }
+  /// The gradients of x's two components at the point.
+  std::array<Tensor<1, 2>, 2> gradients(const Vector<double>& x) const
+  {
+    std::array<Tensor<1, 2>, 2> out;
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      out[component[i]] += x(dofs[i]) * gradient[i];
+    return out;
+  }
+};
+
 /// Isotropic elastic constants of the plane mode.
 struct PlaneElasticity
 {
@@ -229,7 +258,7 @@ public:
   /// Free-field boundaries: the 1D column and, per quadrature point of the free_field faces
   /// (in active-cell order), where it is evaluated in the column.
   std::unique_ptr<ElasticWaveModel> column;
-  std::vector<std::unique_ptr<FEValues<2>>> column_probes;
+  std::vector<far_field_detail::PointProbe> column_probes;
   /// A quadrature point of a free_field face, with what its load needs at every step: the
   /// face's outward normal and, for each DOF of its cell, N_i JxW and N_i's component.
   struct FreeFieldPoint
@@ -246,13 +275,13 @@ public:
   /// Adds integral(N^T (sigma_ff n + D v_ff)) over the free_field faces to f.
   void add_free_field_load(Vector<double>& f) const;
   /// Column velocity and stress at a probe of the column.
-  MonitorSample column_sample(const FEValues<2>& probe) const;
+  MonitorSample column_sample(const far_field_detail::PointProbe& probe) const;
   /// This model's velocity and stress at one of its probes.
-  MonitorSample probe_sample(const FEValues<2>& probe) const;
+  MonitorSample probe_sample(const far_field_detail::PointProbe& probe) const;
   /// As another model's free-field column (ElasticWaveModel::add_probe).
-  std::vector<std::unique_ptr<FEValues<2>>> probes;
+  std::vector<far_field_detail::PointProbe> probes;
   State remembered; ///< ElasticWaveModel::remember_state
-  std::unique_ptr<FEValues<2>> make_probe(double x, double y) const;
+  far_field_detail::PointProbe make_probe(double x, double y) const;
   bool is_free_field_face(const DoFHandler<2>::active_cell_iterator& cell, unsigned int f) const;
 
 private:

@@ -63,16 +63,23 @@ void ElasticWaveModel::Impl::make_free_field_column()
     }
 }
 
-std::unique_ptr<FEValues<2>> ElasticWaveModel::Impl::make_probe(const double x,
-                                                                const double y) const
+PointProbe ElasticWaveModel::Impl::make_probe(const double x, const double y) const
 {
   const MappingQ1<2> mapping;
   const auto found = GridTools::find_active_cell_around_point(mapping, dof_handler, Point<2>(x, y));
   const Point<2> reference = GeometryInfo<2>::project_to_unit_cell(found.second);
-  auto probe =
-      std::make_unique<FEValues<2>>(mapping, fe, Quadrature<2>(std::vector<Point<2>>{reference}),
-                                    update_values | update_gradients);
-  probe->reinit(found.first);
+  FEValues<2> values(mapping, fe, Quadrature<2>(std::vector<Point<2>>{reference}),
+                     update_values | update_gradients);
+  values.reinit(found.first);
+  PointProbe probe;
+  probe.dofs.resize(fe.n_dofs_per_cell());
+  found.first->get_dof_indices(probe.dofs);
+  for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+  {
+    probe.component.push_back(fe.system_to_component_index(i).first);
+    probe.value.push_back(values.shape_value(i, 0));
+    probe.gradient.push_back(values.shape_grad(i, 0));
+  }
   return probe;
 }
 
@@ -88,20 +95,18 @@ bool ElasticWaveModel::Impl::is_free_field_face(const DoFHandler<2>::active_cell
   return false;
 }
 
-MonitorSample ElasticWaveModel::Impl::column_sample(const FEValues<2>& probe) const
+MonitorSample ElasticWaveModel::Impl::column_sample(const PointProbe& probe) const
 {
   return column->impl->probe_sample(probe);
 }
 
-MonitorSample ElasticWaveModel::Impl::probe_sample(const FEValues<2>& probe) const
+MonitorSample ElasticWaveModel::Impl::probe_sample(const PointProbe& probe) const
 {
-  std::vector<Vector<double>> point_v(1, Vector<double>(2));
-  std::vector<std::vector<Tensor<1, 2>>> grad_u(1, std::vector<Tensor<1, 2>>(2));
-  probe.get_function_values(v, point_v);
-  probe.get_function_gradients(u, grad_u);
+  const std::array<double, 2> velocity = probe.values(v);
+  const std::array<Tensor<1, 2>, 2> grad_u = probe.gradients(u);
   MonitorSample sample;
-  sample.velocity = {{point_v[0](0), point_v[0](1)}};
-  sample.stress = elasticity.stress(grad_u[0][0], grad_u[0][1]);
+  sample.velocity = velocity;
+  sample.stress = elasticity.stress(grad_u[0], grad_u[1]);
   return sample;
 }
 
@@ -113,7 +118,7 @@ std::size_t ElasticWaveModel::add_probe(const double x, const double y)
 
 MonitorSample ElasticWaveModel::sample_probe(const std::size_t k) const
 {
-  return impl->probe_sample(*impl->probes.at(k));
+  return impl->probe_sample(impl->probes.at(k));
 }
 
 void ElasticWaveModel::remember_state()
@@ -134,7 +139,7 @@ void ElasticWaveModel::Impl::add_free_field_load(Vector<double>& f) const
   for (std::size_t k = 0; k < free_field_points.size(); ++k)
   {
     const FreeFieldPoint& point = free_field_points[k];
-    const MonitorSample ff = column_sample(*column_probes[k]);
+    const MonitorSample ff = column_sample(column_probes[k]);
     const std::array<double, 2> traction =
         free_field_traction(ff.stress, ff.velocity, point.normal, rho, vp, vs);
     for (std::size_t i = 0; i < point.dofs.size(); ++i)
@@ -151,7 +156,7 @@ std::array<double, 2> ElasticWaveModel::free_field_velocity(const double y) cons
 
 std::array<double, 2> ElasticWaveModel::velocity_at(const double x, const double y) const
 {
-  return impl->probe_sample(*impl->make_probe(x, y)).velocity;
+  return impl->probe_sample(impl->make_probe(x, y)).velocity;
 }
 
 } // namespace ddafem::fem
