@@ -59,8 +59,9 @@ inline double norm_square(const SparseMatrix<double>& a, const Vector<double>& x
 
 /// A point of the mesh with what sampling a field there needs, fixed with the mesh: the DOFs of
 /// the cell around it and their shape functions' values, gradients [1/m] and components there.
-/// sample() sums over the cell's DOFs in their order, as FEValues::get_function_values and
-/// get_function_gradients do, without reading the DOF values through the cell each time.
+/// values() and gradients() sum over the cell's DOFs in their order, as
+/// FEValues::get_function_values and get_function_gradients do, without reading the DOF values
+/// through the cell each time.
 struct PointProbe
 {
   std::vector<types::global_dof_index> dofs;
