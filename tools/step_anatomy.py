@@ -101,8 +101,9 @@ def anatomy(time, dt, cuts, dt_max, spans):
 def markdown(result, dt_max, summary):
     top = max((k for r in result for k in r["levels"]), default=0)
     head = "| phase | s | steps | " + " | ".join(f"k={k}" for k in range(top + 1))
-    lines = [f"Run `{summary.get('name', '?')}`, scene `{os.path.basename(str(summary.get('scene', '?')))}`: "
-             f"accepted steps by level k (dt = {dt_max:g} s / 2^k) and phase, from `histories.h5`.",
+    scene = os.path.basename(str(summary.get("scene", "?")))
+    lines = [f"Run `{summary.get('name', '?')}`, scene `{scene}`: accepted steps by level k "
+             f"(dt = {dt_max:g} s / 2^k) and phase, from `histories.h5`.",
              "", head + " | after cuts | shortened, no cut | at dt_max |",
              "|---|---:|---:|" + "---:|" * (top + 4)]
     for r in result:
