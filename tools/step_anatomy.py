@@ -12,7 +12,7 @@ the settle stage split where a fallen block was removed):
 
 - the accepted steps at each level k (dt = dt_max / 2^k) and the time they covered;
 - the steps that followed a cut (a failed attempt: open-close iteration not converged,
-  penetration or step displacement too large), and the levels those cuts cost;
+  penetration or step displacement too large);
 - the steps shortened without a cut (dt below the previous step's, then back up: a slip
   reversal ahead, localised; or the end of a stage).
 
@@ -94,7 +94,7 @@ def anatomy(time, dt, cuts, dt_max, spans):
                        "levels": levels, "steps_after_cuts": int(cut.sum()),
                        "cuts": int(cuts[sel].sum()),
                        "shortened_without_cut": int((sel & shortened).sum()),
-                       "steps_at_dt_max_s": float((b - a) / dt_max)})
+                       "steps_at_dt_max": math.ceil((b - a) / dt_max - 1e-9)})
     return result
 
 
@@ -111,7 +111,7 @@ def markdown(result, dt_max, summary):
         lines.append(f"| {r['phase']} | {r['start_s']:.3f}-{r['end_s']:.3f} | {r['steps']} | "
                      + " | ".join(cells)
                      + f" | {r['steps_after_cuts']} | {r['shortened_without_cut']} | "
-                     f"{math.ceil(r['steps_at_dt_max_s'] - 1e-9)} |")
+                     f"{r['steps_at_dt_max']} |")
     ts = summary.get("time_step", {})
     said = [f"{label} {ts[key]}" for key, label in
             (("attempts", "attempts"), ("cuts", "cuts"), ("cuts_by_cause", "by cause"),
