@@ -196,24 +196,30 @@ def plot_energy(h5, time_ms, args, path):
     return True
 
 
+def open_histories(path, fail):
+    """(histories.h5 open for reading, whether a run held its lock). A running simulation holds
+    HDF5's write lock; it flushes every few hundred rows, so reading without the lock shows the
+    rows written so far. `fail(message)` does not return."""
+    try:
+        return h5py.File(path, "r"), False
+    except OSError as error:
+        if "lock" not in str(error):
+            fail("cannot open %s: %s" % (path, error))
+    try:
+        return h5py.File(path, "r", locking=False), True
+    except (OSError, TypeError, ValueError) as error:
+        fail("cannot open %s: %s" % (path, error))
+
+
 def main(argv):
     args = parse_arguments(argv)
     monitor_path, energy_path = output_paths(args)
     if not os.path.isfile(args.histories):
         sys.exit("plot_histories.py: no file %s" % args.histories)
-    try:
-        h5 = h5py.File(args.histories, "r")
-    except OSError as error:
-        if "lock" not in str(error):
-            sys.exit("plot_histories.py: cannot open %s: %s" % (args.histories, error))
-        # A running simulation holds HDF5's write lock; it flushes every few hundred rows, so
-        # reading without the lock shows the rows written so far.
+    h5, locked = open_histories(args.histories, lambda m: sys.exit("plot_histories.py: " + m))
+    if locked:
         print("plot_histories.py: %s is locked (run in progress?); reading it unlocked"
               % args.histories)
-        try:
-            h5 = h5py.File(args.histories, "r", locking=False)
-        except (OSError, TypeError, ValueError) as retry_error:
-            sys.exit("plot_histories.py: cannot open %s: %s" % (args.histories, retry_error))
     with h5:
         if "time" not in h5 or not isinstance(h5["time"], h5py.Dataset):
             sys.exit("plot_histories.py: %s has no /time dataset" % args.histories)

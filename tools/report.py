@@ -50,12 +50,7 @@ def fail(message):
 
 def open_histories(path):
     """histories.h5 for reading; without HDF5's lock if a run still holds it."""
-    try:
-        return h5py.File(path, "r")
-    except OSError as error:
-        if "lock" not in str(error):
-            fail("cannot open %s: %s" % (path, error))
-        return h5py.File(path, "r", locking=False)
+    return plot_histories.open_histories(path, fail)[0]
 
 
 def pvd_entries(path):
