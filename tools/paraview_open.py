@@ -3,7 +3,7 @@ ties by state, the far field by |displacement|, in a 2D view at the last time st
 the blocks (the near field; the far field around it), the blocks drawn above the far field, one
 scalar bar per part in its own corner, the time in the top left.
 
-Tested headless with Debian's ParaView 5.11 (pvpython on Xvfb -noreset) by
+Tested headless with Debian's ParaView 5.11 (pvpython under xvfb-run, Xvfb -noreset) by
 tests/tools/check_paraview.py (CI test cli.paraview_pictures): the picture's pixels.
 
     pvpython tools/paraview_open.py RUN_DIR                      # opens a window

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """tools/paraview_open.py headless (CI test cli.paraview_pictures): ParaView 5.11's pvpython
-on a private Xvfb takes a screenshot of a run, and its pixels must show what the script promises:
+under xvfb-run takes a screenshot of a run, and its pixels must show what the script promises:
 
 - the near field framed: in the middle 60 % of the picture, blocks (pixels of the blocks'
   viridis map) cover at least a third, the far field (its cool-to-warm map) less than a tenth,
@@ -14,7 +14,6 @@ on a private Xvfb takes a screenshot of a run, and its pixels must show what the
     check_paraview.py RUN_DIR SCREENSHOT.png [--coupled]
 """
 import os
-import select
 import subprocess
 import sys
 import time
@@ -42,54 +41,19 @@ def region(image, x0, x1, y0, y1, step=3):
     return image[int(y0 * h):int(y1 * h):step, int(x0 * w):int(x1 * w):step].reshape(-1, 3)
 
 
-def start_xvfb():
-    """A private Xvfb. -noreset: by default the server resets when its last client leaves, and
-    pvpython, which opens the display, closes it and opens it again at start-up, then finds no
-    server ("bad X server connection", SIGABRT; CI lost cli.paraview_pictures so, twice in a
-    row, under xvfb-run). -displayfd: the server picks a free display itself. Returns the
-    process and its display, or the process and None if it did not start within 30 s."""
-    read_end, write_end = os.pipe()
-    server = subprocess.Popen(["Xvfb", "-displayfd", str(write_end), "-screen", "0",
-                               "1600x1200x24", "-nolisten", "tcp", "-noreset"],
-                              pass_fds=(write_end,), stdout=subprocess.DEVNULL,
-                              stderr=subprocess.PIPE, text=True)
-    os.close(write_end)
-    number = b""
-    while not number.endswith(b"\n") and select.select([read_end], [], [], 30)[0]:
-        chunk = os.read(read_end, 16)
-        if not chunk:
-            break
-        number += chunk
-    os.close(read_end)
-    return server, (":" + number.decode().strip()) if number.endswith(b"\n") else None
-
-
-def stop_xvfb(server):
-    """Terminate the server and wait for it, so it has let go of its display; its stderr."""
-    server.terminate()
-    try:
-        return server.communicate(timeout=30)[1] or ""
-    except subprocess.TimeoutExpired:
-        server.kill()
-        return server.communicate()[1] or ""
-
-
 def screenshot(run_dir, png):
-    """pvpython on a private Xvfb; two retries with a fresh server if either dies at start-up.
-    A failure prints the head of pvpython's stderr (VTK's message) and the server's stderr."""
+    """pvpython under xvfb-run, as docs/outputs.md gives it; two retries if the X server or
+    pvpython dies at start-up. -noreset: by default Xvfb resets when its last client leaves,
+    and pvpython, which opens the display, closes it and opens it again at start-up, then finds
+    no server ("bad X server connection", SIGABRT; CI lost this test so, twice in a row). A
+    failure prints the head of pvpython's stderr, where VTK's message is."""
+    command = ["xvfb-run", "-a", "-s", "-screen 0 1600x1200x24 -noreset", "pvpython", TOOL,
+               run_dir, "--screenshot", png]
     for attempt in range(3):
-        server, display = start_xvfb()
-        r = None
-        if display is not None:
-            r = subprocess.run(["pvpython", TOOL, run_dir, "--screenshot", png],
-                               capture_output=True, text=True,
-                               env=dict(os.environ, DISPLAY=display))
-        server_log = stop_xvfb(server)
-        if r is not None and r.returncode == 0 and os.path.isfile(png):
+        r = subprocess.run(command, capture_output=True, text=True)
+        if r.returncode == 0 and os.path.isfile(png):
             return
-        print("attempt %d: display %s, pvpython %s\n%s\nXvfb: %s"
-              % (attempt + 1, display, "not run" if r is None else "exit %d" % r.returncode,
-                 "" if r is None else r.stderr[:1500], server_log[-800:]))
+        print("pvpython exit %d (attempt %d): %s" % (r.returncode, attempt + 1, r.stderr[:1500]))
         time.sleep(2)
     sys.exit("check_paraview.py: no screenshot")
 
