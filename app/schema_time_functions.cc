@@ -2,6 +2,8 @@
 #include "app/schema_sections.h"
 #include "common/ground_motion.h"
 
+#include <vector>
+
 namespace ddafem::schema
 {
 Section constant_time_function_section()
@@ -66,10 +68,58 @@ Section csv_time_function_section()
 
 namespace ddafem::schema
 {
+namespace
+{
+/// How a record is cut, tapered, corrected, scaled and placed in the model's time.
+std::vector<Key> record_processing_keys()
+{
+  using T = ValueType;
+  return {key("from", T::number)
+              .unit("s")
+              .at_least(0)
+              .default_note("0")
+              .meaning("start of the part used, in the record's own time from its first sample"),
+          key("to", T::number)
+              .unit("s")
+              .greater_than(0)
+              .default_note("the record's end")
+              .meaning("end of the part used"),
+          key("taper", T::number)
+              .unit("s")
+              .at_least(0)
+              .default_note("5 % of the part used, at most 0.5 s")
+              .meaning("half-cosine taper of the acceleration at each end"),
+          key("baseline", T::choice)
+              .choices(names_of<BaselineMethod>())
+              .default_yaml("polynomial")
+              .meaning("polynomial: the acceleration loses the least-squares polynomial that "
+                       "takes out the displacement's drift (t^2 to t^baseline_degree) with the "
+                       "velocity ending at 0; none: as read"),
+          key("baseline_degree", T::integer)
+              .default_yaml("3")
+              .at_least(2)
+              .at_most(8)
+              .meaning("highest power of t in the displacement's baseline"),
+          key("scale", T::number).greater_than(0).default_note("1").meaning("factor on the record"),
+          key("scale_to_pga", T::number)
+              .unit("m/s^2")
+              .greater_than(0)
+              .meaning("scale the corrected record to this peak ground acceleration"),
+          key("scale_to_pgv", T::number)
+              .unit("m/s")
+              .greater_than(0)
+              .meaning("scale the corrected record to this peak ground velocity"),
+          key("start", T::number)
+              .unit("s")
+              .default_yaml("0")
+              .meaning("model time of the first sample used")};
+}
+} // namespace
+
 Section record_time_function_section()
 {
   using T = ValueType;
-  return {
+  Section section{
       SceneSchema::time_function_section(TimeFunctionType::record),
       "A recorded ground motion (docs/ground_motions.md): a PEER NGA file or a table of "
       "acceleration, velocity or displacement, uniformly sampled. It is cut to [from, to], "
@@ -112,46 +162,10 @@ Section record_time_function_section()
            .default_yaml("1")
            .at_least(0)
            .meaning("table: column of the samples, counted from 0"),
-       key("skip_rows", T::integer).default_yaml("0").at_least(0).meaning("table: header rows"),
-       key("from", T::number)
-           .unit("s")
-           .at_least(0)
-           .default_note("0")
-           .meaning("start of the part used, in the record's own time from its first sample"),
-       key("to", T::number)
-           .unit("s")
-           .greater_than(0)
-           .default_note("the record's end")
-           .meaning("end of the part used"),
-       key("taper", T::number)
-           .unit("s")
-           .at_least(0)
-           .default_note("5 % of the part used, at most 0.5 s")
-           .meaning("half-cosine taper of the acceleration at each end"),
-       key("baseline", T::choice)
-           .choices(names_of<BaselineMethod>())
-           .default_yaml("polynomial")
-           .meaning("polynomial: the acceleration loses the least-squares polynomial that "
-                    "takes out the displacement's drift (t^2 to t^baseline_degree) with the "
-                    "velocity ending at 0; none: as read"),
-       key("baseline_degree", T::integer)
-           .default_yaml("3")
-           .at_least(2)
-           .at_most(8)
-           .meaning("highest power of t in the displacement's baseline"),
-       key("scale", T::number).greater_than(0).default_note("1").meaning("factor on the record"),
-       key("scale_to_pga", T::number)
-           .unit("m/s^2")
-           .greater_than(0)
-           .meaning("scale the corrected record to this peak ground acceleration"),
-       key("scale_to_pgv", T::number)
-           .unit("m/s")
-           .greater_than(0)
-           .meaning("scale the corrected record to this peak ground velocity"),
-       key("start", T::number)
-           .unit("s")
-           .default_yaml("0")
-           .meaning("model time of the first sample used")}};
+       key("skip_rows", T::integer).default_yaml("0").at_least(0).meaning("table: header rows")}};
+  const std::vector<Key> processing = record_processing_keys();
+  section.keys.insert(section.keys.end(), processing.begin(), processing.end());
+  return section;
 }
 
 } // namespace ddafem::schema

@@ -3,12 +3,87 @@
 #include "app/tunnel_scene.h"
 #include "common/wave_type.h"
 
+#include <vector>
+
 namespace ddafem::schema
 {
+namespace
+{
+/// The tunnel's truncation and its far field's size, mesh and time step.
+std::vector<Key> tunnel_far_field_keys()
+{
+  using T = ValueType;
+  return {key("truncation", T::choice)
+              .choices(names_of<TunnelTruncation>())
+              .default_yaml("hybrid")
+              .meaning("hybrid: blocks in a graded FE far field with Lysmer dashpots and "
+                       "free-field sides; vb1 / dashpot: blocks only, VB I or the dashpot on the "
+                       "near field's edges, the wave entering at its base; reference: the hybrid "
+                       "with a far field so large that no reflection returns within the run; "
+                       "blocks: blocks only out to the reference's extent, the near field in a "
+                       "ring of bonded rectangular blocks of shortest S wavelength / "
+                       "points_per_wavelength with the rock mass's E_eff (material `outer_rock`, "
+                       "joint material `outer_bond`, joints that never break), dashpots on its "
+                       "sides and base (the wave entering there), its top free at the ground "
+                       "surface"),
+          key("margin", T::number)
+              .unit("m")
+              .at_least(0)
+              .default_note("one wavelength of the incident wave at its dominant frequency")
+              .meaning("hybrid: far field beyond the near field on each side"),
+          key("reference_margin", T::number)
+              .unit("m")
+              .at_least(0)
+              .default_note("VP x window / 2")
+              .meaning("reference and blocks: far field (outer blocks) beyond the near field on "
+                       "each side"),
+          key("points_per_wavelength", T::number)
+              .default_yaml("10")
+              .greater_than(0)
+              .meaning("FE nodes (blocks: outer blocks) per shortest S wavelength (at "
+                       "wave.max_frequency)"),
+          key("growth_ratio", T::number)
+              .default_yaml("1.3")
+              .greater_than(1)
+              .meaning("size ratio of neighbouring far-field elements away from the blocks"),
+          key("window", T::number)
+              .unit("s")
+              .at_least(0)
+              .default_note("near-field crossing x 2 + the pulse + 2 periods")
+              .meaning("dynamic stage after the wave reaches the near field"),
+          key("dt", T::number)
+              .unit("s")
+              .at_least(0)
+              .default_note("1 / (20 max_frequency), within VB I's limit for vb1 (the dashpots of "
+                            "dashpot and blocks set no limit)")
+              .meaning("time step of the dynamic stage (time.dt, if given, wins)")};
+}
+
+/// The tunnel's stages and what acts in them: static, settle, damping, lining.
+std::vector<Key> tunnel_stage_keys()
+{
+  using T = ValueType;
+  return {key("static", T::section)
+              .section("tunnel.static")
+              .default_note("see `tunnel.static`")
+              .meaning("the static stage: gravity, in-situ stress and the excavation"),
+          key("settle", T::section)
+              .section("tunnel.settle")
+              .default_note("see `tunnel.settle`")
+              .meaning("the settle stage after the wave: until every block is at rest or fell"),
+          damping_key("tunnel.damping", "every material and joint material that has none of its "
+                                        "own, and the far field"),
+          key("lining", T::section)
+              .section("tunnel.lining")
+              .default_note("none")
+              .meaning("shotcrete or concrete around the opening, installed after the excavation")};
+}
+} // namespace
+
 Section tunnel_section()
 {
   using T = ValueType;
-  return {
+  Section section{
       "tunnel",
       "A tunnel dynamic stability analysis from what a rock engineer knows (app/tunnel_scene.h): "
       "the opening, the joint sets, the depth and k0, the incident wave and the accuracy "
@@ -65,65 +140,10 @@ Section tunnel_section()
        key("near_field", T::section)
            .section("tunnel.near_field")
            .default_note("a square of 4 x the opening's size")
-           .meaning("the region that is blocks"),
-       key("truncation", T::choice)
-           .choices(names_of<TunnelTruncation>())
-           .default_yaml("hybrid")
-           .meaning("hybrid: blocks in a graded FE far field with Lysmer dashpots and "
-                    "free-field sides; vb1 / dashpot: blocks only, VB I or the dashpot on the "
-                    "near field's edges, the wave entering at its base; reference: the hybrid "
-                    "with a far field so large that no reflection returns within the run; "
-                    "blocks: blocks only out to the reference's extent, the near field in a "
-                    "ring of bonded rectangular blocks of shortest S wavelength / "
-                    "points_per_wavelength with the rock mass's E_eff (material `outer_rock`, "
-                    "joint material `outer_bond`, joints that never break), dashpots on its "
-                    "sides and base (the wave entering there), its top free at the ground "
-                    "surface"),
-       key("margin", T::number)
-           .unit("m")
-           .at_least(0)
-           .default_note("one wavelength of the incident wave at its dominant frequency")
-           .meaning("hybrid: far field beyond the near field on each side"),
-       key("reference_margin", T::number)
-           .unit("m")
-           .at_least(0)
-           .default_note("VP x window / 2")
-           .meaning("reference and blocks: far field (outer blocks) beyond the near field on "
-                    "each side"),
-       key("points_per_wavelength", T::number)
-           .default_yaml("10")
-           .greater_than(0)
-           .meaning("FE nodes (blocks: outer blocks) per shortest S wavelength (at "
-                    "wave.max_frequency)"),
-       key("growth_ratio", T::number)
-           .default_yaml("1.3")
-           .greater_than(1)
-           .meaning("size ratio of neighbouring far-field elements away from the blocks"),
-       key("window", T::number)
-           .unit("s")
-           .at_least(0)
-           .default_note("near-field crossing x 2 + the pulse + 2 periods")
-           .meaning("dynamic stage after the wave reaches the near field"),
-       key("dt", T::number)
-           .unit("s")
-           .at_least(0)
-           .default_note("1 / (20 max_frequency), within VB I's limit for vb1 (the dashpots of "
-                         "dashpot and blocks set no limit)")
-           .meaning("time step of the dynamic stage (time.dt, if given, wins)"),
-       key("static", T::section)
-           .section("tunnel.static")
-           .default_note("see `tunnel.static`")
-           .meaning("the static stage: gravity, in-situ stress and the excavation"),
-       key("settle", T::section)
-           .section("tunnel.settle")
-           .default_note("see `tunnel.settle`")
-           .meaning("the settle stage after the wave: until every block is at rest or fell"),
-       damping_key("tunnel.damping", "every material and joint material that has none of its "
-                                     "own, and the far field"),
-       key("lining", T::section)
-           .section("tunnel.lining")
-           .default_note("none")
-           .meaning("shotcrete or concrete around the opening, installed after the excavation")}};
+           .meaning("the region that is blocks")}};
+  for (const auto& keys : {tunnel_far_field_keys(), tunnel_stage_keys()})
+    section.keys.insert(section.keys.end(), keys.begin(), keys.end());
+  return section;
 }
 
 Section tunnel_settle_section()

@@ -8,7 +8,9 @@ Reads the C++ sources of the library folders and app/ (tests, bench and generate
 A function is a definition whose body opens with a `{` alone at the start of a line (our
 clang-format style: Allman braces, namespaces not indented) and ends at the next `}` there; its
 length counts from the first line of its signature to the closing brace. Class, struct, enum and
-namespace bodies and initialiser lists are not functions.
+namespace bodies and initialiser lists are not functions; a namespace's body is searched, so the
+first function after `namespace x {` is measured too (it was not before issue 55).
+tests/scripts/test_check_sizes.py checks the checker.
 """
 import argparse
 import os
@@ -19,12 +21,13 @@ TOP = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FOLDERS = ["app", "common", "coupling", "dda", "fem"]
 MAX_FILE_LINES = 800
 MAX_FUNCTION_LINES = 80
+OPENS_A_SCOPE = re.compile(r'^\s*(inline\s+)?namespace\b|^\s*extern\s+"C"')
 NOT_A_FUNCTION = re.compile(r"^\s*(template\s*<.*>\s*)?(class|struct|enum|namespace|union)\b|=\s*$")
 
 
-def sources():
+def sources(top):
     for folder in FOLDERS:
-        for root, _, files in os.walk(os.path.join(TOP, folder)):
+        for root, _, files in os.walk(os.path.join(top, folder)):
             for name in sorted(files):
                 if name.endswith((".cc", ".h")):
                     yield os.path.join(root, name)
@@ -50,6 +53,9 @@ def functions(lines):
         if lines[i].rstrip() == "{" and i > 0:
             start = signature_start(lines, i)
             head = " ".join(l.strip() for l in lines[start:i])
+            if OPENS_A_SCOPE.search(lines[start]) or not head:
+                i += 1  # a namespace's body holds functions: look inside it
+                continue
             end = i + 1
             while end < len(lines) and not re.match(r"^\}", lines[end]):
                 end += 1
@@ -64,14 +70,15 @@ def functions(lines):
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--report", action="store_true", help="list, but do not fail")
+    parser.add_argument("--root", default=TOP, help="the source tree (default: this checkout)")
     args = parser.parse_args(argv)
     over = []
-    for path in sources():
+    for path in sources(args.root):
         with open(path, encoding="utf-8") as f:
             lines = f.read().split("\n")
         if lines and lines[-1] == "":
             lines.pop()
-        rel = os.path.relpath(path, TOP)
+        rel = os.path.relpath(path, args.root)
         if len(lines) > MAX_FILE_LINES:
             over.append("%s: %d lines (at most %d)" % (rel, len(lines), MAX_FILE_LINES))
         for head, first, length in functions(lines):
