@@ -388,8 +388,9 @@ Section boundaries_section()
   using T = ValueType;
   return {
       "boundaries[i]",
-      "A treatment of outer block edges (physics.md section 3). Give exactly one selector: "
-      "`edges`, `on_line` or `outer: true`. Each selected edge of length l0 gets the dashpot "
+      "A treatment of outer block edges (docs/reference/physics.md section 3). Give exactly one "
+      "selector: `edges`, `on_line` or `outer: true`. Each selected edge of length l0 gets the "
+      "dashpot "
       "coefficients cn = a_n rho l0 VP and ct = a_t rho l0 VS (rho, VP, VS of its block's "
       "material). Edges that are not selected stay free. Which edges a line or `outer` selects "
       "is decided by the engine: a selector that selects no edge is an error. In a static "

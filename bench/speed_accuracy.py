@@ -872,10 +872,10 @@ def write_markdown(path, out, rows, missing, slopes, info, quick, jobs, elapsed,
     lines += ["## Stability map", "",
               "The bar (small-displacement analysis, `--allow-unstable`, to 0.5 s for dt >= 1e-4 "
               "s so that a boundary that is a source shows itself) per boundary and dt. "
-              f"Theory (physics.md section 3, the 1 m end block): VB I is a source beyond x0 m / "
+              f"Theory (docs/reference/physics.md section 3, the 1 m end block): VB I is a source beyond x0 m / "
               f"cn = {lim['vb1_source']:.3g} s (x0 = {BAO.VB1_THRESHOLD}); the paper's bounds "
               f"m / cn = {lim['m_over_cn']:.3g} s and 2 m / ct = {lim['two_m_over_ct']:.3g} s. VB "
-              "II, the consistent dashpot and the hybrid's Lysmer dashpots (implicit, physics.md "
+              "II, the consistent dashpot and the hybrid's Lysmer dashpots (implicit, docs/reference/physics.md "
               "section 4) have no limit.", "",
               "| boundary | largest stable dt [s] | smallest unstable dt [s] | why |",
               "|---|---:|---:|---|"]

@@ -1,5 +1,5 @@
-// Coefficients of Newmark's scheme (physics.md section 2) shared by the blocks' boundary dashpots
-// (dda/) and the far field (fem/): with u1 - u0 = d over a step dt,
+// Coefficients of Newmark's scheme (docs/reference/physics.md section 2) shared by the blocks'
+// boundary dashpots (dda/) and the far field (fem/): with u1 - u0 = d over a step dt,
 //   a1 = d / (beta dt^2) - v0 / (beta dt) - (1 / (2 beta) - 1) a0,
 //   v1 = gamma / (beta dt) d + (1 - gamma / beta) v0 + dt (1 - gamma / (2 beta)) a0.
 #pragma once

@@ -31,9 +31,9 @@ double normal_cdf(double x);
 /// error 1.15e-9) refined by one Halley step on erfc, which brings it to about 1e-15.
 double normal_quantile(double p);
 
-/// The Wilson score interval of a binomial proportion k / n (Wilson 1927; benchmarks.md E):
-/// (p + z^2/2n -+ z sqrt(p(1-p)/n + z^2/4n^2)) / (1 + z^2/n), p = k/n; z = 1.96 for 95 %.
-/// n = 0 gives [0, 1]. Requires k <= n.
+/// The Wilson score interval of a binomial proportion k / n (Wilson 1927;
+/// docs/reference/benchmarks.md E): (p + z^2/2n -+ z sqrt(p(1-p)/n + z^2/4n^2)) / (1 + z^2/n), p =
+/// k/n; z = 1.96 for 95 %. n = 0 gives [0, 1]. Requires k <= n.
 Interval wilson_interval(std::size_t k, std::size_t n, double z = 1.96);
 
 /// The p-quantile (0 <= p <= 1) of a sample, by linear interpolation between order statistics

@@ -276,7 +276,8 @@ BlockMeasures plan_rock_mass(const TunnelDescription& t, TunnelPlan& plan)
             : t.youngs_modulus;
     sum += length * e;
     weight += length;
-    // VB I's bound dt <= m / cn (physics.md eq. 44) with m = rho A and cn = rho L VP.
+    // VB I's bound dt <= m / cn (docs/reference/physics.md eq. 44) with m = rho A and cn = rho L
+    // VP.
     measures.vb1_limit = std::min(measures.vb1_limit, b.area / (length * vp_rock));
   }
   plan.rock_mass_modulus = weight > 0.0 ? sum / weight : t.youngs_modulus;

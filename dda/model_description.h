@@ -157,7 +157,7 @@ struct Monitor
   Point point; ///< [m], inside exactly one block
 };
 
-/// Treatment of the selected block edges (physics.md section 3).
+/// Treatment of the selected block edges (docs/reference/physics.md section 3).
 enum class BoundaryType
 {
   free,   ///< nothing: a traction-free edge (kept so that scenes can switch type with --set)
@@ -177,7 +177,8 @@ constexpr std::array<EnumName<BoundaryType>, 4> enum_names(BoundaryType)
 /// Which wave speeds set the dashpot coefficients cn = a_n rho l0 VP, ct = a_t rho l0 VS.
 enum class ImpedanceKind
 {
-  /// VP = sqrt(E (1-nu) / (rho (1+nu)(1-2nu))), VS = sqrt(E / (2 rho (1+nu))) (physics.md)
+  /// VP = sqrt(E (1-nu) / (rho (1+nu)(1-2nu))), VS = sqrt(E / (2 rho (1+nu)))
+  /// (docs/reference/physics.md)
   textbook,
   /// The speeds the model actually carries across the boundary block: its P modulus (E for a
   /// plane-stress block whose side edges are free, E / (1-nu^2) in plane stress otherwise,

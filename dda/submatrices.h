@@ -1,5 +1,5 @@
 // Shi's DDA submatrices as pure functions of block geometry and material (Shi 1988;
-// ../shared/reference/physics.md section 1). All are 6x6 in the block unknowns
+// docs/reference/physics.md section 1). All are 6x6 in the block unknowns
 // d = (u0, v0, r0, ex, ey, gxy) about the block centroid.
 #pragma once
 

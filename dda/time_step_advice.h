@@ -56,7 +56,7 @@ struct TimeStepAdvice
 /// -4 ln(0.95) / (omega^2 T)) with VP_max the fastest governing P speed, f_max the highest
 /// characteristic frequency of point loads, fixed-point motions and boundary inputs,
 /// omega = 2 pi f_max and T = (largest side of the blocks' bounding box) / VP_max: DDA's scheme
-/// damps amplitude by about exp(-omega^2 dt t / 4) (physics.md section 2).
+/// damps amplitude by about exp(-omega^2 dt t / 4) (docs/reference/physics.md section 2).
 TimeStepAdvice suggest_time_step(const ModelDescription& model);
 
 } // namespace ddafem::dda

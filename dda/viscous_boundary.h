@@ -1,5 +1,6 @@
 // Viscous (absorbing) boundaries on DDA block edges: VB I (Bao, Hatzor & Huang 2012, eq. 39),
-// VB II (Jiao et al. 2007, eq. 40) and the consistent dashpot (physics.md section 3).
+// VB II (Jiao et al. 2007, eq. 40) and the consistent dashpot (docs/reference/physics.md section
+// 3).
 #pragma once
 
 #include "dda/block.h"

@@ -17,7 +17,8 @@ namespace ddafem::fem
 /// field around a long tunnel.
 using PlaneMode = ddafem::PlaneMode;
 
-/// Time integrator of the far field: both are Newmark schemes (physics.md section 2).
+/// Time integrator of the far field: both are Newmark schemes (docs/reference/physics.md section
+/// 2).
 enum class Integrator
 {
   newmark_trapezoidal, ///< beta = 1/4, gamma = 1/2: second order, no algorithmic damping
@@ -35,8 +36,8 @@ enum class BoundaryKind
   free,   ///< traction free
   fixed,  ///< zero displacement
   lysmer, ///< Lysmer-Kuhlemeyer dashpots: t = -rho (a VP (v.n) n + b VS (v - (v.n) n))
-  /// Absorbing base with an incident plane wave (Joyner & Chen 1975, physics.md section 5):
-  /// the dashpots above plus the traction rho c (2 v_in) per component.
+  /// Absorbing base with an incident plane wave (Joyner & Chen 1975, docs/reference/physics.md
+  /// section 5): the dashpots above plus the traction rho c (2 v_in) per component.
   input,
   /// Roller: zero displacement along the component the incident wave does not move: u_x = 0
   /// for a P wave (vertical particle motion), u_y = 0 for an SV wave (horizontal particle

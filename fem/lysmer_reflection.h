@@ -1,5 +1,5 @@
 // Analytic reflection of plane P and SV waves at a Lysmer-Kuhlemeyer boundary (issue 5,
-// physics.md section 4; derivation in docs/lysmer.md).
+// docs/reference/physics.md section 4; derivation in docs/lysmer.md).
 #pragma once
 
 #include <complex>

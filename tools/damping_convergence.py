@@ -16,7 +16,7 @@ Per keyblock (every block with a keyblock record, not released by the excavation
 residual displacement relative to the rock with its distribution-free 95 % interval (order
 statistics of the binomial(N, 1/2): ranks r and N + 1 - r, r the largest with
 P(Bin(N, 1/2) < r) <= 2.5 %), the 5-95 % envelope (empirical quantiles), and P(loosened),
-P(fell) with 95 % Wilson intervals (benchmarks.md E).
+P(fell) with 95 % Wilson intervals (docs/reference/benchmarks.md E).
 
 Acceptance (issue 53): for each keyblock, the three dt's medians agree within max(10 %, 0.2 mm)
 or their 95 % intervals overlap; each dt's P(loosened) and P(fell) lies in the other dts' Wilson

@@ -565,7 +565,7 @@ def write_head_to_head_markdown(path, bench_records, dts_of, point_records, quic
         f.write("- eta_boundary = 1 - max|run - long| / max|free - long| in the reflection window "
                 "(the boundary alone; `long`: the model three times longer, `free`: a free end, "
                 "both at the same dt); eta_window = 1 - |Ar| / |Ai| (tools/verify_bao2012.py, "
-                "physics.md section 6).\n"
+                "docs/reference/physics.md section 6).\n"
                 "- record error = max|run - long| from t = 0 to the end of the reflection window, "
                 "in % of the incident peak at M1: every difference from the untruncated model, "
                 "including reflections from the hybrid's interface, which arrive in the incident "

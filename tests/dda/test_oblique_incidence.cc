@@ -1,6 +1,6 @@
 // Oblique incidence: a plane P wave meets an absorbing block edge at 30 degrees in a 2D grid of
-// bonded blocks. Boundary-only reflection (physics.md section 6): the model minus a wider
-// reference model that has no reflection in the time window, normalised by the free edge's.
+// bonded blocks. Boundary-only reflection (docs/reference/physics.md section 6): the model minus a
+// wider reference model that has no reflection in the time window, normalised by the free edge's.
 #include "dda/submatrices.h"
 #include "dda/system.h"
 

@@ -1,5 +1,5 @@
-// VB I is an energy source beyond x = c dt / m = vb1_source_threshold() (physics.md section 6);
-// unstable_boundaries reports it per boundary with the dt limit computed by hand.
+// VB I is an energy source beyond x = c dt / m = vb1_source_threshold() (docs/reference/physics.md
+// section 6); unstable_boundaries reports it per boundary with the dt limit computed by hand.
 #include "dda/system.h"
 #include "dda/unstable_boundaries.h"
 #include "dda/viscous_boundary.h"

@@ -51,8 +51,8 @@ std::vector<double> stress_history(const ModelDescription& m)
   return h;
 }
 
-/// Boundary-only efficiency (physics.md section 6) at M1 = 50.5 m: the reflection is the
-/// difference to a 300-block bar (no reflection in the window), normalised by the free end's.
+/// Boundary-only efficiency (docs/reference/physics.md section 6) at M1 = 50.5 m: the reflection is
+/// the difference to a 300-block bar (no reflection in the window), normalised by the free end's.
 class BarEfficiency
 {
 public:

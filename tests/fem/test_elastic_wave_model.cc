@@ -108,10 +108,10 @@ void check_column(const IncidentWave::Type type, const double speed, const unsig
   const Histories h = run(model, end_time, component, 2);
 
   // Reference: a taller column whose top reflection reaches the high monitor only after
-  // end_time, so the difference of the two histories is the reflection alone (physics.md
-  // section 6). Both carry the same dispersive tail (the one-cycle sine has content up to
-  // several times its frequency, where Q2 at 4 m approaches its cut-off and the slow modes
-  // ring behind the pulse); the subtraction removes it.
+  // end_time, so the difference of the two histories is the reflection alone
+  // (docs/reference/physics.md section 6). Both carry the same dispersive tail (the one-cycle sine
+  // has content up to several times its frequency, where Q2 at 4 m approaches its cut-off and the
+  // slow modes ring behind the pulse); the subtraction removes it.
   const double reference_height = 0.5 * (speed * end_time + 150.0) + 20.0;
   ElasticWaveModel reference(
       column(type, BoundaryKind::lysmer, std::ceil(reference_height / 4.0) * 4.0));
@@ -220,7 +220,8 @@ TEST(ElasticWaveModel, DdaSchemeDissipatesAndStillBalances)
     ASSERT_EQ(model.advance(dt).outcome, StepOutcome::success);
   const EnergyBalance e = model.energy();
   std::cout << "  dda: dissipated / input " << e.dissipated / e.work_of_input << "\n";
-  // beta = 1/2, gamma = 1 damps the pulse (physics.md section 2): a clearly positive loss.
+  // beta = 1/2, gamma = 1 damps the pulse (docs/reference/physics.md section 2): a clearly positive
+  // loss.
   EXPECT_GT(e.dissipated, 1e-3 * e.work_of_input);
   EXPECT_LT(e.dissipated, e.work_of_input);
 }
