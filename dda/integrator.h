@@ -32,6 +32,20 @@ enum class Integrator
   newmark_trapezoidal ///< beta = 1/4, gamma = 1/2: second order, conserves energy
 };
 
+/// Which part of the integrator's step a call of System::advance takes; the caller (TimeStepper)
+/// says it, the system does not guess it from dt.
+enum class StepPart
+{
+  /// the whole step: every integrator but Bathe's in a dynamic stage (and Bathe's too in a
+  /// static stage, where there is no motion to integrate)
+  full,
+  /// Bathe's first half step (generalized-alpha, or DDA's scheme while the motion starts)
+  first_half,
+  /// Bathe's second half step (three-point backward Euler): follows an accepted first half of
+  /// the same dt
+  second_half
+};
+
 constexpr std::array<EnumName<Integrator>, 4> enum_names(Integrator)
 {
   return {{{Integrator::generalized_alpha, "generalized_alpha"},

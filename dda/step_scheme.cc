@@ -5,21 +5,28 @@
 
 #include <Eigen/Cholesky>
 
-#include <cmath>
+#include <stdexcept>
 #include <tuple>
 
 namespace ddafem::dda
 {
-void System::choose_step_scheme(double dt)
+void System::choose_step_scheme(double dt, const StepPart part)
 {
   const Integrator integrator = model.time.integrator;
+  // A static stage has no motion to integrate: it takes every part as a full step.
+  const bool dynamic = mode == StageMode::dynamic;
+  if (dynamic && (integrator == Integrator::bathe) == (part == StepPart::full))
+    throw std::logic_error(part == StepPart::full
+                               ? "Bathe's scheme takes half steps in a dynamic stage"
+                               : "only Bathe's scheme takes half steps in a dynamic stage");
+  if (dynamic && part == StepPart::second_half && open_half != dt)
+    throw std::logic_error("a second half step without a first half of the same dt");
   second_half = false;
   // With a and r unknown, DDA's scheme (in which neither enters) starts the motion.
   if (motion_starts &&
       (integrator == Integrator::generalized_alpha || integrator == Integrator::bathe))
     step_integration = integrator_coefficients(Integrator::dda, 0.0);
-  else if (integrator == Integrator::bathe && mode == StageMode::dynamic && open_half > 0.0 &&
-           std::abs(dt - open_half) <= 1e-12 * dt)
+  else if (dynamic && part == StepPart::second_half)
   {
     second_half = true;
     step_integration = backward_euler_half_coefficients();

@@ -199,7 +199,10 @@ public:
   /// One step of dt [s] in named phases: find contact candidates, update contacts, assemble,
   /// solve with the open-close iteration, update blocks (then bonded joints beyond their
   /// strength break). On a failure nothing changes (the caller may retry with a smaller dt).
-  StepStatus advance(double dt);
+  /// `part`: which part of the integrator's step this is (Bathe's composite scheme takes a
+  /// first and a second half in a dynamic stage, TimeStepper::advance); a part the integrator
+  /// and stage cannot take is a programming error (std::logic_error).
+  StepStatus advance(double dt, StepPart part = StepPart::full);
 
   /// Dynamic steps from now on fail with StepOutcome::slip_reversal when a sliding contact that
   /// carries force (above ContactSettings::flip_force_ratio of the largest) reverses its slip
@@ -491,11 +494,12 @@ private:
   double start_force_lag() const;
   void undo_friction_jumps();
   /// One attempt at a step (advance() without undoing an earlier attempt's friction jumps).
-  StepStatus attempt_step(double dt);
-  /// Phase 0: the integrator's coefficients for a step of dt (sets step_integration and
-  /// second_half). Generalized-alpha and Bathe's scheme start motion with DDA's scheme; Bathe's
-  /// second half follows an accepted first half of the same dt, any other step opens a pair.
-  void choose_step_scheme(double dt);
+  StepStatus attempt_step(double dt, StepPart part);
+  /// Phase 0: the integrator's coefficients for `part` of a step of dt (sets step_integration
+  /// and second_half). Generalized-alpha and Bathe's scheme start motion with DDA's scheme;
+  /// Bathe's second half must follow an accepted first half of the same dt (std::logic_error if
+  /// not), and in a dynamic stage Bathe takes no full step.
+  void choose_step_scheme(double dt, StepPart part);
   /// Block i's state the step's Newmark updates start from: its own, or in a composite pair's
   /// second half the equivalent start of backward_euler_start.
   KinematicState step_start(std::size_t i, double dt) const;
@@ -722,7 +726,7 @@ private:
   std::vector<StateBeforeJump> friction_jumps; ///< of the step being tried
   IntegratorCoefficients step_integration;     ///< of the step being tried
   /// Integrator::bathe: whether the step being tried is a pair's second half (three-point
-  /// backward Euler), which it is when it follows a first half of the same dt
+  /// backward Euler, StepPart::second_half in a dynamic stage)
   bool second_half = false;
   /// Integrator::bathe: the dt of the last accepted step when it was a pair's first half [s];
   /// 0 when the last step closed a pair (or was static)

@@ -17,19 +17,19 @@ std::string StepLabel::text() const
   return "at t = " + format_time(time) + " (dt = " + format_time(dt) + ")";
 }
 
-StepStatus System::advance(double dt)
+StepStatus System::advance(double dt, const StepPart part)
 {
   undo_friction_jumps(); // each attempt starts from the accepted state
-  return attempt_step(dt);
+  return attempt_step(dt, part);
 }
 
-StepStatus System::attempt_step(double dt)
+StepStatus System::attempt_step(double dt, const StepPart part)
 {
   const StepLabel when{current_time, dt};
   ++timings.n_attempts;
   if (mode == StageMode::static_equilibrium)
     set_at_rest();
-  choose_step_scheme(dt); // 0. the integrator's form of this step
+  choose_step_scheme(dt, part); // 0. the integrator's form of this part of a step
   // A tied body begins its step (the far field's free response) on another thread while the
   // blocks find their contacts and assemble: the two touch no common data.
   std::future<std::string> tied = begin_tied_step(dt);
@@ -71,7 +71,7 @@ StepStatus System::attempt_step(double dt)
     if (!scan.friction_turns.empty() && start_force_lag() > 0.0 && friction_jumps.empty())
     {
       restart_at_friction_jumps(scan.friction_turns);
-      return attempt_step(dt);
+      return attempt_step(dt, part);
     }
   }
 

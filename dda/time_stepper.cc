@@ -72,21 +72,21 @@ StepStatus TimeStepper::advance(double trial)
   pair_broken = false;
   if (!composite)
     return system.advance(trial);
-  const StepStatus first = system.advance(0.5 * trial);
+  const StepStatus first = system.advance(0.5 * trial, StepPart::first_half);
   if (first.outcome != StepOutcome::success)
     return first;
-  StepStatus second = system.advance(0.5 * trial);
+  StepStatus second = system.advance(0.5 * trial, StepPart::second_half);
   // A raised penalty is retried at once (bounded by ContactSettings::max_penalty_factor); a
   // reversal too early in the half to end before is taken within it.
   while (second.outcome == StepOutcome::penetration_too_large && second.penalty_raised)
   {
     ++penalty_raise_count;
-    second = system.advance(0.5 * trial);
+    second = system.advance(0.5 * trial, StepPart::second_half);
   }
   if (second.outcome == StepOutcome::slip_reversal && reversal_dt(second, 0.5 * trial) == 0.0)
   {
     system.localize_slip_reversals(0.0);
-    second = system.advance(0.5 * trial);
+    second = system.advance(0.5 * trial, StepPart::second_half);
     system.localize_slip_reversals(reversal_tolerance);
   }
   if (second.outcome != StepOutcome::success)
@@ -103,40 +103,96 @@ StepStatus TimeStepper::advance(double trial)
   return second;
 }
 
+StepDecision TimeStepper::decide(const StepStatus& status, double trial) const
+{
+  if (status.outcome == StepOutcome::success)
+    return StepDecision::accept;
+  if (status.outcome == StepOutcome::slip_reversal)
+    return StepDecision::shorten;
+  if (!can_retry_with_smaller_step(status.outcome))
+    return StepDecision::fail;
+  if (status.penalty_raised)
+    return StepDecision::retry;
+  if (control == TimeControl::fixed || reduced_dt(status, trial) < dt_min * (1.0 - 1e-12))
+    return StepDecision::fail;
+  return StepDecision::cut;
+}
+
+std::string TimeStepper::why_final(const StepStatus& status) const
+{
+  if (!can_retry_with_smaller_step(status.outcome))
+    return "";
+  std::ostringstream m;
+  if (control == TimeControl::fixed)
+    m << "; `time.control: fixed` keeps dt, expected a smaller `time.dt` or "
+      << "`time.control: adaptive`";
+  else
+    m << "; dt cannot be cut below `time.dt_min` = " << dt_min << " s";
+  return m.str();
+}
+
+void TimeStepper::cut(const StepStatus& status, double trial)
+{
+  dt = reduced_dt(status, trial);
+  level_successes = 0;
+  ++cut_causes[status.outcome];
+}
+
+void TimeStepper::shorten(const StepStatus& status, double trial)
+{
+  // End the next (pair of half) step(s) before the reversal, then go on with the dt of before.
+  if (resume_dt == 0.0)
+    resume_dt = dt;
+  dt = reversal_dt(status, trial);
+}
+
 StepStatus TimeStepper::after_broken_pair(const StepStatus& first_half, double trial)
 {
   accepted_dt = 0.5 * trial;
   StepStatus failure = broken_pair;
-  if (failure.outcome == StepOutcome::slip_reversal)
+  switch (decide(failure, trial))
   {
-    // End the next pair before the reversal, then go on with the dt of before.
-    if (resume_dt == 0.0)
-      resume_dt = dt;
-    dt = reversal_dt(failure, 0.5 * trial);
+  case StepDecision::shorten:
+    shorten(failure, 0.5 * trial);
     return first_half;
-  }
-  std::ostringstream m;
-  m << failure.message << " (the second half of a composite step; its first half stands)";
-  if (!can_retry_with_smaller_step(failure.outcome) || control == TimeControl::fixed)
-  {
-    if (control == TimeControl::fixed && can_retry_with_smaller_step(failure.outcome))
-      m << "; `time.control: fixed` keeps dt, expected a smaller `time.dt` or "
-        << "`time.control: adaptive`";
-    failure.message = m.str();
+  case StepDecision::cut:
+    cut(failure, trial);
+    ++cut_step_count;
+    return first_half;
+  default: // accept and retry cannot follow a broken pair (advance retries raised penalties)
+    failure.message +=
+        " (the second half of a composite step; its first half stands)" + why_final(failure);
     return failure;
   }
-  const double next = reduced_dt(failure, trial);
-  if (next < dt_min * (1.0 - 1e-12))
+}
+
+StepStatus TimeStepper::attempt(double trial)
+{
+  StepStatus status = advance(trial);
+  // Too close to dt_min to end before a reversal: take it within this step.
+  if (!pair_broken && status.outcome == StepOutcome::slip_reversal &&
+      reversal_dt(status, composite ? 0.5 * trial : trial) == 0.0)
   {
-    m << "; dt cannot be cut below `time.dt_min` = " << dt_min << " s";
-    failure.message = m.str();
-    return failure;
+    system.localize_slip_reversals(0.0);
+    status = advance(trial);
+    system.localize_slip_reversals(reversal_tolerance);
   }
-  dt = next;
-  level_successes = 0;
-  ++cut_causes[failure.outcome];
-  ++cut_step_count;
-  return first_half;
+  return status;
+}
+
+void TimeStepper::accept(const StepStatus& status, double trial)
+{
+  accepted_dt = trial;
+  if (last_cuts > 0)
+    ++cut_step_count;
+  else if (resume_dt > 0.0)
+  {
+    dt = resume_dt;
+    ++reversal_count;
+  }
+  else if (control == TimeControl::adaptive)
+    dt = grown_dt(status);
+  resume_dt = 0.0;
 }
 
 StepStatus TimeStepper::step(double dt_limit)
@@ -145,71 +201,28 @@ StepStatus TimeStepper::step(double dt_limit)
   while (true)
   {
     const double trial = std::min(dt, dt_limit);
-    StepStatus status = advance(trial);
+    StepStatus status = attempt(trial);
     if (pair_broken)
       return after_broken_pair(status, trial);
-    if (status.outcome == StepOutcome::slip_reversal)
+    switch (decide(status, trial))
     {
-      // A composite pair ends before a reversal found in its first half.
-      const double shortened = reversal_dt(status, composite ? 0.5 * trial : trial);
-      if (shortened == 0.0)
-      {
-        // Too close to dt_min to end before it: take the reversal within this step.
-        system.localize_slip_reversals(0.0);
-        status = advance(trial);
-        system.localize_slip_reversals(reversal_tolerance);
-        if (pair_broken)
-          return after_broken_pair(status, trial);
-      }
-      else
-      {
-        if (resume_dt == 0.0)
-          resume_dt = dt;
-        dt = shortened;
-        continue;
-      }
-    }
-    if (status.outcome == StepOutcome::success)
-    {
-      accepted_dt = trial;
-      if (last_cuts > 0)
-        ++cut_step_count;
-      else if (resume_dt > 0.0)
-      {
-        dt = resume_dt;
-        ++reversal_count;
-      }
-      else if (control == TimeControl::adaptive)
-        dt = grown_dt(status);
-      resume_dt = 0.0;
+    case StepDecision::accept:
+      accept(status, trial);
       return status;
-    }
-    if (!can_retry_with_smaller_step(status.outcome))
-      return status;
-    if (status.penalty_raised)
-    {
+    case StepDecision::shorten: // a composite pair ends before a reversal in its first half
+      shorten(status, composite ? 0.5 * trial : trial);
+      break;
+    case StepDecision::retry:
       ++penalty_raise_count;
-      continue;
-    }
-    std::ostringstream m;
-    if (control == TimeControl::fixed)
-    {
-      m << status.message << "; `time.control: fixed` keeps dt, expected a smaller `time.dt` or "
-        << "`time.control: adaptive`";
-      status.message = m.str();
+      break;
+    case StepDecision::cut:
+      cut(status, trial);
+      ++last_cuts;
+      break;
+    case StepDecision::fail:
+      status.message += why_final(status);
       return status;
     }
-    const double next = reduced_dt(status, trial);
-    if (next < dt_min * (1.0 - 1e-12))
-    {
-      m << status.message << "; dt cannot be cut below `time.dt_min` = " << dt_min << " s";
-      status.message = m.str();
-      return status;
-    }
-    dt = next;
-    level_successes = 0;
-    ++cut_causes[status.outcome];
-    ++last_cuts;
   }
 }
 

@@ -8,9 +8,20 @@
 #include <cstddef>
 #include <limits>
 #include <map>
+#include <string>
 
 namespace ddafem::dda
 {
+/// What TimeStepper does after an attempt at a step (TimeStepper::decide).
+enum class StepDecision
+{
+  accept,  ///< the attempt stands
+  shorten, ///< redo it to end before a sliding contact's slip reversal
+  retry,   ///< redo the same dt: a contact's penalty was raised
+  cut,     ///< redo it with a smaller dt (adaptive control, not below dt_min)
+  fail     ///< no step can cure it: the status goes to the caller, the model unchanged
+};
+
 /// Takes accepted steps of a System with the scene's time control (Shi's and ntdda's guards):
 /// - adaptive: try the current dt; on an outcome a smaller step can cure, cut it and try again:
 ///   the open-close iteration not converged: dt x cut_factor (Shi: 0.3); a vertex moving r times
@@ -88,6 +99,20 @@ private:
   /// The System's step of `trial` [s], or a composite pair of halves (sets pair_broken and
   /// broken_pair when only the first half stands).
   StepStatus advance(double trial);
+  /// advance(trial), redone with the reversal taken within the step when it is too close to
+  /// dt_min to end before it.
+  StepStatus attempt(double trial);
+  /// What to do after an attempt of `trial` [s] that ended in `status`.
+  StepDecision decide(const StepStatus& status, double trial) const;
+  /// StepDecision::accept: the dt of the next step (grown, or resumed after a reversal).
+  void accept(const StepStatus& status, double trial);
+  /// StepDecision::shorten: the next step, of a (half) step of `trial` [s], ends before the
+  /// reversal; the one after it resumes the dt of before.
+  void shorten(const StepStatus& status, double trial);
+  /// StepDecision::cut: the next attempt's dt, from the failure of one of `trial` [s].
+  void cut(const StepStatus& status, double trial);
+  /// StepDecision::fail: what the failure's message gains (why no smaller dt is tried).
+  std::string why_final(const StepStatus& status) const;
   /// After a composite pair of `trial` [s] whose first half stood: the dt of the next step from
   /// the second half's failure (success), or that failure when no step can cure it.
   StepStatus after_broken_pair(const StepStatus& first_half, double trial);

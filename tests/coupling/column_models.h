@@ -52,8 +52,10 @@ inline dda::StepStatus step_blocks(dda::System& system, double dt, dda::Integrat
 {
   if (integrator != dda::Integrator::bathe)
     return system.advance(dt);
-  const dda::StepStatus first = system.advance(0.5 * dt);
-  return first.outcome == dda::StepOutcome::success ? system.advance(0.5 * dt) : first;
+  const dda::StepStatus first = system.advance(0.5 * dt, dda::StepPart::first_half);
+  return first.outcome == dda::StepOutcome::success
+             ? system.advance(0.5 * dt, dda::StepPart::second_half)
+             : first;
 }
 
 /// Joint and tie normal spring p [N/m] at each end of a horizontal edge: the two springs over

@@ -1,6 +1,7 @@
 // The rock's damping (dda/damping.h) against the damped oscillator, on rigid-body motion (none)
 // and in the energy budget.
 #include "dda/system.h"
+#include "tests/dda/step_parts.h"
 
 #include <gtest/gtest.h>
 
@@ -50,7 +51,7 @@ std::vector<double> free_decay(System& s, double periods, double& dt)
   const auto n = static_cast<std::size_t>(std::lround(200.0 * periods));
   for (std::size_t k = 0; k < n; ++k)
   {
-    EXPECT_EQ(s.advance(dt).outcome, StepOutcome::success);
+    EXPECT_EQ(s.advance(dt, step_parts::of_call(s, k)).outcome, StepOutcome::success);
     y.push_back(s.sample_monitor(0).displacement.y());
   }
   return y;
@@ -139,8 +140,8 @@ TEST(Damping, RigidBodyMotionIsNotDamped)
   System s(m);
   s.begin_stage(StageMode::dynamic);
   const double dt = 1e-4; // a step moves it less than the step displacement limit
-  for (int k = 0; k < 2000; ++k)
-    ASSERT_EQ(s.advance(dt).outcome, StepOutcome::success);
+  for (std::size_t k = 0; k < 2000; ++k)
+    ASSERT_EQ(s.advance(dt, step_parts::of_call(s, k)).outcome, StepOutcome::success);
   const double t = 0.2;
   EXPECT_NEAR(s.sample_monitor(0).displacement.y(), -0.5 * 9.81 * t * t, 1e-9);
   EXPECT_NEAR(s.sample_monitor(0).displacement.x(), 0.5 * t, 1e-9);

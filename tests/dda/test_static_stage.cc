@@ -3,6 +3,7 @@
 // progress (issue 20).
 #include "dda/static_stage.h"
 #include "tests/dda/checkpoint_round_trip.h"
+#include "tests/dda/step_parts.h"
 
 #include <gtest/gtest.h>
 
@@ -100,8 +101,8 @@ TEST(StaticStage, BlockOnFrictionlessSlopeIsReleasedAndTheRestConverges)
   s.begin_stage(StageMode::dynamic);
   EXPECT_FALSE(s.is_held(2));
   const double x0 = s.get_blocks()[2].moments.centroid.x();
-  for (int k = 0; k < 100; ++k)
-    ASSERT_EQ(s.advance(1e-3).outcome, StepOutcome::success);
+  for (std::size_t k = 0; k < 100; ++k)
+    ASSERT_EQ(s.advance(1e-3, step_parts::of_call(s, k)).outcome, StepOutcome::success);
   const double slid = s.get_blocks()[2].moments.centroid.x() - x0;
   EXPECT_NEAR(slid, 0.5 * g * std::sin(b) * 0.1 * 0.1, 0.05 * 0.5 * g * std::sin(b) * 0.01);
 }
@@ -119,8 +120,8 @@ TEST(StaticStage, RemovedBlockIsInertForTheRestOfTheRun)
   EXPECT_TRUE(s.is_removed(2));
   s.begin_stage(StageMode::dynamic);
   const Point c = s.get_blocks()[2].moments.centroid;
-  for (int k = 0; k < 100; ++k)
-    ASSERT_EQ(s.advance(1e-3).outcome, StepOutcome::success);
+  for (std::size_t k = 0; k < 100; ++k)
+    ASSERT_EQ(s.advance(1e-3, step_parts::of_call(s, k)).outcome, StepOutcome::success);
   EXPECT_LT((s.get_blocks()[2].moments.centroid - c).norm(), 1e-9);
   for (const Contact& contact : s.get_contacts())
     EXPECT_TRUE(contact.vertex_block != 2 && contact.edge_block != 2);

@@ -2,6 +2,7 @@
 // their reaction transfer, and an incident wave entering through a viscous base (Joyner & Chen).
 #include "dda/system.h"
 #include "dda/time_stepper.h"
+#include "tests/dda/step_parts.h"
 
 #include <gtest/gtest.h>
 
@@ -100,7 +101,7 @@ StaticThenDynamic run_box(bool in_situ, std::size_t n_dynamic)
   s.begin_stage(StageMode::dynamic);
   for (std::size_t k = 0; k < n_dynamic; ++k)
   {
-    const StepStatus status = s.advance(1e-4);
+    const StepStatus status = s.advance(1e-4, step_parts::of_call(s, k));
     EXPECT_EQ(status.outcome, StepOutcome::success) << status.message;
     for (const Block& b : s.get_blocks())
       r.max_velocity = std::max(r.max_velocity, b.velocity.head<2>().norm());
@@ -197,9 +198,9 @@ Transmission transmission(BoundaryType base, BoundaryInput::Type wave)
   const double c = p ? std::sqrt(50e9 / rho) : std::sqrt(50e9 / (2.0 * rho));
   const TimeFunction& v_in = m.boundaries[0].input.velocity;
   double max_difference = 0.0, peak = 0.0, difference2 = 0.0, expected2 = 0.0;
-  for (int k = 0; k < 1500; ++k)
+  for (std::size_t k = 0; k < 1500; ++k)
   {
-    const StepStatus status = s.advance(m.time.dt);
+    const StepStatus status = s.advance(m.time.dt, step_parts::of_call(s, k));
     EXPECT_EQ(status.outcome, StepOutcome::success) << status.message;
     const Vector2 v = s.sample_monitor(0).velocity;
     const double expected = v_in.value(s.time() - 20.5 / c);

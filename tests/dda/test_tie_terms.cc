@@ -4,6 +4,7 @@
 // must not depend on that order.
 #include "dda/submatrices.h"
 #include "dda/system.h"
+#include "tests/dda/step_parts.h"
 
 #include <gtest/gtest.h>
 
@@ -78,7 +79,7 @@ Eigen::VectorXd step_with(const std::vector<int>& order, const Eigen::MatrixXd& 
   SpringBody body(p * h * p.transpose(), p * g);
   s.tie(body, ordered);
   s.begin_stage(StageMode::dynamic);
-  const StepStatus status = s.advance(m.time.dt);
+  const StepStatus status = s.advance(m.time.dt, step_parts::of_call(s, 0));
   EXPECT_EQ(status.outcome, StepOutcome::success) << status.message;
   Eigen::VectorXd v(12);
   v << s.get_blocks()[0].velocity, s.get_blocks()[1].velocity;
