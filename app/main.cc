@@ -11,14 +11,14 @@
 // Exit codes: 0 success, 1 numerical failure (or an I/O failure while writing results),
 // 2 bad input (scene, command line, missing file, a scene too large for memory), 3 stopped at a
 // budget (--max-wall-time, --max-memory).
-#include "app/checkpoint.h"
-#include "app/ensemble.h"
-#include "app/far_field_module.h"
-#include "app/fragility.h"
-#include "app/run.h"
-#include "app/run_support.h"
-#include "app/scene.h"
-#include "app/sweep.h"
+#include "app/far_field_module/far_field_module.h"
+#include "app/run/checkpoint.h"
+#include "app/run/run.h"
+#include "app/run/run_support.h"
+#include "app/scene/scene.h"
+#include "app/studies/ensemble.h"
+#include "app/studies/fragility.h"
+#include "app/studies/sweep.h"
 #include "common/input_error.h"
 
 #include <CLI/CLI.hpp>
@@ -105,7 +105,8 @@ int check_or_run(const CommandLine& cl, bool run)
       std::cout << ddafem::check_scene(scene);
       return 0;
     }
-    // Under mpirun the other ranks run quietly beside rank 0 (app/distributed_far_field.cc).
+    // Under mpirun the other ranks run quietly beside rank 0
+    // (app/far_field_module/distributed_far_field.cc).
     const std::optional<unsigned int> rank = ddafem::run_support::mpi_rank_from_environment();
     std::ofstream nowhere; // never opened: what the other ranks would print is dropped
     if (rank && *rank > 0)

@@ -1,7 +1,7 @@
 // Recorded ground motions: the processing of a uniformly sampled record (conversion to
 // acceleration, window, taper, baseline correction) and its engineering measures (peaks, Arias
 // intensity, significant duration, mean frequency). Pure functions of the samples; the scene
-// reader (app/record_reader) reads the files and builds the TimeFunction that scenes use.
+// reader (app/scene/record_reader) reads the files and builds the TimeFunction that scenes use.
 #pragma once
 
 #include "common/enum_names.h"

@@ -17,7 +17,7 @@ namespace ddafem
 ///   start <= t <= start + n_cycles / frequency, zero elsewhere (an n-cycle sine pulse);
 /// - table: piecewise-linear interpolation of (time, value) pairs, holding the first value before
 ///   the first time and the last value after the last time (from the scene or a CSV file);
-/// - record: a table made from a recorded ground motion (app/record_reader), which keeps what
+/// - record: a table made from a recorded ground motion (app/scene/record_reader), which keeps what
 ///   the record is (RecordInfo) and whose frequencies come from its spectrum, not its sampling.
 class TimeFunction
 {

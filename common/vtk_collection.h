@@ -1,6 +1,6 @@
 // The VTK collection (.pvd) that gathers time series of VTU files for ParaView, one writer for
 // the blocks' and contacts' series (dda/vtu_writer.cc), the far field's (fem/far_field_output.cc)
-// and a run's model.pvd (app/run_outputs.cc); and the atomic file write they share.
+// and a run's model.pvd (app/run/run_outputs.cc); and the atomic file write they share.
 #pragma once
 
 #include <filesystem>

@@ -2,7 +2,7 @@
 // engineer knows (the opening, the joint sets, the depth, the wave, the accuracy wanted) the
 // near field of blocks, its truncation (a deal.II far field, boundaries on the blocks or a ring
 // of outer blocks), the element and block sizes, the time steps and the stages, each choice
-// with its reason. app/tunnel_scene.h writes the plan into a scene's sections.
+// with its reason. app/scene/tunnel_scene.h writes the plan into a scene's sections.
 #pragma once
 
 #include "common/resource_limits.h"

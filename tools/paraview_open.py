@@ -31,7 +31,7 @@ from paraview.simple import (AnnotateTimeFilter, ColorBy, GetActiveViewOrCreate,
                              PVDReader, Render, RenameSource, ResetCamera, SaveScreenshot, Show,
                              Transform)
 
-# File name prefix of each part's VTU files in model.pvd, in part order (app/run_outputs.cc).
+# File name prefix of each part's VTU files in model.pvd, in part order (app/run/run_outputs.cc).
 PARTS = ("blocks", "contacts", "far_field", "ties", "bolts")
 STATES = (("0", "open", (0.75, 0.75, 0.75)), ("1", "slide", (1.0, 0.55, 0.0)),
           ("2", "lock", (0.1, 0.45, 0.85)), ("3", "bonded", (0.1, 0.6, 0.2)))

@@ -1,6 +1,6 @@
 // Scenes with blocks tied to a far field (`interface`, issue 6).
-#include "app/run.h"
-#include "app/scene.h"
+#include "app/run/run.h"
+#include "app/scene/scene.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The rock's damping in scenes (docs/damping.md): `materials.<name>.damping`,
 // `joint_materials.<name>.damping`, the input's frequency by default, and `tunnel.damping`.
-#include "app/scene.h"
+#include "app/scene/scene.h"
 #include "common/input_error.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
-// `ddafem ensemble` (app/ensemble.h) without running members: its options checked against the
-// roof-wedge tunnel (keys, distributions, ranges, the round-off key, the seeds), the members'
+// `ddafem ensemble` (app/studies/ensemble.h) without running members: its options checked against
+// the roof-wedge tunnel (keys, distributions, ranges, the round-off key, the seeds), the members'
 // values, and the report gathered from synthetic summaries against counts done by hand.
-#include "app/ensemble.h"
+#include "app/studies/ensemble.h"
 
 #include "common/input_error.h"
 

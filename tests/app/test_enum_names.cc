@@ -1,7 +1,7 @@
 // Every name table of dda/, fem/ and app/ (common/enum_names.h) leads from each name back to
 // itself, and the choices the schema offers are exactly those names.
-#include "app/scene_schema.h"
-#include "app/tunnel_scene.h"
+#include "app/scene/tunnel_scene.h"
+#include "app/schema/scene_schema.h"
 #include "common/ground_motion.h"
 #include "dda/model_description.h"
 #include "dda/rock_mass.h"

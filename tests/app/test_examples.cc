@@ -1,6 +1,6 @@
 // The example scenes against analytic answers: the P-wave bar of Bao et al. (2012) section 4.1
 // and a block stack at rest under gravity.
-#include "app/scene.h"
+#include "app/scene/scene.h"
 #include "dda/system.h"
 #include "dda/time_stepper.h"
 

@@ -1,5 +1,5 @@
 // The `far_field` section of scenes.
-#include "app/scene.h"
+#include "app/scene/scene.h"
 #include "common/input_error.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
-// `ddafem fragility` (app/fragility.h) without running members: the choice of levels against
-// closed forms, the damage states parsed and counted on synthetic members, the report's counts
-// recomputed here and its fits against common/statistics' own, and the intensity measure of the
-// roof-wedge tunnel (a sine pulse: PGA = 2 pi f PGV).
-#include "app/fragility.h"
+// `ddafem fragility` (app/studies/fragility.h) without running members: the choice of levels
+// against closed forms, the damage states parsed and counted on synthetic members, the report's
+// counts recomputed here and its fits against common/statistics' own, and the intensity measure of
+// the roof-wedge tunnel (a sine pulse: PGA = 2 pi f PGV).
+#include "app/studies/fragility.h"
 
 #include "common/input_error.h"
 
@@ -316,7 +316,7 @@ TEST(Fragility, IntensityMeasureOfTheTunnelsSinePulse)
 
 TEST(Fragility, RecordsPgaPerPgvFromASummary)
 {
-  // summary.json's records[0] (app/run_summary.cc): PGA 0.4 g with PGV 0.25 m/s: 1.6 g per m/s.
+  // summary.json's records[0] (app/run/run_summary.cc): PGA 0.4 g with PGV 0.25 m/s: 1.6 g per m/s.
   const nlohmann::json summary = {
       {"records", {{{"where", "far_field.incident.velocity"}, {"pga_g", 0.4}, {"pgv_m_s", 0.25}}}}};
   ASSERT_TRUE(record_pga_g_per_pgv(summary));

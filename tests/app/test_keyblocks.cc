@@ -1,10 +1,10 @@
-// Keyblocks (app/keyblocks.h): the keyblocks of a rock-mass tunnel, and what summary.json reports
-// for them after a run (the keyblock example with frictionless, sliding and holding joints).
-// Their geometry alone is tested in tests/dda/test_keyblocks.cc.
-#include "app/keyblocks.h"
+// Keyblocks (app/run/keyblocks.h): the keyblocks of a rock-mass tunnel, and what summary.json
+// reports for them after a run (the keyblock example with frictionless, sliding and holding
+// joints). Their geometry alone is tested in tests/dda/test_keyblocks.cc.
+#include "app/run/keyblocks.h"
 
-#include "app/run.h"
-#include "app/scene.h"
+#include "app/run/run.h"
+#include "app/scene/scene.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,7 +1,7 @@
-// The `record` time function (app/record_reader.h): PEER files of both header forms and tables
-// read into SI units, scaled, halved for an outcrop, given as velocity or displacement; every
-// malformed file or contradictory key refused with the file, the line and what was expected.
-#include "app/scene.h"
+// The `record` time function (app/scene/record_reader.h): PEER files of both header forms and
+// tables read into SI units, scaled, halved for an outcrop, given as velocity or displacement;
+// every malformed file or contradictory key refused with the file, the line and what was expected.
+#include "app/scene/scene.h"
 #include "common/input_error.h"
 
 #include <gtest/gtest.h>

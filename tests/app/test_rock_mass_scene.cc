@@ -1,7 +1,7 @@
 // Joint materials per joint set and explicit joint of `rock_mass` (and through `tunnel`): the
 // generated blocks' edges carry them, names are checked, `check` prints them.
-#include "app/rock_mass_scene.h"
-#include "app/scene.h"
+#include "app/scene/rock_mass_scene.h"
+#include "app/scene/scene.h"
 #include "common/input_error.h"
 
 #include <gtest/gtest.h>

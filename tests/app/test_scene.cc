@@ -1,7 +1,7 @@
 // Scene files: reading, defaults, validation messages, --set overrides and the generated
 // reference.
-#include "app/scene.h"
-#include "app/scene_schema.h"
+#include "app/scene/scene.h"
+#include "app/schema/scene_schema.h"
 #include "common/input_error.h"
 #include "dda/geometry.h"
 

@@ -1,9 +1,10 @@
-// A scene's static stage end to end (app/stage_records.h): a block that cannot be in equilibrium
-// is released, recorded in summary.json, and the run goes on to its dynamic stage (exit 0).
-#include "app/stage_records.h"
+// A scene's static stage end to end (app/run/stage_records.h): a block that cannot be in
+// equilibrium is released, recorded in summary.json, and the run goes on to its dynamic stage (exit
+// 0).
+#include "app/run/stage_records.h"
 
-#include "app/run.h"
-#include "app/scene.h"
+#include "app/run/run.h"
+#include "app/scene/scene.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

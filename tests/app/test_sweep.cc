@@ -1,6 +1,6 @@
-// The critical-value search of `ddafem sweep` (app/sweep.h) against oracles with a known
+// The critical-value search of `ddafem sweep` (app/studies/sweep.h) against oracles with a known
 // threshold, and the verdict it reads from a run's summary.json.
-#include "app/sweep.h"
+#include "app/studies/sweep.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// The radial bolt pattern's geometry (app/tunnel_bolts.h) on shapes with exact answers.
-#include "app/tunnel_bolts.h"
+// The radial bolt pattern's geometry (app/scene/tunnel_bolts.h) on shapes with exact answers.
+#include "app/scene/tunnel_bolts.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // The `tunnel` section (issue 7): the scene it expands into (what the program chooses for a
 // tunnel is tested in tests/coupling/test_tunnel_plan.cc).
-#include "app/scene.h"
-#include "app/tunnel_scene.h"
+#include "app/scene/scene.h"
+#include "app/scene/tunnel_scene.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // counts as a clear refusal.
 #pragma once
 
-#include "app/scene.h"
+#include "app/scene/scene.h"
 #include "common/input_error.h"
 
 #include <string>

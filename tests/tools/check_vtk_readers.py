@@ -4,7 +4,7 @@
 usage: check_vtk_readers.py RUN_DIR EXPECTED_BLOCKS EXPECTED_STEPS
 
 model.pvd lists, per snapshot time, one file per part: 0 blocks, 1 contacts, and in coupled runs
-2 far field, 3 ties (app/run_outputs.cc). Checks that every file reads with
+2 far field, 3 ties (app/run/run_outputs.cc). Checks that every file reads with
 vtkXMLUnstructuredGridReader; that there are EXPECTED_STEPS snapshot times; that every blocks
 file has EXPECTED_BLOCKS polygon cells with finite cell arrays displacement, velocity, stress and
 von_mises; that contacts (and ties) carry finite state, gap and slip; that far-field files have

@@ -1,0 +1,145 @@
+#include "app/run/lining_outputs.h"
+
+#include "common/format.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+namespace ddafem
+{
+namespace
+{
+nlohmann::json time_or_null(double t)
+{
+  return std::isnan(t) ? nlohmann::json(nullptr) : nlohmann::json(t);
+}
+
+nlohmann::json point_json(const dda::Point& p)
+{
+  return {p.x(), p.y()};
+}
+
+/// The bending moment of larger magnitude of the two ends [N m/m], signed.
+double governing_moment(const dda::FrameForces& f)
+{
+  return std::abs(f.bending_moment_a()) >= std::abs(f.bending_moment_b()) ? f.bending_moment_a()
+                                                                          : f.bending_moment_b();
+}
+
+nlohmann::json element_json(const dda::Lining& l, std::size_t k)
+{
+  const dda::LiningElement& e = l.elements[k];
+  const dda::LiningNode& a = l.nodes[e.a];
+  const dda::LiningNode& b = l.nodes[e.b];
+  return {{"index", k},
+          {"from_m", point_json(a.point.initial)},
+          {"to_m", point_json(b.point.initial)},
+          {"blocks", {a.point.block, b.point.block}},
+          {"length_m", e.length0},
+          {"state", name_of(e.state)},
+          {"axial_force_n_per_m", e.forces.axial_force},
+          {"shear_force_n_per_m", e.forces.shear_force},
+          {"moment_a_nm_per_m", e.forces.bending_moment_a()},
+          {"moment_b_nm_per_m", e.forces.bending_moment_b()},
+          {"utilisation", e.check.utilisation},
+          {"governing", name_of(e.check.mode)},
+          {"max_utilisation", e.max_utilisation},
+          {"break_time_s", time_or_null(e.break_time)}};
+}
+} // namespace
+
+void add_lining_channels(std::vector<HistoryChannel>& channels, const dda::ModelDescription& model)
+{
+  for (const dda::LiningDescription& l : model.linings)
+  {
+    const std::string p = "linings/" + l.name + "/";
+    channels.push_back({p + "max_utilisation", 1, "",
+                        "largest demand / capacity of the intact elements (0 before installed)"});
+    channels.push_back({p + "worst_element", 1, "", "index of that element"});
+    channels.push_back({p + "axial_force", 1, "N/m", "N of that element, tension positive"});
+    channels.push_back({p + "shear_force", 1, "N/m", "V of that element"});
+    channels.push_back(
+        {p + "moment", 1, "N m/m", "the bending moment of larger magnitude at its ends"});
+    channels.push_back({p + "broken_elements", 1, "", "elements broken so far"});
+  }
+}
+
+void add_lining_row(std::vector<double>& row, const dda::System& system)
+{
+  for (const dda::Lining& l : system.get_linings())
+  {
+    const std::size_t k = l.worst_element();
+    const dda::LiningElement& e = l.elements[k];
+    const bool intact = e.state == dda::LiningElementState::intact;
+    row.insert(row.end(), {intact ? e.check.utilisation : 0.0, static_cast<double>(k),
+                           e.forces.axial_force, e.forces.shear_force, governing_moment(e.forces),
+                           static_cast<double>(l.n_broken())});
+  }
+}
+
+nlohmann::json linings_summary(const dda::System& system)
+{
+  nlohmann::json out = nlohmann::json::array();
+  for (const dda::Lining& l : system.get_linings())
+  {
+    nlohmann::json elements = nlohmann::json::array();
+    for (std::size_t k = 0; k < l.elements.size(); ++k)
+      if (l.elements[k].state != dda::LiningElementState::on_one_block)
+        elements.push_back(element_json(l, k));
+    const bool broke = !std::isnan(l.first_break_time);
+    out.push_back(
+        {{"name", l.name},
+         {"thickness_m", l.section.thickness},
+         {"youngs_modulus_pa", l.section.youngs_modulus},
+         {"compressive_strength_pa", l.section.compressive_strength},
+         {"tensile_strength_pa", l.section.tensile_strength},
+         {"shear_strength_pa", l.section.shear_strength},
+         {"nodes", l.nodes.size()},
+         {"elements", l.elements.size()},
+         {"installed", l.installed},
+         {"install_time_s", l.installed ? nlohmann::json(l.install_time) : nlohmann::json(nullptr)},
+         {"max_utilisation", l.max_utilisation},
+         {"max_utilisation_time_s", time_or_null(l.max_utilisation_time)},
+         {"max_utilisation_element", l.max_utilisation_element},
+         {"broken_elements", l.n_broken()},
+         {"first_break_time_s", time_or_null(l.first_break_time)},
+         {"first_break_element",
+          broke ? nlohmann::json(l.first_break_element) : nlohmann::json(nullptr)},
+         {"coupling_elements", elements}});
+  }
+  return out;
+}
+
+void describe_linings(const dda::System& system, std::ostream& out)
+{
+  for (const dda::Lining& l : system.get_linings())
+  {
+    std::set<std::pair<std::size_t, std::size_t>> pairs;
+    std::size_t n_coupling = 0;
+    for (const dda::LiningElement& e : l.elements)
+      if (e.state != dda::LiningElementState::on_one_block)
+      {
+        ++n_coupling;
+        pairs.insert(std::minmax(l.nodes[e.a].point.block, l.nodes[e.b].point.block));
+      }
+    const dda::LiningSection& s = l.section;
+    out << "  lining " << l.name << ": " << l.nodes.size() << " nodes, " << l.elements.size()
+        << " elements (" << n_coupling << " between two blocks), t "
+        << format_significant(s.thickness, 5) << " m, E " << format_significant(s.youngs_modulus, 5)
+        << " Pa, f_c " << format_significant(s.compressive_strength, 5) << " Pa, f_t "
+        << format_significant(s.tensile_strength, 5) << " Pa, f_v "
+        << (s.shear_strength > 0.0 ? format_significant(s.shear_strength, 5) + " Pa"
+                                   : std::string("not checked"))
+        << ", installed "
+        << (l.install_stage == 0 ? std::string("from the start")
+                                 : "at the start of stage " + std::to_string(l.install_stage))
+        << "\n    couples blocks:";
+    for (const auto& [a, b] : pairs)
+      out << " " << a << "-" << b;
+    out << "\n";
+  }
+}
+
+} // namespace ddafem

@@ -1,0 +1,791 @@
+// The scene schema: blocks, materials, joints, loads, boundaries, time, contacts, stages, solver,
+// output.
+#include "app/schema/schema_sections.h"
+#include "common/wave_type.h"
+#include "dda/model_description.h"
+#include "fem/far_field_description.h"
+
+#include <utility>
+#include <vector>
+
+namespace ddafem::schema
+{
+namespace
+{
+/// stages[i].mode: the stage modes, and a dynamic stage that ends when the blocks settle.
+std::vector<std::string> stage_mode_names()
+{
+  std::vector<std::string> names = names_of<dda::StageMode>();
+  names.emplace_back(dda::settle_mode_name);
+  return names;
+}
+} // namespace
+
+/// `stress` of an in-situ stress sigma0(y) = stress + stress_gradient (y - reference_y)
+/// (`in_situ_stress`, `far_field.static_stage`).
+Key in_situ_stress_key()
+{
+  return key("stress", ValueType::voigt)
+      .unit("Pa")
+      .default_yaml("[0, 0, 0]")
+      .meaning("in-situ stress [sxx, syy, sxy] at reference_y, tension positive");
+}
+
+/// `stress_gradient` of an in-situ stress.
+Key in_situ_gradient_key()
+{
+  return key("stress_gradient", ValueType::voigt)
+      .unit("Pa/m")
+      .default_yaml("[0, 0, 0]")
+      .meaning("d/dy of the in-situ stress, e.g. [K0 rho g, rho g, 0] for lithostatic stress "
+               "with reference_y at the surface");
+}
+
+/// `joint_material` of a joint set or an explicit joint of `rock_mass` (`along`: what it cuts).
+Key joint_material_key(const std::string& along)
+{
+  return key("joint_material", ValueType::string)
+      .default_note("`joints.default` (or a `joints.pairs` entry)")
+      .meaning("name of the joint material of the joints (bonded) or contacts (`bonded: false`) "
+               "along " +
+               along +
+               ": where blocks were cut by it; edges on the region's or an opening's boundary, "
+               "and edges on no joint (vertical cuts around islands), take `joints`");
+}
+
+/// The `type` key of one time-function variant.
+Key time_function_type(const TimeFunctionType type)
+{
+  return key("type", ValueType::choice)
+      .required()
+      .choices({name_of(type)})
+      .meaning("selects this kind of time function");
+}
+
+/// The top level's keys that describe the rock: name, analysis, materials, joints, blocks and their
+/// generators, the far field.
+std::vector<Key> top_level_model_keys()
+{
+  using T = ValueType;
+  return {key("name", T::string)
+              .default_note("file name without extension")
+              .meaning("scene name shown in summaries and result files"),
+          key("description", T::string).default_yaml("''").meaning("free text"),
+          key("analysis", T::section)
+              .section("analysis")
+              .default_note("plane stress, updated geometry")
+              .meaning("2D idealisation of the blocks and geometry update"),
+          key("materials", T::section_map)
+              .section("materials.<name>")
+              .required()
+              .meaning("block materials by name"),
+          key("joint_materials", T::section_map)
+              .section("joint_materials.<name>")
+              .default_note("none")
+              .meaning("joint (contact) materials by name"),
+          key("joints", T::section)
+              .section("joints")
+              .default_note("none")
+              .meaning("which joint material acts between blocks of which materials"),
+          key("blocks", T::section_list)
+              .section("blocks[i]")
+              .default_note("required unless `far_field` or `rock_mass` is given")
+              .meaning("the blocks: polygons or grids of rectangles"),
+          key("rock_mass", T::section)
+              .section("rock_mass")
+              .default_note("none")
+              .meaning("blocks generated from a region cut by joint sets, with openings excavated "
+                       "(after the `blocks`)"),
+          key("tunnel", T::section)
+              .section("tunnel")
+              .default_note("none")
+              .meaning("a tunnel in jointed rock under a seismic wave: generates rock_mass, "
+                       "far_field, interface or boundaries, in_situ_stress, stages, monitors and "
+                       "time (see `tunnel`)"),
+          key("far_field", T::section)
+              .section("far_field")
+              .default_note("none")
+              .meaning("a deal.II continuum; without blocks the scene is FE only, with blocks it "
+                       "surrounds them (see `interface`)"),
+          key("interface", T::section)
+              .section("interface")
+              .default_note("required with both blocks (`blocks` or `rock_mass`) and `far_field`")
+              .meaning("ties between the blocks and the far-field part they fill")};
+}
+
+/// The top level's keys of loads and the run: loads, supports, gravity, in-situ stress, monitors,
+/// boundaries, time, contacts, stages, solver, output.
+std::vector<Key> top_level_run_keys()
+{
+  using T = ValueType;
+  return {key("point_loads", T::section_list)
+              .section("point_loads[i]")
+              .default_note("none")
+              .meaning("forces at material points"),
+          key("fixed_points", T::section_list)
+              .section("fixed_points[i]")
+              .default_note("none")
+              .meaning("material points tied to their initial position (plus a prescribed motion)"),
+          key("bolts", T::section_list)
+              .section("bolts[i]")
+              .default_note("none")
+              .meaning("rock bolts: end-anchored between two blocks, or grouted through the "
+                       "blocks they cross"),
+          key("linings", T::section_list)
+              .section("linings[i]")
+              .default_note("none")
+              .meaning("shotcrete or concrete linings on the blocks' surface (frame elements)"),
+          key("gravity", T::vector2)
+              .unit("m/s^2")
+              .default_yaml("[0, 0]")
+              .meaning("body acceleration, e.g. [0, -9.81]"),
+          key("in_situ_stress", T::section)
+              .section("in_situ_stress")
+              .default_note("none")
+              .meaning("the rock mass's initial stress: blocks start with it, and bonded joints, "
+                       "ties to the far field and the static supports of viscous boundaries carry "
+                       "its traction"),
+          key("monitors", T::section_list)
+              .section("monitors[i]")
+              .default_note("none")
+              .meaning("points whose displacement, velocity and stress histories are recorded"),
+          key("boundaries", T::section_list)
+              .section("boundaries[i]")
+              .default_note("none")
+              .meaning("absorbing (viscous) or free boundaries on outer block edges"),
+          key("time", T::section)
+              .section("time")
+              .default_note("required unless `tunnel` is given")
+              .meaning("time step and duration"),
+          key("contacts", T::section)
+              .section("contacts")
+              .default_note("see `contacts`")
+              .meaning("contact detection and the open-close iteration"),
+          key("stages", T::section_list)
+              .section("stages[i]")
+              .default_note("one dynamic stage up to time.end_time")
+              .meaning("stages run in sequence, e.g. static equilibrium under gravity, then the "
+                       "dynamic load"),
+          key("solver", T::section)
+              .section("solver")
+              .default_note("block_ldlt")
+              .meaning("linear solver of each step"),
+          key("output", T::section)
+              .section("output")
+              .default_note("see `output`")
+              .meaning("where and how often results are written")};
+}
+
+Section top_level_section()
+{
+  std::vector<Key> keys = top_level_model_keys();
+  for (Key& k : top_level_run_keys())
+    keys.push_back(std::move(k));
+  return {SceneSchema::top_level, "A scene is one YAML map with these sections.", std::move(keys)};
+}
+
+Section analysis_section()
+{
+  using T = ValueType;
+  return {"analysis",
+          "How the 2D model idealises the third dimension, and whether the step matrix follows the "
+          "moving geometry.",
+          {key("plane", T::choice)
+               .choices(names_of<PlaneMode>())
+               .default_yaml("stress")
+               .meaning("plane stress (thin slab, one-block-high bar) or plane strain (long "
+                        "section)"),
+           key("geometry", T::choice)
+               .choices(names_of<dda::GeometryMode>())
+               .default_yaml("updated")
+               .meaning("updated: Shi's DDA, every step is linearised about the current block "
+                        "geometry; small_displacement: linear analysis about the initial geometry "
+                        "(matrix assembled and factorized once; for waves of small amplitude)")}};
+}
+
+Section materials_section()
+{
+  using T = ValueType;
+  return {"materials.<name>",
+          "A linear elastic, isotropic block material. `<name>` is any name; blocks refer to it.",
+          {key("density", T::number)
+               .unit("kg/m^3")
+               .required()
+               .greater_than(0)
+               .meaning("mass density rho"),
+           key("youngs_modulus", T::number)
+               .unit("Pa")
+               .required()
+               .greater_than(0)
+               .meaning("Young's modulus E"),
+           key("poisson_ratio", T::number)
+               .required()
+               .at_least(0)
+               .less_than(0.5)
+               .meaning("Poisson's ratio nu"),
+           damping_key("materials.<name>.damping", "the blocks' strain rates")}};
+}
+
+Section joint_materials_section()
+{
+  using T = ValueType;
+  return {
+      "joint_materials.<name>",
+      "Properties of the joints (contacts) between blocks. `<name>` is any name; `joints` "
+      "refers to it.",
+      {key("normal_stiffness", T::number)
+           .unit("N/m")
+           .required()
+           .greater_than(0)
+           .meaning("penalty spring at each contact point"),
+       key("shear_ratio", T::number)
+           .default_yaml("0.4")
+           .greater_than(0)
+           .meaning("shear spring / normal spring"),
+       key("friction_angle", T::number)
+           .unit("deg")
+           .default_yaml("0")
+           .at_least(0)
+           .less_than(90)
+           .meaning("Coulomb friction angle phi"),
+       key("cohesion", T::number)
+           .unit("Pa")
+           .default_yaml("0")
+           .at_least(0)
+           .meaning("cohesion c: of a bonded joint, or of a frictional contact until it first "
+                    "slides or opens (per unit joint length carried by the contact)"),
+       key("tensile_strength", T::number)
+           .unit("Pa")
+           .default_yaml("0")
+           .at_least(0)
+           .meaning("tensile strength: of a bonded joint, or of a frictional contact until it "
+                    "first slides or opens"),
+       key("bonded", T::boolean)
+           .default_yaml("true")
+           .meaning("true: blocks sharing an edge are glued by springs until the strength is "
+                    "exceeded, then they meet through frictional contacts (residual friction, no "
+                    "cohesion); false: frictional contacts from the start"),
+       damping_key("joint_materials.<name>.damping", "the joints' and contacts' relative motion")}};
+}
+
+Section joints_section()
+{
+  using T = ValueType;
+  return {"joints",
+          "Assigns joint materials to pairs of block materials. Any two blocks may come into "
+          "contact, so every pair of materials in use needs a joint material, from a pair entry or "
+          "the default.",
+          {key("default", T::string)
+               .default_note("none")
+               .meaning("name of the joint material for pairs not listed in `pairs`"),
+           key("pairs", T::section_list)
+               .section("joints.pairs[i]")
+               .default_note("none")
+               .meaning("joint materials for given pairs of block materials")}};
+}
+
+Section joints_pairs_section()
+{
+  using T = ValueType;
+  return {"joints.pairs[i]",
+          "The joint material between blocks of materials A and B (in either order).",
+          {key("materials", T::name_pair)
+               .required()
+               .meaning("the two block material names, e.g. [rock, concrete]"),
+           key("joint", T::string).required().meaning("the joint material name")}};
+}
+
+Section blocks_section()
+{
+  using T = ValueType;
+  return {
+      "blocks[i]",
+      "One block (`vertices`) or a grid of rectangular blocks (`grid`): give exactly one of the "
+      "two. Vertices may be given clockwise or anticlockwise, and the first vertex may be "
+      "repeated at the end. Blocks may touch but not overlap.",
+      {key("material", T::string).required().meaning("name of the block's material"),
+       key("vertices", T::point_list)
+           .unit("m")
+           .default_note("(give vertices or grid)")
+           .meaning("corners of a simple polygon, at least 3"),
+       key("grid", T::section)
+           .section("blocks[i].grid")
+           .default_note("(give vertices or grid)")
+           .meaning("a grid of nx * ny rectangles, numbered row by row, x fastest"),
+       key("initial_velocity", T::vector2)
+           .unit("m/s")
+           .default_yaml("[0, 0]")
+           .meaning("translational velocity at t = 0"),
+       key("initial_stress", T::voigt)
+           .unit("Pa")
+           .default_yaml("[0, 0, 0]")
+           .meaning("stress [sxx, syy, sxy] at t = 0, tension positive")}};
+}
+
+Section blocks_grid_section()
+{
+  using T = ValueType;
+  return {"blocks[i].grid",
+          "A grid of equal rectangles; each becomes one block.",
+          {key("origin", T::vector2).unit("m").required().meaning("lower-left corner of the grid"),
+           key("cell_size", T::vector2)
+               .unit("m")
+               .required()
+               .greater_than(0)
+               .meaning("[width, height] of each rectangle"),
+           key("count", T::integer_pair)
+               .required()
+               .at_least(1)
+               .meaning("[nx, ny] rectangles in x and y, at most 10^6 in all")}};
+}
+
+Section point_loads_section()
+{
+  using T = ValueType;
+  return {"point_loads[i]",
+          "A force F(t) = force * f(t) at a material point; the point must lie inside or on the "
+          "boundary of a block.",
+          {key("point", T::vector2).unit("m").required().meaning("where the force acts"),
+           key("force", T::vector2).unit("N").required().meaning("[fx, fy]"),
+           key("time_function", T::time_function)
+               .default_yaml("{type: constant, value: 1}")
+               .meaning("dimensionless factor f(t)")}};
+}
+
+Section fixed_points_section()
+{
+  using T = ValueType;
+  return {"fixed_points[i]",
+          "A material point tied by a stiff spring to its initial position plus a prescribed "
+          "displacement; the point must lie inside or on the boundary of a block.",
+          {key("point", T::vector2).unit("m").required().meaning("the tied material point"),
+           key("stiffness", T::number)
+               .unit("N/m")
+               .default_yaml("0")
+               .at_least(0)
+               .meaning("penalty spring; 0 selects the engine's default"),
+           key("displacement_x", T::time_function)
+               .unit("m")
+               .default_yaml("{type: constant, value: 0}")
+               .meaning("prescribed displacement ux(t)"),
+           key("displacement_y", T::time_function)
+               .unit("m")
+               .default_yaml("{type: constant, value: 0}")
+               .meaning("prescribed displacement uy(t)")}};
+}
+
+Section monitors_section()
+{
+  using T = ValueType;
+  return {"monitors[i]",
+          "A measurement point; it must lie inside or on the boundary of a block.",
+          {key("name", T::string).required().meaning("unique name of the history"),
+           key("point", T::vector2).unit("m").required().meaning("the monitored material point")}};
+}
+
+Section boundaries_section()
+{
+  using T = ValueType;
+  return {
+      "boundaries[i]",
+      "A treatment of outer block edges (docs/reference/physics.md section 3). Give exactly one "
+      "selector: `edges`, `on_line` or `outer: true`. Each selected edge of length l0 gets the "
+      "dashpot "
+      "coefficients cn = a_n rho l0 VP and ct = a_t rho l0 VS (rho, VP, VS of its block's "
+      "material). Edges that are not selected stay free. Which edges a line or `outer` selects "
+      "is decided by the engine: a selector that selects no edge is an error. In a static "
+      "stage a vb1, vb2 or dashpot edge is held instead by a normal and a shear spring to "
+      "fixed ground at each end (those of `joints.default`, else the fixed points' default "
+      "penalty and shear ratio 0.4), preloaded with the `in_situ_stress` traction; when the "
+      "first dynamic stage starts their forces become constant edge loads and the dashpots "
+      "take over.",
+      {key("type", T::choice)
+           .required()
+           .choices(names_of<dda::BoundaryType>())
+           .meaning("free: no boundary term (a traction-free edge; kept so that --set can "
+                    "switch types); vb1: Bao, Hatzor & Huang (2012) eq. 39; vb2: Jiao et al. "
+                    "(2007) eq. 40; dashpot: the consistent dashpot, the force -C v1 with the "
+                    "integrator's end-of-step velocity v1"),
+       key("impedance", T::choice)
+           .choices(names_of<dda::ImpedanceKind>())
+           .default_yaml("textbook")
+           .meaning("textbook: VP = sqrt(E (1-nu) / (rho (1+nu) (1-2nu))), VS = sqrt(E / (2 rho "
+                    "(1+nu))); effective: the model's actual wave speeds (block modulus in "
+                    "series with the joint compliance behind the boundary block)"),
+       key("a_n", T::number)
+           .default_yaml("1")
+           .greater_than(0)
+           .meaning("normal coefficient in cn = a_n rho l0 VP"),
+       key("a_t", T::number)
+           .default_yaml("1")
+           .greater_than(0)
+           .meaning("tangential coefficient in ct = a_t rho l0 VS"),
+       key("edges", T::integer_pair_list)
+           .at_least(0)
+           .default_note("(give one selector)")
+           .meaning("explicit edges [[block, edge], ...]: block indexes the final block list "
+                    "(each grid cell is one block, in grid order; the `rock_mass` blocks follow "
+                    "the `blocks`); edge k runs from vertex k to "
+                    "vertex k + 1 of the block's polygon as stored: anticlockwise (clockwise "
+                    "vertices are reversed, a repeated first vertex is dropped), so edges 0 to 3 "
+                    "of a grid cell are its bottom, right, top and left sides"),
+       key("on_line", T::section)
+           .section("boundaries[i].on_line")
+           .default_note("(give one selector)")
+           .meaning("every outer edge lying on a straight line"),
+       key("outer", T::boolean)
+           .default_yaml("false")
+           .meaning("true selects every outer edge (an edge not shared by a joint)"),
+       key("input", T::section)
+           .section("boundaries[i].input")
+           .default_note("none")
+           .meaning("an incident wave entering through the boundary (vb1, vb2, dashpot)")}};
+}
+
+Section in_situ_stress_section()
+{
+  using T = ValueType;
+  return {"in_situ_stress",
+          "sigma0(y) = stress + stress_gradient (y - reference_y), tension positive. Every block "
+          "without an explicit `initial_stress` starts with sigma0 at its centroid; every bonded "
+          "joint end, every tie to the far field and every static support of a viscous boundary "
+          "carries the force sigma0 n times its share of the edge (n out of the block): the "
+          "traction the in-situ stress puts across it. With stress_gradient [K0 rho g, rho g, 0] "
+          "and reference_y at the surface it balances gravity. Bonded joints and ties keep this "
+          "preload; a viscous boundary's support hands it on as a constant edge load when the "
+          "first dynamic stage starts.",
+          {in_situ_stress_key(), in_situ_gradient_key(),
+           key("reference_y", T::number)
+               .unit("m")
+               .default_yaml("0")
+               .meaning("height where the in-situ stress is `stress`")}};
+}
+
+Section boundaries_input_section()
+{
+  using T = ValueType;
+  return {
+      "boundaries[i].input",
+      "An incident plane wave travelling up (+y) that enters through the boundary's dashpots "
+      "(Joyner & Chen 1975): each edge receives the force 2 C v_in(t) at its midpoint, C = cn n "
+      "n^T + ct t t^T its own dashpots and v_in the incident particle velocity, (0, v_in) for P "
+      "and (v_in, 0) for SV; on a horizontal base that is 2 cn v_in upward (P) or 2 ct v_in "
+      "along x (SV). A uniform traction over a block edge equals its resultant at the midpoint "
+      "for DDA's first-order blocks. Dynamic stages only.",
+      {key("type", T::choice).required().choices(names_of<WaveType>()).meaning("wave type"),
+       key("velocity", T::time_function)
+           .required()
+           .meaning("v_in(t) [m/s] of the incident (upgoing) wave")}};
+}
+
+Section boundaries_on_line_section()
+{
+  using T = ValueType;
+  return {"boundaries[i].on_line",
+          "A straight line through `point` along `direction`; it selects the outer block edges "
+          "that lie on it.",
+          {key("point", T::vector2).unit("m").required().meaning("a point of the line"),
+           key("direction", T::vector2)
+               .required()
+               .meaning("direction of the line [dx, dy], non-zero (any length)")}};
+}
+
+Section time_section()
+{
+  using T = ValueType;
+  return {
+      "time",
+      "Time stepping.",
+      {key("dt", T::number).unit("s").required().greater_than(0).meaning("time step"),
+       key("end_time", T::number)
+           .unit("s")
+           .required()
+           .greater_than(0)
+           .meaning("simulated duration; must be >= dt"),
+       key("integrator", T::choice)
+           .choices(names_of<dda::Integrator>())
+           .default_yaml("bathe")
+           .meaning("bathe (the default): Bathe's composite scheme, a generalized-alpha "
+                    "(rho_inf 1/2) and a three-point backward Euler half step per dt, two solves "
+                    "per step; right for frictional sliding and falls (within 0.71%) and for "
+                    "waves (the bar's record error 0.70% at 200 steps per period), "
+                    "docs/verification/failure.md; with a far field, the far field takes the "
+                    "trapezoidal rule on each half step. generalized_alpha "
+                    "(Chung & Hulbert 1993): one solve per step, sliding within 0.51%, but the "
+                    "bar's record error 1.55% at 200 steps per period; dda: Shi's first-order "
+                    "scheme (damps waves, but not stiff contact modes: its spectral radius "
+                    "returns to 1 as omega dt grows); newmark_trapezoidal: energy-conserving, "
+                    "second order (penalty contacts ring: blocks bounce and slide too far)"),
+       key("spectral_radius", T::number)
+           .default_yaml("0.2")
+           .at_least(0)
+           .at_most(1)
+           .meaning("generalized_alpha: the spectral radius at infinite frequency rho_inf (1: "
+                    "no algorithmic damping; 0: stiff modes annihilated in one step)"),
+       key("control", T::choice)
+           .choices(names_of<dda::TimeControl>())
+           .default_yaml("adaptive")
+           .meaning("adaptive: dt is the largest step, cut by cut_factor when a step fails "
+                    "(open-close iteration not converged, a vertex moving more than "
+                    "contacts.max_displacement_ratio allows, too deep a penetration) and grown "
+                    "back by growth_factor (blocks tied to a far field: on the levels "
+                    "dt / 2^k, doubling after as many steps as growth_factor takes to double; "
+                    "coupling/README.md); fixed: every step has dt and such a failure stops "
+                    "the run (wave problems)"),
+       key("dt_min", T::number)
+           .unit("s")
+           .default_note("dt / 10^4")
+           .greater_than(0)
+           .meaning("smallest step of adaptive control; a step that needs less stops the run"),
+       key("cut_factor", T::number)
+           .default_yaml("0.3")
+           .greater_than(0)
+           .less_than(1)
+           .meaning("dt multiplier after a failed step (Shi: 0.3)"),
+       key("growth_factor", T::number)
+           .default_yaml("1.2")
+           .at_least(1)
+           .meaning("dt multiplier after an accepted step, up to dt"),
+       key("reversal_tolerance", T::number)
+           .unit("m")
+           .default_yaml("1e-6")
+           .at_least(0)
+           .meaning("adaptive control: the slip error a sliding contact's reversal within a "
+                    "step may leave (its friction acted the wrong way for part of the step: "
+                    "the speed error times the duration of the slide it ends); a step with a "
+                    "larger one is redone to end just before the reversal and dt goes back up "
+                    "at the next step; with generalized-alpha, a step in which friction turns "
+                    "around is redone from the jump and the open-close iteration locks a "
+                    "contact whose sliding reverses between trials (these two only on slides "
+                    "of at least 10 steps: shorter ones are contacts chattering under a wave). "
+                    "1e-6 makes two-way sliding on a shaken joint exact "
+                    "(docs/verification/failure.md, part 1b); 0: none (docs/design.md, "
+                    "Integrators)")}};
+}
+
+Section contacts_section()
+{
+  using T = ValueType;
+  return {"contacts",
+          "Contact detection and the open-close iteration (Shi 1988). w0 is half the model's size "
+          "(the larger side of the blocks' bounding box, halved). The step displacement bound is "
+          "g2 w0, but at most a tenth of the shortest block edge.",
+          {key("max_displacement_ratio", T::number)
+               .default_yaml("0.01")
+               .greater_than(0)
+               .less_than(1)
+               .meaning("Shi's g2: the largest vertex displacement of a step over w0 (the bound is "
+                        "at most a tenth of the shortest edge); a step beyond is cut"),
+           key("search_distance", T::number)
+               .unit("m")
+               .default_note("2.5 x the step displacement bound")
+               .greater_than(0)
+               .meaning("how close a vertex must come to an edge to be a contact candidate"),
+           key("max_penetration", T::number)
+               .unit("m")
+               .default_note("the step displacement bound")
+               .greater_than(0)
+               .meaning("deepest penetration a step may leave; a step beyond is cut"),
+           key("max_open_close_iterations", T::integer)
+               .default_yaml("6")
+               .at_least(1)
+               .meaning("open-close iterations before the step is cut (Shi: 6)"),
+           key("max_penalty_factor", T::number)
+               .default_yaml("100")
+               .at_least(1)
+               .meaning("a contact penetrating deeper than max_penetration has its springs raised "
+                        "x 10 and the step redone (ntdda), up to this multiple of its joint "
+                        "material's; then dt is cut"),
+           key("flip_force_ratio", T::number)
+               .default_yaml("1e-3")
+               .at_least(0)
+               .less_than(1)
+               .meaning("from the third open-close iteration on, a contact whose forces stay below "
+                        "this fraction of the step's largest contact normal force changes state "
+                        "without holding the iteration back (no flipping between slide and lock "
+                        "at almost no force); 0 counts every change"),
+           key("angle_tolerance", T::number)
+               .unit("deg")
+               .default_yaml("1")
+               .greater_than(0)
+               .less_than(30)
+               .meaning("edges this close to parallel touch edge to edge; vertices this close to "
+                        "180 degrees are straight (never enter)")}};
+}
+
+/// The keys of every stage and of static stages: name, mode, dt, end_time, max_steps, tolerance.
+std::vector<Key> stage_keys()
+{
+  using T = ValueType;
+  return {key("name", T::string).required().meaning("shown in messages and summary.json"),
+          key("mode", T::choice)
+              .choices(stage_mode_names())
+              .required()
+              .meaning("static: seek equilibrium; dynamic: integrate the motion to end_time; "
+                       "settle: integrate the motion from where the previous stage ended until "
+                       "every block is at rest or has fallen (at most max_duration), so that a "
+                       "block reported as fallen fell"),
+          key("dt", T::number)
+              .unit("s")
+              .default_note("time.dt")
+              .greater_than(0)
+              .meaning("static stages: the (largest) pseudo time step"),
+          key("end_time", T::number)
+              .unit("s")
+              .default_note("time.end_time")
+              .greater_than(0)
+              .meaning("dynamic stages: the time the stage runs to"),
+          key("max_steps", T::integer)
+              .default_yaml("10000")
+              .at_least(1)
+              .meaning("static stages: the run fails if equilibrium is not reached in this many "
+                       "steps"),
+          key("tolerance", T::number)
+              .default_yaml("1e-5")
+              .greater_than(0)
+              .meaning("static stages: the out-of-balance force ratio of equilibrium, each "
+                       "block's resultant force over its own load (the sum of the magnitudes of "
+                       "the forces on it: weight, loads, joints, contacts, supports, ties)")};
+}
+
+/// The keys of settle stages and the static stage's release.
+std::vector<Key> settle_stage_keys()
+{
+  using T = ValueType;
+  return {key("rest_speed", T::number)
+              .unit("m/s")
+              .default_yaml("1e-3")
+              .greater_than(0)
+              .meaning("settle stages: a block is at rest while the largest speed of its "
+                       "vertices stays at most this for rest_duration"),
+          key("rest_duration", T::number)
+              .unit("s")
+              .default_yaml("0.1")
+              .greater_than(0)
+              .meaning("settle stages: how long a block must stay below rest_speed without a "
+                       "break (longer than the period of its slowest bounce)"),
+          key("fall_distance", T::number)
+              .unit("m")
+              .default_yaml("0")
+              .at_least(0)
+              .meaning("settle stages: a block whose centroid has moved this far along gravity "
+                       "since the first dynamic stage began has fallen and is not waited for; 0: "
+                       "every block must come to rest"),
+          key("max_duration", T::number)
+              .unit("s")
+              .default_yaml("2")
+              .greater_than(0)
+              .meaning("settle stages: the stage ends after this long even if blocks still move "
+                       "(summary.json lists them; not a failure)"),
+          key("remove_fallen", T::boolean)
+              .default_yaml("false")
+              .meaning("settle stages: a fallen block is removed as debris once it has left "
+                       "its place (along the direction it moved since the first dynamic stage "
+                       "began, its vertices' interval no longer overlaps the one they covered "
+                       "then): its tumble and impacts are not followed; needs fall_distance > 0"),
+          key("release", T::choice)
+              .choices(names_of<dda::ReleaseAction>())
+              .default_yaml("fall")
+              .meaning("static stages: what becomes of a released block, one that cannot be in "
+                       "equilibrium (its out-of-balance force stays >= 5% of its own load, does "
+                       "not drop by 10% and drives it straight on for 50 steps): fall, held where "
+                       "it is for the rest of the stage and free in the dynamic stage, where it "
+                       "falls onto whatever is below; remove, inert for the rest of the run (held, "
+                       "no joints, no contacts). Released blocks are listed in summary.json")};
+}
+
+Section stages_section()
+{
+  std::vector<Key> keys = stage_keys();
+  for (Key& k : settle_stage_keys())
+    keys.push_back(std::move(k));
+  return {
+      "stages[i]",
+      "A stage of the analysis. A static stage (Shi's static analysis) zeroes the velocities "
+      "before every step and keeps the clock at its time, so the blocks creep to equilibrium "
+      "under gravity, loads and initial stress; it ends when every block's out-of-balance force "
+      "falls below tolerance x its own load. A block that cannot be in equilibrium (a wedge "
+      "that falls, a block that slides out) is released, not a failure: see `release`. A dynamic "
+      "stage after it starts at rest from that equilibrium; histories and "
+      "monitor displacements start there. With a far field (coupled scenes) the far field is "
+      "held in static stages (the ties are springs to fixed ground with their in-situ "
+      "preloads) and carries only the dynamic increment from the first dynamic stage on: "
+      "static stages come first, with a linear interface.",
+      std::move(keys)};
+}
+
+Section solver_section()
+{
+  using T = ValueType;
+  return {"solver",
+          "Linear solver for each step's system.",
+          {key("method", T::choice)
+               .choices(names_of<dda::SolverMethod>())
+               .default_yaml("direct")
+               .meaning("direct: the sparse direct solver of `type`, its factors reused as a "
+                        "preconditioner while they serve; block_pcg: conjugate gradients "
+                        "preconditioned by the blocks' 6x6 diagonal, warm-started, no "
+                        "factorization (for many contacts changing state; the direct solver when "
+                        "it does not converge, see docs/performance/contact_bench.md)"),
+           key("type", T::choice)
+               .choices(names_of<dda::SolverKind>())
+               .default_yaml("block_ldlt")
+               .meaning("the sparse direct solver (block_pcg's fallback): block_ldlt: sparse "
+                        "Cholesky on the 6x6 blocks (fastest, see docs/performance/dda_bench.md); "
+                        "eigen_ldlt: Eigen SimplicialLDLT; klu: SuiteSparse KLU"),
+           key("tolerance", T::number)
+               .default_yaml("1e-10")
+               .greater_than(0)
+               .less_than(1e-3)
+               .meaning("block_pcg: relative residual, in the norm of the diagonal blocks' "
+                        "inverses, at which it stops"),
+           key("max_iterations", T::integer)
+               .default_yaml("200")
+               .at_least(1)
+               .meaning("block_pcg: iterations before the direct solver takes over (for this dt "
+                        "for the next 100 solves)")}};
+}
+
+Section output_section()
+{
+  using T = ValueType;
+  return {
+      "output",
+      "Where and how often results are written.",
+      {key("directory", T::string)
+           .default_yaml("results")
+           .meaning("output directory, relative to the working directory; `-o DIR` overrides"),
+       key("interval", T::number)
+           .unit("s")
+           .default_yaml("0")
+           .at_least(0)
+           .meaning("simulated time between block snapshots; 0: first and last only"),
+       key("history_every", T::integer)
+           .default_yaml("1")
+           .at_least(1)
+           .meaning("time steps between rows of the monitor histories (a step of bathe is "
+                    "its pair of half steps)"),
+       key("flush_interval", T::number)
+           .unit("s")
+           .default_yaml("2")
+           .at_least(0)
+           .meaning("wall-clock time between flushes of histories.h5 and of the running "
+                    "summary.json to disk: a run killed at any moment keeps every history row "
+                    "up to its last flush readable; 0: after every step"),
+       key("checkpoint_every", T::number)
+           .unit("s")
+           .default_yaml("60")
+           .at_least(0)
+           .meaning("wall-clock time between checkpoints (checkpoint.bin) from which `ddafem "
+                    "resume DIR` continues a killed or stopped run, its histories bit for bit "
+                    "those of an uninterrupted run; written between two steps of a stage, "
+                    "and when a budget stops the run; 0: none"),
+       key("vtu_compression", T::choice)
+           .default_yaml("best_speed")
+           .choices(names_of<fem::VtuCompression>())
+           .meaning("zlib level of the far field's VTU files (deal.II DataOut): best_compression "
+                    "writes files a few percent smaller in about four times the time "
+                    "(docs/performance.md, profile); the blocks' files are plain text")}};
+}
+
+} // namespace ddafem::schema
