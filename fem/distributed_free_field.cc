@@ -23,13 +23,8 @@ namespace ddafem::fem
 bool DistributedWaveModel::Impl::is_free_field_face(const DoFHandler<2>::active_cell_iterator& cell,
                                                     const unsigned int f) const
 {
-  if (!cell->is_locally_owned() || !cell->face(f)->at_boundary())
-    return false;
-  for (const BoundaryCondition& bc : description.boundaries)
-    if (bc.kind == BoundaryKind::free_field &&
-        cell->face(f)->boundary_id() == boundary_id_of(bc.part))
-      return true;
-  return false;
+  return cell->is_locally_owned() && cell->face(f)->at_boundary() &&
+         is_free_field_part(description, cell->face(f)->boundary_id());
 }
 
 void DistributedWaveModel::Impl::make_free_field_column()

@@ -201,14 +201,9 @@ void DistributedWaveModel::Impl::assemble_boundary()
 {
   // Lysmer dashpots on lysmer, input and free_field parts; the input traction's shape on input
   // parts.
-  std::map<types::boundary_id, const BoundaryCondition*> absorbing;
-  for (const BoundaryCondition& bc : description.boundaries)
-    if (bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input ||
-        bc.kind == BoundaryKind::free_field)
-      absorbing[boundary_id_of(bc.part)] = &bc;
-  const bool sv = description.incident.type == IncidentWave::Type::sv;
-  const unsigned int input_component = sv ? 0 : 1;
-  input_scale = 2.0 * description.density * (sv ? vs : vp);
+  const auto absorbing = absorbing_parts(description);
+  const unsigned int component = input_component(description);
+  input_scale = 2.0 * description.density * (component == 0 ? vs : vp);
   const unsigned int n = fe.n_dofs_per_cell();
   FEFaceValues<2> values(fe, QGauss<1>(fe.degree + 1),
                          update_values | update_normal_vectors | update_JxW_values);
@@ -223,21 +218,9 @@ void DistributedWaveModel::Impl::assemble_boundary()
       const auto found = absorbing.find(cell->face(f)->boundary_id());
       if (found == absorbing.end())
         continue;
-      const BoundaryCondition& bc = *found->second;
       values.reinit(cell, f);
-      cell_damping = 0.0;
-      cell_input = 0.0;
-      for (const unsigned int q : values.quadrature_point_indices())
-      {
-        add_face_coupling(
-            values, q,
-            normal_tangential(description.density, bc.a * vp, bc.b * vs, values.normal_vector(q)),
-            cell_damping);
-        for (unsigned int i = 0; i < n; ++i)
-          if (bc.kind == BoundaryKind::input &&
-              fe.system_to_component_index(i).first == input_component)
-            cell_input(i) += values.shape_value(i, q) * values.JxW(q);
-      }
+      absorbing_face_matrices(values, *found->second, description.density, vp, vs, component,
+                              cell_damping, cell_input);
       cell->get_dof_indices(dofs);
       constraints.distribute_local_to_global(cell_damping, dofs, damping);
       constraints.distribute_local_to_global(cell_input, dofs, input_shape);

@@ -59,17 +59,12 @@ void ElasticWaveModel::Impl::assemble_domain()
 
 void ElasticWaveModel::Impl::assemble_boundary(SparseMatrix<double>& full_damping)
 {
-  // Lysmer dashpots D = rho (a VP n n^T + b VS (I - n n^T)) on lysmer, input and free_field
-  // parts; the input traction shape on input parts.
-  std::map<types::boundary_id, const BoundaryCondition*> absorbing;
-  for (const auto& bc : description.boundaries)
-    if (bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input ||
-        bc.kind == BoundaryKind::free_field)
-      absorbing[boundary_id_of(bc.part)] = &bc;
+  // Lysmer dashpots on lysmer, input and free_field parts (absorbing_face_matrices); the input
+  // traction shape on input parts; boundary springs where a part has them.
+  const auto absorbing = absorbing_parts(description);
   const double rho = description.density;
-  const bool sv = description.incident.type == IncidentWave::Type::sv;
-  const unsigned int input_component = sv ? 0 : 1;
-  input_scale = 2.0 * rho * (sv ? vs : vp);
+  const unsigned int component = input_component(description);
+  input_scale = 2.0 * rho * (component == 0 ? vs : vp);
 
   const unsigned int n = fe.n_dofs_per_cell();
   const QGauss<1> face_quadrature(fe.degree + 1);
@@ -91,19 +86,7 @@ void ElasticWaveModel::Impl::assemble_boundary(SparseMatrix<double>& full_dampin
         continue;
       const BoundaryCondition& bc = *found->second;
       face_values.reinit(cell, f);
-      cell_damping = 0.0;
-      cell_input = 0.0;
-      for (const unsigned int q : face_values.quadrature_point_indices())
-      {
-        add_face_coupling(
-            face_values, q,
-            normal_tangential(rho, bc.a * vp, bc.b * vs, face_values.normal_vector(q)),
-            cell_damping);
-        for (unsigned int i = 0; i < n; ++i)
-          if (bc.kind == BoundaryKind::input &&
-              fe.system_to_component_index(i).first == input_component)
-            cell_input(i) += face_values.shape_value(i, q) * face_values.JxW(q);
-      }
+      absorbing_face_matrices(face_values, bc, rho, vp, vs, component, cell_damping, cell_input);
       cell->get_dof_indices(dofs);
       full_damping.add(dofs, cell_damping);
       if (bc.springs.enabled)

@@ -158,4 +158,48 @@ std::array<double, 2> free_field_traction(const std::array<double, 3>& stress,
                   rho * (vp * vn * n[c] + vs * (velocity[c] - vn * n[c]));
   return traction;
 }
+std::map<types::boundary_id, const BoundaryCondition*>
+absorbing_parts(const FarFieldDescription& description)
+{
+  std::map<types::boundary_id, const BoundaryCondition*> absorbing;
+  for (const BoundaryCondition& bc : description.boundaries)
+    if (bc.kind == BoundaryKind::lysmer || bc.kind == BoundaryKind::input ||
+        bc.kind == BoundaryKind::free_field)
+      absorbing[boundary_id_of(bc.part)] = &bc;
+  return absorbing;
+}
+
+bool is_free_field_part(const FarFieldDescription& description, const types::boundary_id id)
+{
+  return std::any_of(description.boundaries.begin(), description.boundaries.end(),
+                     [id](const BoundaryCondition& bc) {
+                       return bc.kind == BoundaryKind::free_field && id == boundary_id_of(bc.part);
+                     });
+}
+
+unsigned int input_component(const FarFieldDescription& description)
+{
+  return description.incident.type == IncidentWave::Type::sv ? 0 : 1;
+}
+
+void absorbing_face_matrices(const FEFaceValues<2>& values, const BoundaryCondition& bc,
+                             const double rho, const double vp, const double vs,
+                             const unsigned int input_component, FullMatrix<double>& cell_damping,
+                             Vector<double>& cell_input)
+{
+  const FiniteElement<2>& fe = values.get_fe();
+  cell_damping = 0.0;
+  cell_input = 0.0;
+  for (const unsigned int q : values.quadrature_point_indices())
+  {
+    add_face_coupling(values, q,
+                      normal_tangential(rho, bc.a * vp, bc.b * vs, values.normal_vector(q)),
+                      cell_damping);
+    for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+      if (bc.kind == BoundaryKind::input &&
+          fe.system_to_component_index(i).first == input_component)
+        cell_input(i) += values.shape_value(i, q) * values.JxW(q);
+  }
+}
+
 } // namespace ddafem::fem

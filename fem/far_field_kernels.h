@@ -11,9 +11,11 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/vector.h>
 
 #include <array>
 #include <cstddef>
+#include <map>
 #include <utility>
 #include <vector>
 
@@ -59,6 +61,25 @@ Matrix2 normal_tangential(double scale, double normal, double tangential,
 /// cell(i, j) += N_i T[c_i][c_j] N_j JxW at face quadrature point q.
 void add_face_coupling(const dealii::FEFaceValues<2>& values, unsigned int q, const Matrix2& t,
                        dealii::FullMatrix<double>& cell);
+
+/// The boundary parts Lysmer dashpots absorb on (lysmer, input and free_field), by boundary id.
+std::map<dealii::types::boundary_id, const BoundaryCondition*>
+absorbing_parts(const FarFieldDescription& description);
+
+/// Whether a face with this boundary id lies on a free_field part of `description`.
+bool is_free_field_part(const FarFieldDescription& description, dealii::types::boundary_id id);
+
+/// The displacement component the incident wave drives: x (0) for an SV wave, y (1) for P.
+unsigned int input_component(const FarFieldDescription& description);
+
+/// A face of an absorbing part (`values` reinit'd on it): its Lysmer dashpots
+/// D = rho (a VP n n^T + b VS (I - n n^T)) [N s/m^3] in `cell_damping`, and on an input part the
+/// shape of the input traction, int N_i dS over the input component's shape functions, in
+/// `cell_input` [m]; both are overwritten. Density rho [kg/m^3], wave speeds [m/s].
+void absorbing_face_matrices(const dealii::FEFaceValues<2>& values, const BoundaryCondition& bc,
+                             double rho, double vp, double vs, unsigned int input_component,
+                             dealii::FullMatrix<double>& cell_damping,
+                             dealii::Vector<double>& cell_input);
 
 /// The free-field traction on a side with outward unit normal n: sigma_ff n + D v_ff,
 /// D = rho (VP n n^T + VS (I - n n^T)), from the column's stress (sxx, syy, sxy) [Pa] and

@@ -86,13 +86,8 @@ PointProbe ElasticWaveModel::Impl::make_probe(const double x, const double y) co
 bool ElasticWaveModel::Impl::is_free_field_face(const DoFHandler<2>::active_cell_iterator& cell,
                                                 const unsigned int f) const
 {
-  if (!cell->face(f)->at_boundary())
-    return false;
-  for (const auto& bc : description.boundaries)
-    if (bc.kind == BoundaryKind::free_field &&
-        cell->face(f)->boundary_id() == boundary_id_of(bc.part))
-      return true;
-  return false;
+  return cell->face(f)->at_boundary() &&
+         is_free_field_part(description, cell->face(f)->boundary_id());
 }
 
 MonitorSample ElasticWaveModel::Impl::column_sample(const PointProbe& probe) const
