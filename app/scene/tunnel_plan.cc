@@ -1,4 +1,4 @@
-#include "coupling/tunnel_plan.h"
+#include "app/scene/tunnel_plan.h"
 
 #include "common/elasticity.h"
 #include "common/format.h"
@@ -11,7 +11,7 @@
 #include <cmath>
 #include <limits>
 
-namespace ddafem::coupling
+namespace ddafem
 {
 namespace
 {
@@ -460,4 +460,4 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
   return plan;
 }
 
-} // namespace ddafem::coupling
+} // namespace ddafem

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-namespace ddafem::coupling
+namespace ddafem
 {
 using dda::Point;
 
@@ -159,4 +159,4 @@ double outer_block_modulus(double grid_modulus, double normal_stiffness);
 /// does not fit (e.g. a near field reaching above the ground surface).
 TunnelPlan plan_tunnel(const TunnelDescription& tunnel);
 
-} // namespace ddafem::coupling
+} // namespace ddafem

@@ -1,21 +1,15 @@
 // The `tunnel` scene section: a tunnel in jointed rock under a seismic wave, planned by
-// coupling/tunnel_plan.h and expanded here into the detailed sections (rock_mass, far_field,
+// app/scene/tunnel_plan.h and expanded here into the detailed sections (rock_mass, far_field,
 // interface, boundaries, in_situ_stress, stages, monitors, time) that the scene reader then
 // reads like any others.
 #pragma once
 
-#include "coupling/tunnel_plan.h"
+#include "app/scene/tunnel_plan.h"
 
 #include <yaml-cpp/yaml.h>
 
 namespace ddafem
 {
-using coupling::BlockGrid;
-using coupling::outer_block_modulus;
-using coupling::plan_tunnel;
-using coupling::TunnelDescription;
-using coupling::TunnelPlan;
-using coupling::TunnelTruncation;
 using dda::Point;
 
 /// The user's YAML for the parts copied into the generated sections.

@@ -101,6 +101,10 @@ TEST(DampingScene, TunnelsAreDampedByDefaultAndTheFarFieldAlike)
   const Scene own = read_scene(tunnel_scene, {{"materials.rock.damping.ratio", "0.04"},
                                               {"materials.rock.damping.frequency", "5"}});
   for (const dda::Material& m : own.model.materials)
+  {
     if (m.name == "rock")
+    {
       EXPECT_EQ(m.damping.ratio, 0.04);
+    }
+  }
 }

@@ -1,6 +1,6 @@
-// The tunnel plan (coupling/tunnel_plan.h, issue 7): the near field, far field or outer blocks,
+// The tunnel plan (app/scene/tunnel_plan.h, issue 7): the near field, far field or outer blocks,
 // element sizes and time steps it chooses for a tunnel, against hand estimates.
-#include "coupling/tunnel_plan.h"
+#include "app/scene/tunnel_plan.h"
 
 #include "common/input_error.h"
 #include "dda/jointed_block_modulus.h"
@@ -13,7 +13,6 @@
 #include <vector>
 
 using namespace ddafem;
-using namespace ddafem::coupling;
 using ddafem::dda::jointed_block_modulus;
 
 namespace
