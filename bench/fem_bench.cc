@@ -89,7 +89,7 @@ int main(int argc, char** argv)
   const Timings before = model.timings();
   const auto run_start = std::chrono::steady_clock::now();
   for (unsigned int s = 0; s < steps; ++s)
-    if (model.advance(d.dt).outcome != StepOutcome::success)
+    if (!model.advance(d.dt).taken)
     {
       std::cerr << "step failed\n";
       return 1;

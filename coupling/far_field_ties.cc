@@ -263,7 +263,7 @@ Eigen::VectorXd FarFieldTies::bonded_springs(const Eigen::VectorXd& x) const
   return f;
 }
 
-std::string FarFieldTies::begin_step(const double dt, const Eigen::VectorXd& displacements)
+StepResult FarFieldTies::begin_step(const double dt, const Eigen::VectorXd& displacements)
 {
   if (held)
   {
@@ -277,9 +277,9 @@ std::string FarFieldTies::begin_step(const double dt, const Eigen::VectorXd& dis
   dynamic_started = true;
   select_condensation(dt);
   std::vector<double> free;
-  const fem::StepStatus status = far_field.prepare_step(dt, free);
-  if (status.outcome != fem::StepOutcome::success)
-    return status.message;
+  const StepResult status = far_field.prepare_step(dt, free);
+  if (!status.taken)
+    return status;
   const auto t0 = Clock::now();
   step_dt = dt;
   w0 = Eigen::Map<const Eigen::VectorXd>(free.data(), static_cast<Eigen::Index>(free.size()));
@@ -449,7 +449,7 @@ std::size_t FarFieldTies::update_trial_states(const Eigen::VectorXd& delta,
   return n_changes;
 }
 
-std::string FarFieldTies::end_step(const Eigen::VectorXd& delta)
+StepResult FarFieldTies::end_step(const Eigen::VectorXd& delta)
 {
   auto t0 = Clock::now();
   const Eigen::VectorXd z = start + delta;
@@ -482,10 +482,10 @@ std::string FarFieldTies::end_step(const Eigen::VectorXd& delta)
     f.segment<2>(2 * k) = kt * (zk - wk) + f_trial.segment<2>(2 * k);
   }
   time_ties += seconds_since(t0);
-  const fem::StepStatus status =
+  const StepResult status =
       far_field.finish_step(std::vector<double>(q.data(), q.data() + q.size()));
-  if (status.outcome != fem::StepOutcome::success)
-    return status.message;
+  if (!status.taken)
+    return status;
   t0 = Clock::now();
   work_blocks -= 0.5 * (previous_force + f).dot(delta);
   previous_force = f;
@@ -495,19 +495,19 @@ std::string FarFieldTies::end_step(const Eigen::VectorXd& delta)
   return {};
 }
 
-std::string FarFieldTies::end_bonded_step(const Eigen::VectorXd& z, const Eigen::VectorXd& delta)
+StepResult FarFieldTies::end_bonded_step(const Eigen::VectorXd& z, const Eigen::VectorXd& delta)
 {
   // Every tie bonded: P u = f + N^T q with q = K z (P holds K), and the ties' force on the far
   // field F = K (z - w) with w = N u, the far field's displacements at the ties.
   auto t0 = Clock::now();
   const Eigen::VectorXd q = bonded_springs(z);
   time_ties += seconds_since(t0);
-  const fem::StepStatus status =
+  const StepResult status =
       far_field.finish_step(std::vector<double>(q.data(), q.data() + q.size()));
-  if (status.outcome != fem::StepOutcome::success)
+  if (!status.taken)
   {
     chain.valid = false;
-    return status.message;
+    return status;
   }
   t0 = Clock::now();
   const std::vector<double> at_ties = far_field.point_displacements();

@@ -98,7 +98,7 @@ public:
   bool begins_step_on_any_thread() const override { return far_field.steps_on_any_thread(); }
   /// Held (static stage): H = K, one 2 x 2 spring per tie.
   bool stiffness_is_block_diagonal() const override { return held; }
-  std::string begin_step(double dt, const Eigen::VectorXd& displacements) override;
+  StepResult begin_step(double dt, const Eigen::VectorXd& displacements) override;
   const Eigen::MatrixXd& stiffness() const override { return *h; }
   /// Every tie bonded, the far field free: H is the condensation's for this dt, named by dt's
   /// bits.
@@ -106,7 +106,7 @@ public:
   const Eigen::VectorXd& force() const override { return g; }
   std::size_t update_trial_states(const Eigen::VectorXd& delta, unsigned iteration,
                                   double negligible, std::size_t& n_ignored) override;
-  std::string end_step(const Eigen::VectorXd& delta) override;
+  StepResult end_step(const Eigen::VectorXd& delta) override;
   double work_on_blocks() const override { return work_blocks; }
 
   std::size_t n_ties() const { return ties.size(); }
@@ -223,7 +223,7 @@ private:
   /// z).
   Eigen::VectorXd h_times_start();
   /// end_step of a bonded linear step: the far field first (q = K z needs no w), then w = N u.
-  std::string end_bonded_step(const Eigen::VectorXd& z, const Eigen::VectorXd& delta);
+  StepResult end_bonded_step(const Eigen::VectorXd& z, const Eigen::VectorXd& delta);
   Eigen::VectorXd preload;      ///< P: constant forces on the blocks (x, y per tie) [N]
   bool held = false;            ///< static stage: the far field is held, the ties are fixed springs
   bool dynamic_started = false; ///< the far field has taken a step

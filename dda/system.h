@@ -518,18 +518,18 @@ private:
   /// (a small-displacement analysis keeps it while dt is unchanged).
   bool assemble_step(double dt);
   /// The tied body (far field) starts its step on another thread: its condensed stiffness and
-  /// force on the ties. The future holds a failure message, empty if none (no future without a
-  /// tied body).
-  std::future<std::string> begin_tied_step(double dt);
+  /// force on the ties. The future holds the body's StepResult (no future without a tied
+  /// body).
+  std::future<StepResult> begin_tied_step(double dt);
   /// Phase 4: the solution, with the open-close iteration if there are contacts or ties.
   StepStatus solve_step(const StepLabel& when, bool new_matrix);
   /// Step control on the solution: sets the status's largest vertex displacement and
   /// penetration, and its outcome if one exceeds its limit (g2 w0; penetration_limit, after
   /// raising the penalties of the contacts too deep).
   void check_motion_limits(StepStatus& status, const StepLabel& when);
-  /// Phase 5: the tied body, blocks and contacts take the solution; time advances. A failure
-  /// message of the tied body, empty if none (then nothing else is updated).
-  std::string accept_step(double dt);
+  /// Phase 5: the tied body, blocks and contacts take the solution; time advances. The tied
+  /// body's StepResult (when not taken, nothing else is updated).
+  StepResult accept_step(double dt);
   /// A boundary beyond its stability limit feeds energy into the model: the status's outcome
   /// is energy_growth when the stored energy exceeds ten times all the energy ever put in.
   void check_energy_growth(StepStatus& status);

@@ -32,14 +32,14 @@ StepStatus System::attempt_step(double dt, const StepPart part)
   choose_step_scheme(dt, part); // 0. the integrator's form of this part of a step
   // A tied body begins its step (the far field's free response) on another thread while the
   // blocks find their contacts and assemble: the two touch no common data.
-  std::future<std::string> tied = begin_tied_step(dt);
+  std::future<StepResult> tied = begin_tied_step(dt);
   detect_contacts();                         // 1. candidates, 2. contacts
   const bool new_matrix = assemble_step(dt); // 3. assemble
   if (tied_body)
   {
-    const std::string failure = tied.get();
-    if (!failure.empty())
-      return {StepOutcome::solver_failure, failure + " " + when.text(), {}};
+    const StepResult begun = tied.get();
+    if (!begun.taken)
+      return {StepOutcome::solver_failure, begun.why + " " + when.text(), {}};
   }
   StepStatus status = solve_step(when, new_matrix); // 4. solve with the open-close iteration
   if (status.outcome != StepOutcome::success)
@@ -76,9 +76,9 @@ StepStatus System::attempt_step(double dt, const StepPart part)
   }
 
   // 5. Update the tied body, blocks and contacts.
-  const std::string failure = accept_step(dt);
-  if (!failure.empty())
-    return {StepOutcome::solver_failure, failure + " " + when.text(), status.solve};
+  const StepResult accepted = accept_step(dt);
+  if (!accepted.taken)
+    return {StepOutcome::solver_failure, accepted.why + " " + when.text(), status.solve};
   const std::string broken = break_joints();
   if (!broken.empty())
     return {StepOutcome::joint_broken, broken, status.solve};
@@ -128,7 +128,7 @@ bool System::assemble_step(double dt)
   return new_matrix;
 }
 
-std::future<std::string> System::begin_tied_step(double dt)
+std::future<StepResult> System::begin_tied_step(double dt)
 {
   if (!tied_body)
     return {};
@@ -144,9 +144,9 @@ std::future<std::string> System::begin_tied_step(double dt)
                     [this, dt, displacements = std::move(displacements)]
                     {
                       const auto start = Clock::now();
-                      std::string failure = tied_body->begin_step(dt, displacements);
+                      StepResult begun = tied_body->begin_step(dt, displacements);
                       timings.tied_body += seconds_since(start);
-                      return failure;
+                      return begun;
                     });
 }
 
@@ -204,15 +204,15 @@ void System::check_motion_limits(StepStatus& status, const StepLabel& when)
   }
 }
 
-std::string System::accept_step(double dt)
+StepResult System::accept_step(double dt)
 {
   auto start = Clock::now();
   if (tied_body)
   {
-    const std::string failure = tied_body->end_step(tie_increments(solution));
+    const StepResult ended = tied_body->end_step(tie_increments(solution));
     timings.tied_body += seconds_since(start);
-    if (!failure.empty())
-      return failure;
+    if (!ended.taken)
+      return ended;
   }
   start = Clock::now();
   record_half(dt, solution);

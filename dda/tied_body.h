@@ -2,6 +2,7 @@
 // far field (coupling/ implements it; dda/ never sees fem/).
 #pragma once
 
+#include "common/step_result.h"
 #include "dda/model_description.h"
 
 #include <Eigen/Core>
@@ -9,7 +10,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
-#include <string>
 
 namespace ddafem::dda
 {
@@ -39,8 +39,8 @@ public:
   virtual bool begins_step_on_any_thread() const { return true; }
   /// Starts (or restarts, after a cut) a step of dt [s]. `displacements` (2m) are the tie points'
   /// displacements since the ties were made [m]. The ties' trial states start from their
-  /// accepted ones. Returns an empty string, or why the body cannot take the step.
-  virtual std::string begin_step(double dt, const Eigen::VectorXd& displacements) = 0;
+  /// accepted ones. Returns whether the body can take the step, and if not why.
+  virtual StepResult begin_step(double dt, const Eigen::VectorXd& displacements) = 0;
   /// H of the ties' trial states [N/m].
   virtual const Eigen::MatrixXd& stiffness() const = 0;
   /// Whether H couples no two tie points (its only non-zero entries are the 2 x 2 blocks on its
@@ -61,8 +61,8 @@ public:
   virtual std::size_t update_trial_states(const Eigen::VectorXd& delta, unsigned iteration,
                                           double negligible, std::size_t& n_ignored) = 0;
   /// Accepts the step with the increments of the converged trial: the body advances to t + dt.
-  /// Returns an empty string, or why it failed (the System then reports a solver failure).
-  virtual std::string end_step(const Eigen::VectorXd& delta) = 0;
+  /// Returns whether it did, and if not why (the System then reports a solver failure).
+  virtual StepResult end_step(const Eigen::VectorXd& delta) = 0;
   /// Work [J] done by the ties on the blocks (preloads included) since the ties were made or the
   /// first dynamic stage started (the energy that crossed the interface into the blocks,
   /// negative when it left them).

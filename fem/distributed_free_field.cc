@@ -57,10 +57,10 @@ void DistributedWaveModel::Impl::advance_column(const double dt)
     column->return_to_remembered_state();
   else
     column->remember_state();
-  const StepStatus status = column->advance(dt);
+  const StepResult status = column->advance(dt);
   column_ahead = true;
-  if (status.outcome != StepOutcome::success)
-    throw std::runtime_error("free-field column: " + status.message);
+  if (!status.taken)
+    throw std::runtime_error("free-field column: " + status.why);
 }
 
 void DistributedWaveModel::Impl::add_free_field_load(TrilinosWrappers::MPI::Vector& f)

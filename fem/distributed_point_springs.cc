@@ -243,7 +243,7 @@ std::vector<double> DistributedWaveModel::point_flexibility(const double dt)
   return g;
 }
 
-StepStatus DistributedWaveModel::prepare_step(const double dt,
+StepResult DistributedWaveModel::prepare_step(const double dt,
                                               std::vector<double>& free_point_displacements)
 {
   if (!(dt > 0.0 && std::isfinite(dt)))
@@ -257,13 +257,12 @@ StepStatus DistributedWaveModel::prepare_step(const double dt,
   catch (const std::exception& e) // a solver that did not converge, on every rank
   {
     impl->step_prepared = false;
-    return {StepOutcome::solver_failure,
-            std::string("far field (distributed): solver failed: ") + e.what()};
+    return StepResult::failure(std::string("far field (distributed): solver failed: ") + e.what());
   }
-  return StepStatus{};
+  return {};
 }
 
-StepStatus DistributedWaveModel::finish_step(const std::vector<double>& point_loads)
+StepResult DistributedWaveModel::finish_step(const std::vector<double>& point_loads)
 {
   Impl& m = *impl;
   AssertThrow(point_loads.size() == 2 * m.springs.size(),
@@ -279,10 +278,10 @@ StepStatus DistributedWaveModel::finish_step(const std::vector<double>& point_lo
   if (parted != 0)
   {
     m.step_prepared = false;
-    return {StepOutcome::solver_failure,
-            "far field (distributed): the blocks' loads on the ties differ between the MPI "
-            "ranks at t = " +
-                format_number(m.t) + ": the blocks, replicated on every rank, have parted"};
+    return StepResult::failure(
+        "far field (distributed): the blocks' loads on the ties differ between the MPI "
+        "ranks at t = " +
+        format_number(m.t) + ": the blocks, replicated on every rank, have parted");
   }
   try
   {
@@ -290,8 +289,7 @@ StepStatus DistributedWaveModel::finish_step(const std::vector<double>& point_lo
   }
   catch (const std::exception& e)
   {
-    return {StepOutcome::solver_failure,
-            std::string("far field (distributed): solver failed: ") + e.what()};
+    return StepResult::failure(std::string("far field (distributed): solver failed: ") + e.what());
   }
 }
 

@@ -75,7 +75,7 @@ public:
 
   /// Advances by dt [s] from rest at t = 0 (the solver of each dt is set up on its first use
   /// and kept, up to 16 of them): prepare_step() and finish_step() with zero point loads.
-  StepStatus advance(double dt);
+  StepResult advance(double dt);
 
   std::vector<double> add_point_springs(BoundaryPart part,
                                         const std::vector<PointSpring>& springs) override;
@@ -88,11 +88,11 @@ public:
   /// Right-hand sides solved at once in point_flexibility() (default 64 with MUMPS, 2 with CG;
   /// 1: one solve each, for comparison in bench/far_field_scaling).
   void set_condensation_width(unsigned int width);
-  StepStatus prepare_step(double dt, std::vector<double>& free_point_displacements) override;
+  StepResult prepare_step(double dt, std::vector<double>& free_point_displacements) override;
   std::vector<double> point_displacements() const override;
   /// Takes rank 0's point loads, and fails on every rank if the ranks' loads differ (the blocks
   /// replicated on the ranks would have parted).
-  StepStatus finish_step(const std::vector<double>& point_loads) override;
+  StepResult finish_step(const std::vector<double>& point_loads) override;
   double work_of_springs() const override; ///< not collective
   double time() const;                     ///< not collective
   double p_wave_speed() const;             ///< [m/s] of the plane mode; not collective

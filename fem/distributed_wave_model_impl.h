@@ -49,7 +49,7 @@ public:
   /// The Newmark right-hand side of a step of dt and its predictor solve into scratch.u_new.
   void prepare(double dt);
   /// u_new += P^-1 N^T q, then velocities, accelerations, energies; the state moves to t + dt.
-  StepStatus finish(const std::vector<double>& point_loads);
+  StepResult finish(const std::vector<double>& point_loads);
   /// Solves P x = rhs, x holding the initial guess; returns the iterations (0: direct).
   unsigned int solve(TrilinosWrappers::MPI::Vector& x, const TrilinosWrappers::MPI::Vector& rhs);
   /// Solves P X = B for all columns of B at once (zero initial guesses): MUMPS with every

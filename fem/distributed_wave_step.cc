@@ -144,7 +144,7 @@ void DistributedWaveModel::Impl::prepare(const double dt)
   prepared_dt = dt;
 }
 
-StepStatus DistributedWaveModel::Impl::finish(const std::vector<double>& point_loads)
+StepResult DistributedWaveModel::Impl::finish(const std::vector<double>& point_loads)
 {
   AssertThrow(step_prepared, ExcMessage("finish_step() without prepare_step()"));
   step_prepared = false;
@@ -182,9 +182,9 @@ StepStatus DistributedWaveModel::Impl::finish(const std::vector<double>& point_l
   ++timings.n_steps;
   timings.update += seconds_since(start);
   if (!std::isfinite(u.l2_norm()))
-    return {StepOutcome::solver_failure,
-            "far field (distributed): non-finite displacement at t = " + format_number(t)};
-  return StepStatus{};
+    return StepResult::failure("far field (distributed): non-finite displacement at t = " +
+                               format_number(t));
+  return {};
 }
 
 void DistributedWaveModel::Impl::add_work_of_step(const TrilinosWrappers::MPI::Vector& u_new,
@@ -301,11 +301,11 @@ EnergyBalance DistributedWaveModel::energy() const
   return e;
 }
 
-StepStatus DistributedWaveModel::advance(const double dt)
+StepResult DistributedWaveModel::advance(const double dt)
 {
   std::vector<double> free;
-  const StepStatus status = prepare_step(dt, free);
-  if (status.outcome != StepOutcome::success)
+  const StepResult status = prepare_step(dt, free);
+  if (!status.taken)
     return status;
   return finish_step(std::vector<double>(2 * impl->springs.size(), 0.0));
 }

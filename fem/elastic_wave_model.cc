@@ -78,24 +78,24 @@ void ElasticWaveModel::set_initial_state(const VectorField& displacement,
   impl->set_initial_state(displacement, velocity);
 }
 
-StepStatus ElasticWaveModel::advance(const double dt)
+StepResult ElasticWaveModel::advance(const double dt)
 {
-  StepStatus status = impl->prepare_step(dt);
-  if (status.outcome != StepOutcome::success)
+  StepResult status = impl->prepare_step(dt);
+  if (!status.taken)
     return status;
   return impl->finish_step(std::vector<double>(2 * impl->springs.size(), 0.0));
 }
 
-StepStatus ElasticWaveModel::prepare_step(const double dt,
+StepResult ElasticWaveModel::prepare_step(const double dt,
                                           std::vector<double>& free_point_displacements)
 {
-  StepStatus status = impl->prepare_step(dt);
-  if (status.outcome == StepOutcome::success)
+  StepResult status = impl->prepare_step(dt);
+  if (status.taken)
     free_point_displacements = impl->evaluate_at_springs(impl->pending.u_new);
   return status;
 }
 
-StepStatus ElasticWaveModel::finish_step(const std::vector<double>& point_loads)
+StepResult ElasticWaveModel::finish_step(const std::vector<double>& point_loads)
 {
   return impl->finish_step(point_loads);
 }

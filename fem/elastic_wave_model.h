@@ -75,7 +75,7 @@ public:
 
   /// Advances by dt [s] (a dt other than the last one refactorizes): prepare_step() and
   /// finish_step() with zero point loads.
-  StepStatus advance(double dt);
+  StepResult advance(double dt);
 
   double time() const;
   std::size_t n_dofs() const;
@@ -116,8 +116,8 @@ public:
   std::vector<std::array<double, 4>> boundary_segments(BoundaryPart part) const override;
   /// 2m solves, or one per far-field DOF the springs touch if fewer.
   std::vector<double> point_flexibility(double dt) override;
-  StepStatus prepare_step(double dt, std::vector<double>& free_point_displacements) override;
-  StepStatus finish_step(const std::vector<double>& point_loads) override;
+  StepResult prepare_step(double dt, std::vector<double>& free_point_displacements) override;
+  StepResult finish_step(const std::vector<double>& point_loads) override;
   /// N u: displacements at the spring points [m] (2m).
   std::vector<double> point_displacements() const override;
   /// The springs' forces F on the far field at the current time [N] (2m).

@@ -146,8 +146,8 @@ class ElasticWaveModel::Impl
 public:
   explicit Impl(const FarFieldDescription& description);
 
-  StepStatus prepare_step(double dt);
-  StepStatus finish_step(const std::vector<double>& point_loads);
+  StepResult prepare_step(double dt);
+  StepResult finish_step(const std::vector<double>& point_loads);
   MonitorSample sample_monitor(std::size_t monitor) const;
   std::string write_snapshot(const std::string& directory, const std::string& basename,
                              VtuCompression compression);
@@ -324,7 +324,7 @@ private:
   void rewind_column();
   /// f(t + dt) into pending.force_new (input and free-field loads; advances the column) and
   /// the condensed Newmark right-hand side into `rhs`; the column's status.
-  StepStatus newmark_rhs(double dt, Vector<double>& rhs);
+  StepResult newmark_rhs(double dt, Vector<double>& rhs);
   /// pending.u_new = P^-1 rhs, from Newmark's u1 with a1 extrapolated as a guess (for cg).
   void solve_predictor(double dt, const Vector<double>& rhs);
   /// u_new += P^-1 N^T q (the point loads' response, one more solve).

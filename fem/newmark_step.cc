@@ -127,18 +127,18 @@ void ElasticWaveModel::Impl::ensure_factorized(const double dt)
   timings.setup += seconds_since(start);
 }
 
-StepStatus ElasticWaveModel::Impl::prepare_step(const double dt)
+StepResult ElasticWaveModel::Impl::prepare_step(const double dt)
 {
   require(dt > 0.0 && std::isfinite(dt), "advance: dt = " + format_number(dt) + ", expected > 0");
-  StepStatus status;
+  StepResult status;
   rewind_column();
   pending.active = false;
   try
   {
     ensure_factorized(dt);
     Vector<double> rhs;
-    const StepStatus column_status = newmark_rhs(dt, rhs);
-    if (column_status.outcome != StepOutcome::success)
+    const StepResult column_status = newmark_rhs(dt, rhs);
+    if (!column_status.taken)
       return column_status;
     solve_predictor(dt, rhs);
     pending.dt = dt;
@@ -146,8 +146,8 @@ StepStatus ElasticWaveModel::Impl::prepare_step(const double dt)
   }
   catch (const std::exception& e)
   {
-    status.outcome = StepOutcome::solver_failure;
-    status.message = std::string("far field: solver failed: ") + e.what();
+    status.taken = false;
+    status.why = std::string("far field: solver failed: ") + e.what();
   }
   return status;
 }
@@ -166,7 +166,7 @@ void ElasticWaveModel::Impl::rewind_column()
   }
 }
 
-StepStatus ElasticWaveModel::Impl::newmark_rhs(const double dt, Vector<double>& rhs)
+StepResult ElasticWaveModel::Impl::newmark_rhs(const double dt, Vector<double>& rhs)
 {
   // Right-hand side of K_eff u1 = f1 + M (...) + C (...) (Newmark, displacement form).
   const auto start = Clock::now();
@@ -175,9 +175,9 @@ StepStatus ElasticWaveModel::Impl::newmark_rhs(const double dt, Vector<double>& 
   input_force(t1, pending.force_new);
   if (column)
   {
-    const StepStatus column_status = column->advance(dt);
+    const StepResult column_status = column->advance(dt);
     column_ahead = true;
-    if (column_status.outcome != StepOutcome::success)
+    if (!column_status.taken)
       return column_status;
     add_free_field_load(pending.force_new);
   }
@@ -202,7 +202,7 @@ StepStatus ElasticWaveModel::Impl::newmark_rhs(const double dt, Vector<double>& 
   rhs += product;
   condense_rhs(rhs);
   timings.assemble += seconds_since(start);
-  return StepStatus{};
+  return {};
 }
 
 void ElasticWaveModel::Impl::solve_predictor(const double dt, const Vector<double>& rhs)
@@ -221,7 +221,7 @@ void ElasticWaveModel::Impl::solve_predictor(const double dt, const Vector<doubl
   timings.solve += seconds_since(start);
 }
 
-StepStatus ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_loads)
+StepResult ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_loads)
 {
   AssertThrow(pending.active, ExcMessage("finish_step() without prepare_step()"));
   AssertThrow(point_loads.size() == 2 * springs.size(),
@@ -229,7 +229,7 @@ StepStatus ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_
                          " point loads for " + std::to_string(springs.size()) + " springs"));
   pending.active = false;
   column_ahead = false;
-  StepStatus status;
+  StepResult status;
   const double dt = pending.dt;
   const double t1 = t + dt;
   Vector<double>& u_new = pending.u_new;
@@ -240,8 +240,8 @@ StepStatus ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_
     const auto start = Clock::now();
     if (!std::all_of(u_new.begin(), u_new.end(), [](double x) { return std::isfinite(x); }))
     {
-      status.outcome = StepOutcome::solver_failure;
-      status.message = "far field: non-finite displacement at t = " + format_number(t1);
+      status.taken = false;
+      status.why = "far field: non-finite displacement at t = " + format_number(t1);
       timings.update += seconds_since(start);
       return status;
     }
@@ -270,8 +270,8 @@ StepStatus ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_
   }
   catch (const std::exception& e)
   {
-    status.outcome = StepOutcome::solver_failure;
-    status.message = std::string("far field: solver failed: ") + e.what();
+    status.taken = false;
+    status.why = std::string("far field: solver failed: ") + e.what();
   }
   return status;
 }

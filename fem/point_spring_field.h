@@ -3,6 +3,7 @@
 // solve. ElasticWaveModel (one process) and DistributedWaveModel (MPI ranks) both offer it.
 #pragma once
 
+#include "common/step_result.h"
 #include "fem/far_field_description.h"
 
 #include <array>
@@ -11,18 +12,6 @@
 
 namespace ddafem::fem
 {
-enum class StepOutcome
-{
-  success,
-  solver_failure
-};
-
-struct StepStatus
-{
-  StepOutcome outcome = StepOutcome::success;
-  std::string message;
-};
-
 /// A spring between a far-field point and an outside body (the ties of coupling/, issue 6).
 struct PointSpring
 {
@@ -54,10 +43,10 @@ public:
   virtual std::vector<double> point_flexibility(double dt) = 0;
   /// First half of a step of dt: assembles f and solves P y = f; returns N y, the spring points'
   /// displacements at the end of the step for q = 0 [m].
-  virtual StepStatus prepare_step(double dt, std::vector<double>& free_point_displacements) = 0;
+  virtual StepResult prepare_step(double dt, std::vector<double>& free_point_displacements) = 0;
   /// Second half: u = y + P^-1 N^T q with the point loads q [N] (2m), then velocities,
   /// accelerations and energies. Only after prepare_step().
-  virtual StepStatus finish_step(const std::vector<double>& point_loads) = 0;
+  virtual StepResult finish_step(const std::vector<double>& point_loads) = 0;
   /// N u: the far field's displacements at the spring points now [m] (2m; a collective call
   /// across MPI ranks).
   virtual std::vector<double> point_displacements() const = 0;

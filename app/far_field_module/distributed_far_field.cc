@@ -61,12 +61,12 @@ public:
   nlohmann::json summary(const std::vector<std::string>& warnings, double wall_time) const override;
   RunEnd end() const override
   {
-    return {failed() ? failure.message : std::string(),
+    return {failed() ? failure.why : std::string(),
             std::to_string(model.timings().n_steps) + " steps", model.time(), "far_field.pvd"};
   }
 
 private:
-  bool failed() const { return failure.outcome != fem::StepOutcome::success; }
+  bool failed() const { return !failure.taken; }
   /// A history row (rank 0) and with `snapshot` a .pvtu record; collective.
   void write_state(bool snapshot);
 
@@ -77,7 +77,7 @@ private:
   fem::DistributedWaveModel model;
   std::filesystem::path snapshot_dir;   ///< rank 0's output directory
   std::optional<HistoryWriter> history; ///< rank 0 only
-  fem::StepStatus failure;
+  StepResult failure;
   bool stopped = false;
   std::size_t n_snapshots = 0;
   double output_s = 0.0;
@@ -152,8 +152,8 @@ nlohmann::json DistributedFarFieldSimulation::summary(const std::vector<std::str
                                                       double wall_time) const
 {
   const fem::DistributedTimings& t = model.timings();
-  nlohmann::json s = summary_head(scene, failed(), failure.message, model.time(),
-                                  description.end_time, t.n_steps, description.dt);
+  nlohmann::json s = summary_head(scene, failed(), failure.why, model.time(), description.end_time,
+                                  t.n_steps, description.dt);
   s["integrator"] = fem::name_of(description.integrator);
   s["solver"] = {{"name", name_of(distributed_solver(description))},
                  {"linear_iterations", t.linear_iterations}};

@@ -95,11 +95,11 @@ nlohmann::json far_field_run_summary(const FarFieldRunRecord& run)
 {
   const fem::FarFieldDescription& d = *run.scene.far_field;
   const fem::ElasticWaveModel& model = run.model;
-  const bool failed = run.failure.outcome != fem::StepOutcome::success;
+  const bool failed = !run.failure.taken;
   const fem::Timings& t = model.timings();
   const fem::EnergyBalance e = model.energy();
-  nlohmann::json summary = summary_head(run.scene, failed, run.failure.message, model.time(),
-                                        d.end_time, t.n_steps, d.dt);
+  nlohmann::json summary =
+      summary_head(run.scene, failed, run.failure.why, model.time(), d.end_time, t.n_steps, d.dt);
   summary["integrator"] = fem::name_of(d.integrator);
   summary["solver"] = {{"name", model.solver_name()},
                        {"factorizations", t.n_factorizations},

@@ -205,7 +205,7 @@ struct FarFieldRunRecord
 {
   const Scene& scene;
   const fem::ElasticWaveModel& model;
-  const fem::StepStatus& failure; ///< outcome success if the run completed
+  const StepResult& failure; ///< outcome success if the run completed
   const FarFieldOutputs& outputs;
   const std::vector<std::string>& warnings;
   double wall_time = 0.0; ///< [s]

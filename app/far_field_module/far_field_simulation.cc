@@ -62,18 +62,18 @@ public:
   }
   RunEnd end() const override
   {
-    return {failed() ? failure.message : std::string(),
+    return {failed() ? failure.why : std::string(),
             std::to_string(model.timings().n_steps) + " steps", model.time(), "far_field.pvd"};
   }
 
 private:
-  bool failed() const { return failure.outcome != fem::StepOutcome::success; }
+  bool failed() const { return !failure.taken; }
 
   const Scene& scene;
   const fem::FarFieldDescription& description;
   fem::ElasticWaveModel model;
   std::optional<FarFieldOutputs> outputs;
-  fem::StepStatus failure;    ///< outcome success unless a step failed
+  StepResult failure;         ///< outcome success unless a step failed
   bool stopped = false;       ///< stopped at a budget (report returned false)
   bool running = false;       ///< between two steps of run_stage
   bool resumed = false;       ///< run_stage goes on from a checkpoint's step
@@ -93,8 +93,8 @@ bool FarFieldSimulation::run_stage(std::size_t, const std::function<bool()>& rep
   running = true;
   while (step < n_steps)
   {
-    const fem::StepStatus status = model.advance(dt);
-    if (status.outcome != fem::StepOutcome::success)
+    const StepResult status = model.advance(dt);
+    if (!status.taken)
     {
       failure = status;
       running = false;

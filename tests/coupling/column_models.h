@@ -230,7 +230,7 @@ struct UpwardColumn
     // The far field alone as it steps in the coupled model: per half step with Bathe's scheme.
     const int n = integrator == dda::Integrator::bathe ? 2 : 1;
     for (int k = 0; k < n; ++k)
-      if (far_field->advance(dt / n).outcome != fem::StepOutcome::success)
+      if (!far_field->advance(dt / n).taken)
         return false;
     return true;
   }

@@ -21,7 +21,7 @@ public:
   std::function<bool(double)> chatters;
   void begin_stage(StageMode) override {}
   bool stiffness_is_block_diagonal() const override { return true; }
-  std::string begin_step(double dt, const Eigen::VectorXd&) override
+  StepResult begin_step(double dt, const Eigen::VectorXd&) override
   {
     dts.push_back(dt);
     return {};
@@ -32,7 +32,7 @@ public:
   {
     return chatters && chatters(dts.back()) ? 1 : 0;
   }
-  std::string end_step(const Eigen::VectorXd&) override { return {}; }
+  StepResult end_step(const Eigen::VectorXd&) override { return {}; }
   double work_on_blocks() const override { return 0.0; }
 
 private:

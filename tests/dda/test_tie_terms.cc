@@ -25,14 +25,14 @@ class SpringBody final : public TiedBody
 public:
   SpringBody(Eigen::MatrixXd h_, Eigen::VectorXd g_) : h(std::move(h_)), g(std::move(g_)) {}
   void begin_stage(StageMode) override {}
-  std::string begin_step(double, const Eigen::VectorXd&) override { return {}; }
+  StepResult begin_step(double, const Eigen::VectorXd&) override { return {}; }
   const Eigen::MatrixXd& stiffness() const override { return h; }
   const Eigen::VectorXd& force() const override { return g; }
   std::size_t update_trial_states(const Eigen::VectorXd&, unsigned, double, std::size_t&) override
   {
     return 0;
   }
-  std::string end_step(const Eigen::VectorXd&) override { return {}; }
+  StepResult end_step(const Eigen::VectorXd&) override { return {}; }
   double work_on_blocks() const override { return 0.0; }
 
 private:

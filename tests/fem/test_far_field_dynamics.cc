@@ -53,7 +53,7 @@ std::vector<double> monitor_history(ElasticWaveModel& model, const std::size_t n
   std::vector<double> h;
   for (std::size_t s = 0; s < n_steps; ++s)
   {
-    EXPECT_EQ(model.advance(dt).outcome, StepOutcome::success);
+    EXPECT_TRUE(model.advance(dt).taken);
     for (std::size_t m = 0; m < 2; ++m)
     {
       const MonitorSample x = model.sample_monitor(m);
@@ -149,7 +149,7 @@ std::pair<double, double> largest_motion(ElasticWaveModel& model, const std::siz
   double v = 0.0, u = 0.0;
   for (std::size_t s = 0; s < steps; ++s)
   {
-    EXPECT_EQ(model.advance(dt).outcome, StepOutcome::success);
+    EXPECT_TRUE(model.advance(dt).taken);
     for (std::size_t m = 0; m < n_monitors; ++m)
     {
       const MonitorSample x = model.sample_monitor(m);
@@ -256,7 +256,7 @@ TEST(FarFieldRayleigh, FreeVibrationDecayMatchesTheDampingRatio)
   std::vector<double> u{model.sample_monitor(0).displacement[0]}, peaks, times;
   for (std::size_t s = 1; s <= 1000; ++s) // five periods
   {
-    ASSERT_EQ(model.advance(dt).outcome, StepOutcome::success);
+    ASSERT_TRUE(model.advance(dt).taken);
     u.push_back(model.sample_monitor(0).displacement[0]);
     const std::size_t i = u.size() - 2;
     if (i > 0 && u[i] > u[i - 1] && u[i] >= u[i + 1])
@@ -311,7 +311,7 @@ TEST(FarFieldEnergy, ClosedModelConservesEnergyOver1000Steps)
   double drift = 0.0, least_kinetic = 1e300, most_kinetic = 0.0;
   for (int s = 0; s < 1000; ++s)
   {
-    ASSERT_EQ(model.advance(d.dt).outcome, StepOutcome::success);
+    ASSERT_TRUE(model.advance(d.dt).taken);
     if (s % 50 == 49)
     {
       const EnergyBalance e = model.energy();
@@ -362,7 +362,7 @@ double pulse_error(const unsigned int degree, const double h, const double coura
   const auto n_steps = static_cast<int>(std::lround(end_time / (courant * h / c)));
   const double dt = end_time / n_steps;
   for (int s = 0; s < n_steps; ++s)
-    EXPECT_EQ(model.advance(dt).outcome, StepOutcome::success);
+    EXPECT_TRUE(model.advance(dt).taken);
   const double error = model.l2_error(
       [&](double, double y) {
         return std::array<double, 2>{{0.0, pulse(y, end_time)}};
@@ -453,8 +453,8 @@ SideResult run_with_sides(const BoundaryKind sides)
   ElasticWaveModel column(c);
   for (int s = 0; s < 260; ++s)
   {
-    EXPECT_EQ(model.advance(d.dt).outcome, StepOutcome::success);
-    EXPECT_EQ(column.advance(d.dt).outcome, StepOutcome::success);
+    EXPECT_TRUE(model.advance(d.dt).taken);
+    EXPECT_TRUE(column.advance(d.dt).taken);
     const double reference = column.sample_monitor(0).velocity[0];
     if (sides == BoundaryKind::free_field) // the model's own column is the same
     {
@@ -532,15 +532,15 @@ TEST(FarFieldFreeField, AnAbandonedStepLeavesNoTraceAndFactorizationsAreReused)
   const double dt = d.dt;
   for (int s = 0; s < 20; ++s) // the pulse reaches the monitor
   {
-    ASSERT_EQ(cut.advance(dt).outcome, StepOutcome::success);
-    ASSERT_EQ(straight.advance(dt).outcome, StepOutcome::success);
+    ASSERT_TRUE(cut.advance(dt).taken);
+    ASSERT_TRUE(straight.advance(dt).taken);
   }
-  ASSERT_EQ(cut.prepare_step(dt, free).outcome, StepOutcome::success); // abandoned
+  ASSERT_TRUE(cut.prepare_step(dt, free).taken); // abandoned
   for (const double step : {0.5 * dt, 0.5 * dt, dt, dt})
   {
-    ASSERT_EQ(cut.prepare_step(step, free).outcome, StepOutcome::success);
-    ASSERT_EQ(cut.finish_step(no_loads).outcome, StepOutcome::success);
-    ASSERT_EQ(straight.advance(step).outcome, StepOutcome::success);
+    ASSERT_TRUE(cut.prepare_step(step, free).taken);
+    ASSERT_TRUE(cut.finish_step(no_loads).taken);
+    ASSERT_TRUE(straight.advance(step).taken);
     const MonitorSample a = cut.sample_monitor(0), b = straight.sample_monitor(0);
     EXPECT_GT(std::abs(b.velocity[0]), 1e-3);
     EXPECT_EQ(a.velocity[0], b.velocity[0]);

@@ -163,7 +163,7 @@ TEST(FarFieldMesh, PColumnWithAGradedHoleStillCarriesThePlaneWave)
   std::vector<double> low, mid, time;
   while (model.time() < end_time)
   {
-    ASSERT_EQ(model.advance(dt).outcome, StepOutcome::success);
+    ASSERT_TRUE(model.advance(dt).taken);
     time.push_back(model.time());
     low.push_back(model.sample_monitor(0).velocity[1]);
     mid.push_back(model.sample_monitor(1).velocity[1]);

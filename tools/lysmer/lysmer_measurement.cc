@@ -625,8 +625,8 @@ RunFit record_run(const LysmerMeasurementSettings& s, const Experiment& e,
   for (std::size_t step = 0; step < n_steps; ++step)
   {
     const auto status = model.advance(dt);
-    if (status.outcome != StepOutcome::success)
-      throw std::runtime_error(status.message);
+    if (!status.taken)
+      throw std::runtime_error(status.why);
     const double t = model.time() - t0;
     const auto v = model.sample_monitor(0).velocity;
     if (s.record_trace)

@@ -64,7 +64,7 @@ Histories run(Model& model, const std::size_t n_monitors)
   Histories h;
   for (std::size_t step = 0; step < n_steps; ++step)
   {
-    EXPECT_EQ(model.advance(dt).outcome, StepOutcome::success);
+    EXPECT_TRUE(model.advance(dt).taken);
     for (std::size_t m = 0; m < n_monitors; ++m)
     {
       const MonitorSample s = model.sample_monitor(m);
@@ -156,8 +156,8 @@ TEST(DistributedWaveModel, FreeFieldColumnVelocityIsTheSerials)
   double peak = 0.0;
   for (std::size_t step = 0; step < n_steps; ++step)
   {
-    ASSERT_EQ(serial.advance(dt).outcome, StepOutcome::success);
-    ASSERT_EQ(distributed.advance(dt).outcome, StepOutcome::success);
+    ASSERT_TRUE(serial.advance(dt).taken);
+    ASSERT_TRUE(distributed.advance(dt).taken);
     for (const double y : {-5.0, 30.0, 70.0})
     {
       const std::array<double, 2> a = serial.free_field_velocity(y);
@@ -182,7 +182,7 @@ TEST(DistributedWaveModel, TheTrapezoidalRuleBalancesEnergy)
   FarFieldDescription d = square(BoundaryKind::lysmer);
   DistributedWaveModel model(d, MPI_COMM_WORLD, DistributedSolver::cg_amg);
   for (std::size_t step = 0; step < n_steps; ++step)
-    ASSERT_EQ(model.advance(dt).outcome, StepOutcome::success);
+    ASSERT_TRUE(model.advance(dt).taken);
   const EnergyBalance e = model.energy();
   EXPECT_GT(e.work_of_input, 0.0);
   EXPECT_LT(std::abs(e.dissipated), 1e-8 * e.work_of_input);
@@ -198,7 +198,7 @@ TEST(DistributedWaveModel, WritesOnePiecePerRank)
   MPI_Barrier(MPI_COMM_WORLD);
   DistributedWaveModel model(square(BoundaryKind::lysmer), MPI_COMM_WORLD,
                              DistributedSolver::cg_amg);
-  ASSERT_EQ(model.advance(dt).outcome, StepOutcome::success);
+  ASSERT_TRUE(model.advance(dt).taken);
   const std::string name = model.write_snapshot(directory, "far_field");
   MPI_Barrier(MPI_COMM_WORLD);
   EXPECT_TRUE(std::filesystem::exists(directory + "/" + name));
@@ -267,8 +267,8 @@ void expect_serial_ties(const DistributedSolver solver, const double tolerance,
   double difference = 0.0, peak = 0.0; // of the free responses N y [m]
   for (std::size_t step = 1; step <= 100; ++step)
   {
-    ASSERT_EQ(serial.prepare_step(dt, free_serial).outcome, StepOutcome::success);
-    ASSERT_EQ(distributed.prepare_step(dt, free_distributed).outcome, StepOutcome::success);
+    ASSERT_TRUE(serial.prepare_step(dt, free_serial).taken);
+    ASSERT_TRUE(distributed.prepare_step(dt, free_distributed).taken);
     EXPECT_TRUE(same_on_every_rank(free_distributed));
     for (std::size_t k = 0; k < springs.size(); ++k) // z: 1 mm, a 10 Hz cycle, along the top
     {
@@ -276,8 +276,8 @@ void expect_serial_ties(const DistributedSolver solver, const double tolerance,
       q[2 * k] = springs[k].stiffness[0] * z;
       q[2 * k + 1] = springs[k].stiffness[3] * 0.5 * z;
     }
-    ASSERT_EQ(serial.finish_step(q).outcome, StepOutcome::success);
-    ASSERT_EQ(distributed.finish_step(q).outcome, StepOutcome::success);
+    ASSERT_TRUE(serial.finish_step(q).taken);
+    ASSERT_TRUE(distributed.finish_step(q).taken);
     for (std::size_t i = 0; i < q.size(); ++i)
     {
       difference = std::max(difference, std::abs(free_serial[i] - free_distributed[i]));
@@ -320,8 +320,8 @@ TEST(DistributedWaveModel, RayleighDampingGivesTheSerialHistoriesAndBalancesEner
   DistributedWaveModel model(d, MPI_COMM_WORLD, DistributedSolver::mumps);
   for (std::size_t step = 0; step < n_steps; ++step)
   {
-    ASSERT_EQ(serial.advance(dt).outcome, StepOutcome::success);
-    ASSERT_EQ(model.advance(dt).outcome, StepOutcome::success);
+    ASSERT_TRUE(serial.advance(dt).taken);
+    ASSERT_TRUE(model.advance(dt).taken);
   }
   const EnergyBalance e = model.energy();
   EXPECT_LT(e.work_of_rayleigh, 0.0);
