@@ -1,5 +1,5 @@
 // The `tunnel` section (issue 7): the scene it expands into (what the program chooses for a
-// tunnel is tested in tests/app/test_tunnel_plan.cc).
+// tunnel is tested in tests/app/scene/test_tunnel_plan.cc).
 #include "app/scene/scene.h"
 #include "app/scene/tunnel_scene.h"
 
