@@ -203,7 +203,7 @@ void DistributedWaveModel::Impl::assemble_boundary()
   // parts.
   const auto absorbing = absorbing_parts(description);
   const unsigned int component = input_component(description);
-  input_scale = 2.0 * description.density * (component == 0 ? vs : vp);
+  input_scale = input_traction_scale(description, vp, vs);
   const unsigned int n = fe.n_dofs_per_cell();
   FEFaceValues<2> values(fe, QGauss<1>(fe.degree + 1),
                          update_values | update_normal_vectors | update_JxW_values);

@@ -64,7 +64,7 @@ void ElasticWaveModel::Impl::assemble_boundary(SparseMatrix<double>& full_dampin
   const auto absorbing = absorbing_parts(description);
   const double rho = description.density;
   const unsigned int component = input_component(description);
-  input_scale = 2.0 * rho * (component == 0 ? vs : vp);
+  input_scale = input_traction_scale(description, vp, vs);
 
   const unsigned int n = fe.n_dofs_per_cell();
   const QGauss<1> face_quadrature(fe.degree + 1);

@@ -182,6 +182,13 @@ unsigned int input_component(const FarFieldDescription& description)
   return description.incident.type == IncidentWave::Type::sv ? 0 : 1;
 }
 
+double input_traction_scale(const FarFieldDescription& description, const double vp,
+                            const double vs)
+{
+  const bool sv = description.incident.type == IncidentWave::Type::sv;
+  return 2.0 * description.density * (sv ? vs : vp);
+}
+
 void absorbing_face_matrices(const FEFaceValues<2>& values, const BoundaryCondition& bc,
                              const double rho, const double vp, const double vs,
                              const unsigned int input_component, FullMatrix<double>& cell_damping,

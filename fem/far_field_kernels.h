@@ -72,6 +72,11 @@ bool is_free_field_part(const FarFieldDescription& description, dealii::types::b
 /// The displacement component the incident wave drives: x (0) for an SV wave, y (1) for P.
 unsigned int input_component(const FarFieldDescription& description);
 
+/// The scale of the input traction on input parts, 2 rho V [N s/m^3] with V the incident wave's
+/// speed (VS for an SV wave, VP for P): times the incident velocity [m/s] it gives the traction
+/// [Pa] that sends the wave in through Lysmer's dashpots. Density rho [kg/m^3], speeds [m/s].
+double input_traction_scale(const FarFieldDescription& description, double vp, double vs);
+
 /// A face of an absorbing part (`values` reinit'd on it): its Lysmer dashpots
 /// D = rho (a VP n n^T + b VS (I - n n^T)) [N s/m^3] in `cell_damping`, and on an input part the
 /// shape of the input traction, int N_i dS over the input component's shape functions, in

@@ -146,8 +146,7 @@ StepResult ElasticWaveModel::Impl::prepare_step(const double dt)
   }
   catch (const std::exception& e)
   {
-    status.taken = false;
-    status.why = std::string("far field: solver failed: ") + e.what();
+    status = StepResult::failure(std::string("far field: solver failed: ") + e.what());
   }
   return status;
 }
@@ -240,8 +239,8 @@ StepResult ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_
     const auto start = Clock::now();
     if (!std::all_of(u_new.begin(), u_new.end(), [](double x) { return std::isfinite(x); }))
     {
-      status.taken = false;
-      status.why = "far field: non-finite displacement at t = " + format_number(t1);
+      status =
+          StepResult::failure("far field: non-finite displacement at t = " + format_number(t1));
       timings.update += seconds_since(start);
       return status;
     }
@@ -270,8 +269,7 @@ StepResult ElasticWaveModel::Impl::finish_step(const std::vector<double>& point_
   }
   catch (const std::exception& e)
   {
-    status.taken = false;
-    status.why = std::string("far field: solver failed: ") + e.what();
+    status = StepResult::failure(std::string("far field: solver failed: ") + e.what());
   }
   return status;
 }
