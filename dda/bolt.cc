@@ -1,5 +1,10 @@
 #include "dda/bolt.h"
 
+#include "common/input_error.h"
+#include "dda/checkpoint_types.h"
+#include "dda/linear_solver.h"
+#include "dda/model_description.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -79,6 +84,137 @@ Vector2 Bolt::direction(bool initial) const
 {
   return initial ? (anchor.initial - head.initial).normalized()
                  : (anchor.position - head.position).normalized();
+}
+
+template <class Archive>
+void serialize(Archive& a, BoltForces& f, const unsigned int /*version*/)
+{
+  transfer_all(a, f.state, f.axial_force, f.plastic_elongation);
+}
+
+template <class Archive>
+void serialize(Archive& a, BoltRecord& r, const unsigned int /*version*/)
+{
+  transfer_all(a, r.max_force, r.max_elongation, r.yield_time, r.rupture_time);
+}
+
+namespace
+{
+template <class Archive>
+void transfer_bolts(Archive& a, std::vector<Bolt>& bolts)
+{
+  transfer_in_place(a, bolts, "bolts",
+                    [&a](Bolt& b) { transfer_all(a, b.head, b.anchor, b.forces, b.record); });
+}
+} // namespace
+
+Bolts::Bolts(const ModelDescription& model, const ElementHost& host)
+{
+  for (const BoltDescription& d : model.bolts)
+  {
+    if (d.type == BoltType::grouted)
+      continue;
+    Bolt b;
+    b.name = d.name;
+    const std::string what = d.origin.empty() ? "bolt " + d.name : d.origin;
+    b.head = host.attach(d.head, what + ".head");
+    b.anchor = host.attach(d.anchor, what + ".anchor");
+    if (b.head.block == b.anchor.block)
+      throw InputError(what + ".anchor lies in the same block as its head (block " +
+                       std::to_string(b.head.block) +
+                       "): expected the anchor in another block than the head");
+    b.law = make_bolt_law(d.head, d.anchor, d.youngs_modulus, d.area, d.pretension, d.yield_force,
+                          d.rupture_strain);
+    b.forces = evaluate_bolt(b.law, {}, b.law.free_length);
+    bolts.push_back(b);
+  }
+}
+
+void Bolts::add_couplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const
+{
+  for (const Bolt& b : bolts)
+    pairs.emplace_back(std::min(b.head.block, b.anchor.block),
+                       std::max(b.head.block, b.anchor.block));
+}
+
+void Bolts::assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const
+{
+  // e = unit(x_anchor - x_head) (dda/bolt.h).
+  for (const Bolt& b : bolts)
+  {
+    const Vector2 e = b.direction(host.small_displacement());
+    const Matrix26 th = host.point_matrix(b.head);
+    const Matrix26 ta = host.point_matrix(b.anchor);
+    step.rhs.segment<6>(6 * b.head.block).noalias() += th.transpose() * (b.forces.axial_force * e);
+    step.rhs.segment<6>(6 * b.anchor.block).noalias() -=
+        ta.transpose() * (b.forces.axial_force * e);
+    const double k = bolt_tangent_stiffness(b.law, b.forces);
+    if (!with_matrix || k == 0.0)
+      continue;
+    const Eigen::Matrix2d kee = k * (e * e.transpose());
+    step.matrix.diagonal(b.head.block).noalias() += th.transpose() * kee * th;
+    step.matrix.diagonal(b.anchor.block).noalias() += ta.transpose() * kee * ta;
+    // The coupling block (i, j), i < j: row i's end against column j's.
+    const std::size_t coupling = host.coupling_of(b.head.block, b.anchor.block);
+    if (b.head.block < b.anchor.block)
+      step.matrix.upper(coupling).noalias() -= th.transpose() * kee * ta;
+    else
+      step.matrix.upper(coupling).noalias() -= ta.transpose() * kee * th;
+  }
+}
+
+void Bolts::add_loads(const std::function<void(std::size_t, double)>& add) const
+{
+  for (const Bolt& b : bolts)
+  {
+    add(b.head.block, b.forces.axial_force);
+    add(b.anchor.block, b.forces.axial_force);
+  }
+}
+
+void Bolts::move_points(const ElementHost& host, const Eigen::VectorXd& d)
+{
+  for (Bolt& b : bolts)
+    for (MaterialPoint* p : {&b.head, &b.anchor})
+      p->position += host.point_displacement(*p, d.segment<6>(6 * p->block));
+}
+
+void Bolts::update(const ElementHost& /*host*/, double t)
+{
+  // The clock of a static stage stands still: its events are recorded at the stage's time.
+  for (Bolt& b : bolts)
+  {
+    const double length = b.length();
+    b.forces = evaluate_bolt(b.law, b.forces, length);
+    b.record = record_bolt(b.record, b.forces, length - b.law.free_length, t);
+  }
+}
+
+void Bolts::add_held_blocks(const std::function<void(std::size_t)>& hold) const
+{
+  for (const Bolt& b : bolts)
+    if (b.forces.state != BoltState::ruptured)
+    {
+      hold(b.head.block);
+      hold(b.anchor.block);
+    }
+}
+
+void Bolts::add_energy(double& energy) const
+{
+  for (const Bolt& b : bolts)
+    energy += bolt_energy(b.law, b.forces);
+}
+
+void Bolts::save(CheckpointOut& archive) const
+{
+  // One function stores and restores (Boost.Serialization's `&`); storing changes nothing.
+  transfer_bolts(archive, const_cast<std::vector<Bolt>&>(bolts));
+}
+
+void Bolts::load(CheckpointIn& archive)
+{
+  transfer_bolts(archive, bolts);
 }
 
 } // namespace ddafem::dda

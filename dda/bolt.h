@@ -1,14 +1,17 @@
 // End-anchored rock bolts (issue 21): a steel tendon attached to one block at its head and to
 // another at its anchor, an axial spring between the two material points that yields and
-// ruptures. The law is pure functions of the bolt's length, no geometry (docs/support.md).
+// ruptures. The law is pure functions of the bolt's length, no geometry (docs/support.md);
+// Bolts carries them on the blocks as an element kind (dda/element.h).
 #pragma once
 
 #include "common/enum_names.h"
 #include "dda/block.h"
+#include "dda/element.h"
 
 #include <array>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace ddafem::dda
 {
@@ -101,6 +104,35 @@ struct Bolt
   double length(bool initial = false) const;
   /// Unit vector from head to anchor, at the current positions or, with `initial`, at t = 0.
   Vector2 direction(bool initial = false) const;
+};
+
+/// The scene's end-anchored bolts as an element kind (dda/element.h): each one an axial spring
+/// between its head's block and its anchor's.
+class Bolts : public ElementKind
+{
+public:
+  /// Attaches each end-anchored bolt of the model (ModelDescription::bolts); throws InputError
+  /// for a bolt with both ends in one block.
+  Bolts(const ModelDescription& model, const ElementHost& host);
+  /// In scene order, with their state at the last accepted step.
+  const std::vector<Bolt>& all() const { return bolts; }
+
+  void add_couplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const override;
+  bool changes_stiffness() const override { return !bolts.empty(); }
+  /// The force N at the step start, +N e on the head's block and -N e on the anchor's, and
+  /// k e e^T on the relative displacement T_anchor d_anchor - T_head d_head while elastic.
+  void assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const override;
+  void add_loads(const std::function<void(std::size_t, double)>& add) const override;
+  void move_points(const ElementHost& host, const Eigen::VectorXd& d) override;
+  /// Each bolt's state and record from its moved ends (evaluate_bolt, record_bolt).
+  void update(const ElementHost& host, double t) override;
+  void add_held_blocks(const std::function<void(std::size_t)>& hold) const override;
+  void add_energy(double& energy) const override;
+  void save(CheckpointOut& archive) const override;
+  void load(CheckpointIn& archive) override;
+
+private:
+  std::vector<Bolt> bolts;
 };
 
 } // namespace ddafem::dda

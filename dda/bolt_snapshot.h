@@ -27,4 +27,9 @@ struct BoltSnapshot
 /// The grouted bolt's summary state over its crossings (BoltSnapshot::state).
 BoltState summary_state(const GroutedBolt& b);
 
+/// Every bolt as a polyline for the bolts' VTU series: the end-anchored ones, then the grouted
+/// ones, with their state at the last accepted step (dda/grouted_bolt.cc).
+std::vector<BoltSnapshot> bolt_snapshot(const std::vector<Bolt>& bolts,
+                                        const std::vector<GroutedBolt>& grouted_bolts);
+
 } // namespace ddafem::dda

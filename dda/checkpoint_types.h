@@ -64,46 +64,6 @@ void serialize(Archive& a, Contact& c, const unsigned int /*version*/)
 }
 
 template <class Archive>
-void serialize(Archive& a, BoltForces& f, const unsigned int /*version*/)
-{
-  transfer_all(a, f.state, f.axial_force, f.plastic_elongation);
-}
-
-template <class Archive>
-void serialize(Archive& a, BoltRecord& r, const unsigned int /*version*/)
-{
-  transfer_all(a, r.max_force, r.max_elongation, r.yield_time, r.rupture_time);
-}
-
-template <class Archive>
-void serialize(Archive& a, LiningNode& n, const unsigned int /*version*/)
-{
-  transfer_all(a, n.point, n.installed, n.rotation);
-}
-
-template <class Archive>
-void serialize(Archive& a, LiningElement& e, const unsigned int /*version*/)
-{
-  transfer_all(a, e.a, e.b, e.length0, e.state, e.forces.axial_force, e.forces.shear_force);
-  transfer_all(a, e.forces.end_moment_a, e.forces.end_moment_b, e.check.utilisation, e.check.mode,
-               e.max_utilisation, e.break_time);
-}
-
-template <class Archive>
-void serialize(Archive& a, CrossingForces& f, const unsigned int /*version*/)
-{
-  transfer_all(a, f.state, f.axial_elastic, f.shear_elastic, f.axial_force, f.shear_force);
-  transfer_all(a, f.plastic_opening, f.plastic_slip);
-}
-
-template <class Archive>
-void serialize(Archive& a, CrossingRecord& r, const unsigned int /*version*/)
-{
-  transfer_all(a, r.max_axial_force, r.max_shear_force, r.max_opening, r.max_slip);
-  transfer_all(a, r.yield_time, r.rupture_time);
-}
-
-template <class Archive>
 void serialize(Archive& a, JointPoint& p, const unsigned int /*version*/)
 {
   transfer_all(a, p.on_a, p.on_b, p.normal_force, p.shear_force, p.normal_preload, p.shear_preload);

@@ -82,20 +82,10 @@ void System::refresh_joint_lists()
     add(j.block_a, j.edge_a, j.block_b);
     add(j.block_b, j.edge_b, j.block_a);
   }
-  // A bolt couples its two blocks in the matrix like a joint (not in contact detection).
-  for (const Bolt& b : bolts)
-    joint_lists.joined.emplace_back(std::min(b.head.block, b.anchor.block),
-                                    std::max(b.head.block, b.anchor.block));
-  // So does a lining's element between two blocks.
-  for (const Lining& l : linings)
-    for (const LiningElement& e : l.elements)
-      if (e.state != LiningElementState::on_one_block)
-        joint_lists.joined.emplace_back(
-            std::minmax(l.nodes[e.a].point.block, l.nodes[e.b].point.block));
-  for (const GroutedBolt& b : grouted_bolts)
-    for (const GroutedCrossing& c : b.crossings)
-      joint_lists.joined.emplace_back(std::min(c.on_a.block, c.on_b.block),
-                                      std::max(c.on_a.block, c.on_b.block));
+  // An element between two blocks (a bolt, a frame) couples them in the matrix
+  // like a joint (not in contact detection).
+  for (const std::unique_ptr<ElementKind>& k : element_kinds)
+    k->add_couplings(joint_lists.joined);
   std::sort(joint_lists.bonded_pairs.begin(), joint_lists.bonded_pairs.end());
   std::sort(joint_lists.joined.begin(), joint_lists.joined.end());
   std::stable_sort(

@@ -1,8 +1,12 @@
 #include "dda/grouted_bolt.h"
 
+#include "common/input_error.h"
 #include "dda/bolt_snapshot.h"
-
+#include "dda/checkpoint_types.h"
 #include "dda/geometry.h"
+#include "dda/linear_solver.h"
+#include "dda/model_description.h"
+#include "dda/system_helpers.h"
 
 #include <algorithm>
 #include <cmath>
@@ -221,6 +225,211 @@ std::array<double, 2> GroutedBolt::opening_and_slip(const GroutedCrossing& c, bo
   const Vector2 t(-e.y(), e.x());
   const Vector2 delta = c.relative_displacement();
   return {delta.dot(e), delta.dot(t)};
+}
+
+template <class Archive>
+void serialize(Archive& a, CrossingForces& f, const unsigned int /*version*/)
+{
+  transfer_all(a, f.state, f.axial_elastic, f.shear_elastic, f.axial_force, f.shear_force);
+  transfer_all(a, f.plastic_opening, f.plastic_slip);
+}
+
+template <class Archive>
+void serialize(Archive& a, CrossingRecord& r, const unsigned int /*version*/)
+{
+  transfer_all(a, r.max_axial_force, r.max_shear_force, r.max_opening, r.max_slip);
+  transfer_all(a, r.yield_time, r.rupture_time);
+}
+
+namespace
+{
+/// A grouted bolt onto its blocks' material points at its crossings (InputError if none).
+GroutedBolt attach_grouted_bolt(const BoltDescription& d)
+{
+  const std::string what = d.origin.empty() ? "bolt " + d.name : d.origin;
+  if (d.crossings.empty())
+    throw InputError(what + " crosses no block boundary between its head and its anchor: "
+                            "expected a grouted bolt through at least two blocks");
+  GroutedBolt b;
+  b.name = d.name;
+  // The ends belong to the first and the last block along the bolt (a head on the boundary of
+  // two blocks, e.g. where a joint meets the opening, to the one the bolt enters).
+  b.head = {d.crossings.front().block_a, d.head, d.head};
+  b.anchor = {d.crossings.back().block_b, d.anchor, d.anchor};
+  b.law = make_grouted_bolt_law(d.youngs_modulus, d.area, d.grout_modulus, d.debonded_length,
+                                d.pretension, d.yield_force, d.shear_capacity, d.rupture_strain);
+  for (const BoltCrossing& x : d.crossings)
+  {
+    GroutedCrossing c;
+    c.on_a = {x.block_a, x.point, x.point};
+    c.on_b = {x.block_b, x.point, x.point};
+    c.forces = evaluate_crossing(b.law, {}, 0.0, 0.0);
+    b.crossings.push_back(c);
+  }
+  return b;
+}
+
+template <class Archive>
+void transfer_grouted_bolts(Archive& a, std::vector<GroutedBolt>& grouted_bolts)
+{
+  transfer_in_place(a, grouted_bolts, "grouted bolts",
+                    [&a](GroutedBolt& b)
+                    {
+                      transfer_all(a, b.head, b.anchor);
+                      transfer_in_place(a, b.crossings, "crossings",
+                                        [&a](GroutedCrossing& c)
+                                        { transfer_all(a, c.on_a, c.on_b, c.forces, c.record); });
+                    });
+}
+} // namespace
+
+GroutedBolts::GroutedBolts(const ModelDescription& model)
+{
+  for (const BoltDescription& d : model.bolts)
+    if (d.type == BoltType::grouted)
+      grouted_bolts.push_back(attach_grouted_bolt(d));
+}
+
+void GroutedBolts::add_couplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const
+{
+  for (const GroutedBolt& b : grouted_bolts)
+    for (const GroutedCrossing& c : b.crossings)
+      pairs.emplace_back(std::min(c.on_a.block, c.on_b.block),
+                         std::max(c.on_a.block, c.on_b.block));
+}
+
+void GroutedBolts::assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const
+{
+  for (const GroutedBolt& b : grouted_bolts)
+  {
+    const Vector2 e = b.direction(host.small_displacement());
+    const Vector2 t(-e.y(), e.x());
+    for (const GroutedCrossing& c : b.crossings)
+    {
+      const CrossingForces& f = c.forces;
+      const Vector2 force = f.axial_force * e + f.shear_force * t;
+      const Matrix26 ta = host.point_matrix(c.on_a);
+      const Matrix26 tb = host.point_matrix(c.on_b);
+      if (!with_matrix)
+      {
+        step.rhs.segment<6>(6 * c.on_a.block).noalias() += ta.transpose() * force;
+        step.rhs.segment<6>(6 * c.on_b.block).noalias() -= tb.transpose() * force;
+        continue;
+      }
+      const Eigen::Matrix2d k =
+          (f.axial_elastic ? b.law.axial_stiffness : 0.0) * (e * e.transpose()) +
+          (f.shear_elastic ? b.law.shear_stiffness : 0.0) * (t * t.transpose());
+      add_pair_spring(step.matrix, step.rhs, host.coupling_of(c.on_a.block, c.on_b.block),
+                      c.on_a.block, ta, c.on_b.block, tb, k, force);
+    }
+  }
+}
+
+void GroutedBolts::add_loads(const std::function<void(std::size_t, double)>& add) const
+{
+  for (const GroutedBolt& b : grouted_bolts)
+    for (const GroutedCrossing& c : b.crossings)
+    {
+      add(c.on_a.block, std::hypot(c.forces.axial_force, c.forces.shear_force));
+      add(c.on_b.block, std::hypot(c.forces.axial_force, c.forces.shear_force));
+    }
+}
+
+void GroutedBolts::move_points(const ElementHost& host, const Eigen::VectorXd& d)
+{
+  const auto move = [&](MaterialPoint& p)
+  { p.position += host.point_displacement(p, d.segment<6>(6 * p.block)); };
+  for (GroutedBolt& b : grouted_bolts)
+  {
+    move(b.head);
+    move(b.anchor);
+    for (GroutedCrossing& c : b.crossings)
+    {
+      move(c.on_a);
+      move(c.on_b);
+    }
+  }
+}
+
+void GroutedBolts::update(const ElementHost& host, double t)
+{
+  // The clock of a static stage stands still: its events are recorded at the stage's time.
+  for (GroutedBolt& b : grouted_bolts)
+    for (GroutedCrossing& c : b.crossings)
+    {
+      const auto [opening, slip] = b.opening_and_slip(c, host.small_displacement());
+      c.forces = evaluate_crossing(b.law, c.forces, opening, slip);
+      c.record = record_crossing(c.record, c.forces, opening, slip, t);
+    }
+}
+
+void GroutedBolts::add_held_blocks(const std::function<void(std::size_t)>& hold) const
+{
+  for (const GroutedBolt& b : grouted_bolts)
+    for (const GroutedCrossing& c : b.crossings)
+      if (c.forces.state != BoltState::ruptured)
+      {
+        hold(c.on_a.block);
+        hold(c.on_b.block);
+      }
+}
+
+void GroutedBolts::add_energy(double& energy) const
+{
+  for (const GroutedBolt& b : grouted_bolts)
+    for (const GroutedCrossing& c : b.crossings)
+      energy += crossing_energy(b.law, c.forces);
+}
+
+void GroutedBolts::save(CheckpointOut& archive) const
+{
+  // One function stores and restores (Boost.Serialization's `&`); storing changes nothing.
+  transfer_grouted_bolts(archive, const_cast<std::vector<GroutedBolt>&>(grouted_bolts));
+}
+
+void GroutedBolts::load(CheckpointIn& archive)
+{
+  transfer_grouted_bolts(archive, grouted_bolts);
+}
+
+std::vector<BoltSnapshot> bolt_snapshot(const std::vector<Bolt>& bolts,
+                                        const std::vector<GroutedBolt>& grouted_bolts)
+{
+  std::vector<BoltSnapshot> out;
+  for (const Bolt& b : bolts)
+  {
+    BoltSnapshot s;
+    s.id = out.size();
+    s.points = {b.head.position, b.anchor.position};
+    s.point_axial = {b.forces.axial_force, b.forces.axial_force};
+    s.point_shear = {0.0, 0.0};
+    s.axial_force = b.forces.axial_force;
+    s.state = b.forces.state;
+    out.push_back(s);
+  }
+  for (const GroutedBolt& b : grouted_bolts)
+  {
+    BoltSnapshot s;
+    s.id = out.size();
+    s.type = BoltType::grouted;
+    s.points.push_back(b.head.position);
+    s.point_axial.push_back(0.0);
+    s.point_shear.push_back(0.0);
+    for (const GroutedCrossing& c : b.crossings)
+    {
+      s.points.insert(s.points.end(), {c.on_a.position, c.on_b.position});
+      s.point_axial.insert(s.point_axial.end(), 2, c.forces.axial_force);
+      s.point_shear.insert(s.point_shear.end(), 2, c.forces.shear_force);
+      s.axial_force = std::max(s.axial_force, c.forces.axial_force);
+      s.shear_force = std::max(s.shear_force, std::abs(c.forces.shear_force));
+    }
+    s.points.push_back(b.anchor.position);
+    s.point_axial.push_back(0.0);
+    s.point_shear.push_back(0.0);
+    s.state = summary_state(b);
+    out.push_back(s);
+  }
+  return out;
 }
 
 } // namespace ddafem::dda

@@ -2,12 +2,14 @@
 // block it crosses. Where it crosses a block boundary it acts as a spring between the two
 // blocks' material points at the crossing, axial (along the bar) and shear/dowel (across it),
 // each perfectly plastic, and ruptures. The law is pure functions of the crossing's relative
-// displacement; the crossings are found geometrically at t = 0 (docs/support.md).
+// displacement; the crossings are found geometrically at t = 0 (docs/support.md). GroutedBolts
+// carries them on the blocks as an element kind (dda/element.h).
 #pragma once
 
 #include "common/enum_names.h"
 #include "dda/block.h"
 #include "dda/bolt.h"
+#include "dda/element.h"
 
 #include <array>
 #include <limits>
@@ -150,6 +152,36 @@ struct GroutedBolt
   Vector2 direction(bool initial = false) const;
   /// A crossing's (opening, slip) [m] along the bolt's direction (`initial`: of t = 0).
   std::array<double, 2> opening_and_slip(const GroutedCrossing& c, bool initial = false) const;
+};
+
+/// The scene's grouted bolts as an element kind (dda/element.h): each crossing a spring between
+/// the two blocks' material points at the crossing, in the bolt's frame (e along the bolt from
+/// head to anchor, t = (-e_y, e_x)), linearised about the step start like the end-anchored bolts.
+class GroutedBolts : public ElementKind
+{
+public:
+  /// Each grouted bolt of the model (ModelDescription::bolts) onto its blocks' material points
+  /// at its crossings; throws InputError for one that crosses no block boundary.
+  explicit GroutedBolts(const ModelDescription& model);
+  /// In scene order, with their crossings' state at the last accepted step.
+  const std::vector<GroutedBolt>& all() const { return grouted_bolts; }
+
+  void add_couplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const override;
+  bool changes_stiffness() const override { return !grouted_bolts.empty(); }
+  /// Force F = N e + S t on the head side's block a, -F on the anchor side's b; while a part is
+  /// elastic its stiffness on the relative displacement T_b d_b - T_a d_a.
+  void assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const override;
+  void add_loads(const std::function<void(std::size_t, double)>& add) const override;
+  void move_points(const ElementHost& host, const Eigen::VectorXd& d) override;
+  /// Each crossing's state and record (evaluate_crossing, record_crossing).
+  void update(const ElementHost& host, double t) override;
+  void add_held_blocks(const std::function<void(std::size_t)>& hold) const override;
+  void add_energy(double& energy) const override;
+  void save(CheckpointOut& archive) const override;
+  void load(CheckpointIn& archive) override;
+
+private:
+  std::vector<GroutedBolt> grouted_bolts;
 };
 
 } // namespace ddafem::dda

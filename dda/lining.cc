@@ -1,5 +1,9 @@
 #include "dda/lining.h"
 
+#include "dda/checkpoint_types.h"
+#include "dda/linear_solver.h"
+#include "dda/model_description.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -181,6 +185,216 @@ std::vector<Point> lining_node_positions(const std::vector<Point>& points, doubl
   if (!closed)
     out.push_back(points.back());
   return out;
+}
+
+template <class Archive>
+void serialize(Archive& a, LiningNode& n, const unsigned int /*version*/)
+{
+  transfer_all(a, n.point, n.installed, n.rotation);
+}
+
+template <class Archive>
+void serialize(Archive& a, LiningElement& e, const unsigned int /*version*/)
+{
+  transfer_all(a, e.a, e.b, e.length0, e.state, e.forces.axial_force, e.forces.shear_force);
+  transfer_all(a, e.forces.end_moment_a, e.forces.end_moment_b, e.check.utilisation, e.check.mode,
+               e.max_utilisation, e.break_time);
+}
+
+namespace
+{
+using Matrix36 = Eigen::Matrix<double, 3, 6>;
+
+/// The node's (u_x, u_y, theta) from its block's unknowns: T at the point, and r0.
+Matrix36 node_matrix(const Matrix26& t)
+{
+  Matrix36 g = Matrix36::Zero();
+  g.topRows<2>() = t;
+  g(2, 2) = 1.0;
+  return g;
+}
+
+template <class Archive>
+void transfer_linings(Archive& a, std::vector<Lining>& linings)
+{
+  transfer_in_place(a, linings, "linings",
+                    [&a](Lining& l)
+                    {
+                      transfer_all(a, l.nodes, l.elements, l.installed, l.install_time);
+                      transfer_all(a, l.max_utilisation, l.max_utilisation_time,
+                                   l.max_utilisation_element, l.first_break_time,
+                                   l.first_break_element);
+                    });
+}
+} // namespace
+
+Linings::Linings(const ModelDescription& model, const ElementHost& host)
+{
+  for (const LiningDescription& d : model.linings)
+  {
+    Lining l;
+    l.name = d.name;
+    l.section = {d.thickness, d.youngs_modulus, d.compressive_strength, d.tensile_strength,
+                 d.shear_strength};
+    l.install_stage = d.install_stage;
+    const std::string what = d.origin.empty() ? "lining " + d.name : d.origin;
+    const std::vector<Point> at = lining_node_positions(d.points, d.segment_length, d.closed);
+    for (std::size_t k = 0; k < at.size(); ++k)
+    {
+      LiningNode n;
+      n.point = host.attach(at[k], what + " node " + std::to_string(k));
+      n.installed = at[k];
+      l.nodes.push_back(n);
+    }
+    const std::size_t n_elements = d.closed ? at.size() : at.size() - 1;
+    for (std::size_t k = 0; k < n_elements; ++k)
+    {
+      LiningElement e;
+      e.a = k;
+      e.b = (k + 1) % at.size();
+      if (l.nodes[e.a].point.block == l.nodes[e.b].point.block)
+        e.state = LiningElementState::on_one_block;
+      l.elements.push_back(e);
+    }
+    if (l.install_stage == 0)
+      l.install(0.0);
+    else
+      for (LiningElement& e : l.elements)
+        e.length0 = (l.nodes[e.b].installed - l.nodes[e.a].installed).norm();
+    linings.push_back(l);
+  }
+}
+
+void Linings::begin_stage(std::size_t stage, double t)
+{
+  for (Lining& l : linings)
+    if (!l.installed && l.install_stage == stage)
+      l.install(t);
+}
+
+void Linings::add_couplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const
+{
+  for (const Lining& l : linings)
+    for (const LiningElement& e : l.elements)
+      if (e.state != LiningElementState::on_one_block)
+        pairs.emplace_back(std::minmax(l.nodes[e.a].point.block, l.nodes[e.b].point.block));
+}
+
+void Linings::assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const
+{
+  for (const Lining& l : linings)
+  {
+    if (!l.installed)
+      continue;
+    for (const LiningElement& el : l.elements)
+    {
+      if (el.state != LiningElementState::intact)
+        continue;
+      const LiningNode& na = l.nodes[el.a];
+      const LiningNode& nb = l.nodes[el.b];
+      const Vector2 e = host.small_displacement()
+                            ? Vector2((nb.installed - na.installed).normalized())
+                            : Vector2((nb.point.position - na.point.position).normalized());
+      const std::size_t ba = na.point.block, bb = nb.point.block;
+      const Matrix36 ga = node_matrix(host.point_matrix(na.point));
+      const Matrix36 gb = node_matrix(host.point_matrix(nb.point));
+      const Vector6 f = forces_on_nodes(el.forces, e);
+      step.rhs.segment<6>(6 * ba).noalias() += ga.transpose() * f.head<3>();
+      step.rhs.segment<6>(6 * bb).noalias() += gb.transpose() * f.tail<3>();
+      if (!with_matrix)
+        continue;
+      const Matrix6 k = frame_stiffness_global(l.section, el.length0, e);
+      step.matrix.diagonal(ba).noalias() += ga.transpose() * k.topLeftCorner<3, 3>() * ga;
+      step.matrix.diagonal(bb).noalias() += gb.transpose() * k.bottomRightCorner<3, 3>() * gb;
+      // The coupling block (i, j), i < j: row i's node against column j's.
+      const std::size_t coupling = host.coupling_of(ba, bb);
+      if (ba < bb)
+        step.matrix.upper(coupling).noalias() += ga.transpose() * k.topRightCorner<3, 3>() * gb;
+      else
+        step.matrix.upper(coupling).noalias() += gb.transpose() * k.bottomLeftCorner<3, 3>() * ga;
+    }
+  }
+}
+
+void Linings::add_loads(const std::function<void(std::size_t, double)>& add) const
+{
+  for (const Lining& l : linings)
+    for (const LiningElement& e : l.elements)
+    {
+      const double f = std::hypot(e.forces.axial_force, e.forces.shear_force);
+      add(l.nodes[e.a].point.block, f);
+      add(l.nodes[e.b].point.block, f);
+    }
+}
+
+void Linings::move_points(const ElementHost& host, const Eigen::VectorXd& d)
+{
+  for (Lining& l : linings)
+    for (LiningNode& n : l.nodes)
+    {
+      n.point.position += host.point_displacement(n.point, d.segment<6>(6 * n.point.block));
+      n.rotation += d[static_cast<Eigen::Index>(6 * n.point.block + 2)];
+    }
+}
+
+void Linings::update(const ElementHost& /*host*/, double t)
+{
+  // The clock of a static stage stands still: its events are recorded at the stage's time.
+  for (Lining& l : linings)
+  {
+    if (!l.installed)
+      continue;
+    for (std::size_t k = 0; k < l.elements.size(); ++k)
+    {
+      LiningElement& e = l.elements[k];
+      update_lining_element(e, l.section, l.nodes[e.a], l.nodes[e.b], t);
+      if (e.check.utilisation > l.max_utilisation)
+      {
+        l.max_utilisation = e.check.utilisation;
+        l.max_utilisation_time = t;
+        l.max_utilisation_element = k;
+      }
+      if (e.state == LiningElementState::broken && std::isnan(l.first_break_time))
+      {
+        l.first_break_time = e.break_time;
+        l.first_break_element = k;
+      }
+    }
+  }
+}
+
+void Linings::add_held_blocks(const std::function<void(std::size_t)>& hold) const
+{
+  for (const Lining& l : linings)
+    for (const LiningElement& e : l.elements)
+      if (l.installed && e.state == LiningElementState::intact)
+      {
+        hold(l.nodes[e.a].point.block);
+        hold(l.nodes[e.b].point.block);
+      }
+}
+
+void Linings::add_energy(double& energy) const
+{
+  for (const Lining& l : linings)
+    for (const LiningElement& el : l.elements)
+      if (l.installed && el.state == LiningElementState::intact)
+        energy += frame_energy(l.section, el.length0,
+                               frame_deformation(l.nodes[el.a].installed, l.nodes[el.b].installed,
+                                                 l.nodes[el.a].point.position,
+                                                 l.nodes[el.b].point.position,
+                                                 l.nodes[el.a].rotation, l.nodes[el.b].rotation));
+}
+
+void Linings::save(CheckpointOut& archive) const
+{
+  // One function stores and restores (Boost.Serialization's `&`); storing changes nothing.
+  transfer_linings(archive, const_cast<std::vector<Lining>&>(linings));
+}
+
+void Linings::load(CheckpointIn& archive)
+{
+  transfer_linings(archive, linings);
 }
 
 } // namespace ddafem::dda

@@ -1,6 +1,7 @@
 // A lining (issue 21): shotcrete or concrete on an opening's surface as 2D Euler-Bernoulli frame
 // elements between nodes that are material points of the blocks they lie on (docs/support.md,
-// "Lining"). The law is pure functions of the nodes' positions and rotations, no System.
+// "Lining"). The law is pure functions of the nodes' positions and rotations, no System;
+// Linings carries them on the blocks as an element kind (dda/element.h).
 //
 // Units SI, per metre out of plane: forces [N/m], moments [N m/m], stresses [Pa]. An element
 // runs from node a to node b; e = unit(x_b - x_a) is its chord and n = (-e_y, e_x) its left
@@ -14,6 +15,7 @@
 
 #include "common/enum_names.h"
 #include "dda/block.h"
+#include "dda/element.h"
 
 #include <array>
 #include <limits>
@@ -193,5 +195,39 @@ std::vector<LiningElementSnapshot> lining_snapshot(const std::vector<Lining>& li
 /// ceil(leg / segment_length) equal parts [m].
 std::vector<Point> lining_node_positions(const std::vector<Point>& points, double segment_length,
                                          bool closed);
+
+/// The scene's linings as an element kind (dda/element.h): their nodes are material points of
+/// the blocks they lie on, their intact elements frames between two blocks.
+class Linings : public ElementKind
+{
+public:
+  /// Attaches each lining's nodes (ModelDescription::linings) to their blocks; those of
+  /// install_stage 0 are installed at t = 0. Throws InputError for a node outside every block.
+  Linings(const ModelDescription& model, const ElementHost& host);
+  /// In scene order, with their elements' state at the last accepted step.
+  const std::vector<Lining>& all() const { return linings; }
+
+  /// A lining installed at the start of this stage carries what happens from now on.
+  void begin_stage(std::size_t stage, double t) override;
+  void add_couplings(std::vector<std::pair<std::size_t, std::size_t>>& pairs) const override;
+  bool changes_stiffness() const override { return !linings.empty(); }
+  /// Each intact element between two blocks: its forces at the step start on its nodes' blocks
+  /// and G^T K G with G = [T; r0] of each node (the frame's linear stiffness in the chord's
+  /// current direction; small displacement: the installed one).
+  void assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const override;
+  void add_loads(const std::function<void(std::size_t, double)>& add) const override;
+  /// A node moves and turns with its block (r0).
+  void move_points(const ElementHost& host, const Eigen::VectorXd& d) override;
+  /// Each installed lining's elements from the moved nodes (update_lining_element), and its
+  /// largest utilisation and first break.
+  void update(const ElementHost& host, double t) override;
+  void add_held_blocks(const std::function<void(std::size_t)>& hold) const override;
+  void add_energy(double& energy) const override;
+  void save(CheckpointOut& archive) const override;
+  void load(CheckpointIn& archive) override;
+
+private:
+  std::vector<Lining> linings;
+};
 
 } // namespace ddafem::dda

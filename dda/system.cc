@@ -42,7 +42,6 @@ System::System(const ModelDescription& model_)
   solution.setZero(static_cast<Eigen::Index>(n_dofs()));
   set_default_fixed_stiffness();
   attach_points();
-  attach_linings();
   select_boundaries(size);
   apply_in_situ_stress();
   // The step's matrix structure: joints now, contacts once found.
@@ -179,27 +178,7 @@ void System::attach_points()
     monitors.push_back(attach(m.point, "monitor " + m.name));
     monitor_origins.push_back(m.point);
   }
-  for (const BoltDescription& d : model.bolts)
-  {
-    if (d.type == BoltType::grouted)
-    {
-      attach_grouted_bolt(d);
-      continue;
-    }
-    Bolt b;
-    b.name = d.name;
-    const std::string what = d.origin.empty() ? "bolt " + d.name : d.origin;
-    b.head = attach(d.head, what + ".head");
-    b.anchor = attach(d.anchor, what + ".anchor");
-    if (b.head.block == b.anchor.block)
-      throw InputError(what + ".anchor lies in the same block as its head (block " +
-                       std::to_string(b.head.block) +
-                       "): expected the anchor in another block than the head");
-    b.law = make_bolt_law(d.head, d.anchor, d.youngs_modulus, d.area, d.pretension, d.yield_force,
-                          d.rupture_strain);
-    b.forces = evaluate_bolt(b.law, {}, b.law.free_length);
-    bolts.push_back(b);
-  }
+  element_kinds = make_element_kinds(model, *this);
 }
 
 void System::select_boundaries(double size)
@@ -360,10 +339,8 @@ void System::begin_stage(StageMode new_mode)
   matrix_dt = 0.0; // the boundary terms change with the stage: assemble the matrix anew
   ++geometry_epoch;
   held.assign(blocks.size(), false);
-  // A lining installed at the start of this stage carries what happens from now on.
-  for (Lining& l : linings)
-    if (!l.installed && l.install_stage == stages_begun)
-      l.install(current_time);
+  for (const std::unique_ptr<ElementKind>& k : element_kinds)
+    k->begin_stage(stages_begun, current_time);
   ++stages_begun;
   if (tied_body)
     tied_body->begin_stage(mode);

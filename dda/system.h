@@ -7,14 +7,11 @@
 #include "common/checkpoint_fwd.h"
 #include "common/parallel.h"
 #include "dda/block.h"
-#include "dda/bolt.h"
-#include "dda/bolt_snapshot.h"
 #include "dda/contact/contact.h"
 #include "dda/contact/narrow_phase.h"
-#include "dda/grouted_bolt.h"
+#include "dda/element.h"
 #include "dda/joints.h"
 #include "dda/linear_solver.h"
-#include "dda/lining.h"
 #include "dda/model_description.h"
 #include "dda/snapshot.h"
 #include "dda/step_solver.h"
@@ -30,6 +27,8 @@
 #include <future>
 #include <limits>
 #include <map>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -188,7 +187,7 @@ struct MonitorSample
 /// (beta, gamma) = (1/2, 1) for DDA's scheme or (1/4, 1/2) for the trapezoidal rule).
 /// With GeometryMode::updated (Shi) every step is linearised about the current vertices, moments
 /// and material points; with small_displacement about the initial ones.
-class System
+class System final : private ElementHost
 {
 public:
   /// Builds blocks, finds joints, attaches loads, fixed points and monitors to their blocks.
@@ -257,14 +256,21 @@ public:
   /// The intact bonded joints (broken ones are gone: their blocks meet through contacts).
   const std::vector<Joint>& get_joints() const { return joints; }
   std::size_t n_broken_joints() const { return broken_joint_count; }
-  /// The bolts, with their state at the last accepted step.
-  const std::vector<Bolt>& get_bolts() const { return bolts; }
-  /// The linings, with their elements' state at the last accepted step (system_lining.cc).
-  const std::vector<Lining>& get_linings() const { return linings; }
-  /// The grouted bolts, with their crossings' state at the last accepted step.
-  const std::vector<GroutedBolt>& get_grouted_bolts() const { return grouted_bolts; }
-  /// Every bolt as a polyline for the bolts' VTU series (dda/system_grouted.cc).
-  std::vector<BoltSnapshot> bolt_snapshot() const;
+  /// The element kinds (dda/element.h), in the order the step takes them.
+  const std::vector<std::unique_ptr<ElementKind>>& get_element_kinds() const
+  {
+    return element_kinds;
+  }
+  /// The element kind `Kind` (dda/element.h; e.g. Bolts), with its elements' state at the
+  /// last accepted step. Every kind of make_element_kinds exists, with or without elements.
+  template <class Kind>
+  const Kind& elements() const
+  {
+    for (const std::unique_ptr<ElementKind>& k : element_kinds)
+      if (const Kind* kind = dynamic_cast<const Kind*>(k.get()))
+        return *kind;
+    throw std::logic_error("System::elements: no such element kind");
+  }
   /// The contacts of the last accepted step, ordered by (vertex block, vertex, edge block, edge).
   const std::vector<Contact>& get_contacts() const { return contacts; }
   ContactCounts contact_counts() const;
@@ -358,13 +364,13 @@ private:
   void set_contact_distances(double size);
   /// The fixed points' default penalty [N/m]: 10 x the stiffest joint or block (E x 1 m).
   void set_default_fixed_stiffness();
-  /// Point loads, fixed points, monitors and bolts onto their blocks (attach); throws
-  /// InputError for a bolt with both ends in one block.
+  /// Point loads, fixed points and monitors onto their blocks (attach), then the element kinds
+  /// (make_element_kinds); throws InputError for an element the blocks cannot carry.
   void attach_points();
   /// The edges of each boundary (`size`: model_size [m], for tolerances); throws InputError for
   /// an edge two boundaries select.
   void select_boundaries(double size);
-  MaterialPoint attach(const Point& p, const std::string& what) const;
+  MaterialPoint attach(const Point& p, const std::string& what) const override;
   /// Joint preloads and the supports of viscous boundaries from the in-situ stress.
   void apply_in_situ_stress();
   /// The Joyner-Chen input force 2 C v_in(t) [N] of boundary edge e at time t (zero without an
@@ -539,17 +545,20 @@ private:
     return reversal_tolerance > 0.0 && mode == StageMode::dynamic;
   }
   void set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings);
-  std::size_t coupling_of(std::size_t i, std::size_t j) const;
+  std::size_t coupling_of(std::size_t i, std::size_t j) const override;
   /// After an accepted step: bonded joints beyond their strength break. Returns the message of
   /// a failure (small-displacement analysis), else empty.
   std::string break_joints();
-  bool small_displacement() const { return model.geometry == GeometryMode::small_displacement; }
+  bool small_displacement() const override
+  {
+    return model.geometry == GeometryMode::small_displacement;
+  }
   /// Moments of the configuration the step is linearised about (current or initial).
   const PolygonMoments& linearisation_moments(const Block& b) const;
   /// T at a material point, in the configuration the step is linearised about.
-  Matrix26 point_matrix(const MaterialPoint& p) const;
+  Matrix26 point_matrix(const MaterialPoint& p) const override;
   /// point_matrix(p) d [m] without forming T (displacement_at: the same bits).
-  Vector2 point_displacement(const MaterialPoint& p, const Vector6& d) const;
+  Vector2 point_displacement(const MaterialPoint& p, const Vector6& d) const override;
   /// The step's right-hand side, and its matrix if `with_matrix`.
   void assemble(double dt, bool with_matrix);
   /// Each block's inertia c M and elasticity; its inertia force, stress and gravity [N, N m].
@@ -561,20 +570,6 @@ private:
   void add_boundary_terms(double dt, double t1, bool with_matrix);
   /// Bonded joints' end springs on the gaps, with their preloads.
   void add_joint_terms(bool with_matrix);
-  /// Bolts: their force at the step start, and k e e^T on the ends' relative displacement
-  /// while elastic (bolt_tangent_stiffness).
-  void add_bolt_terms(bool with_matrix);
-  /// Linings: the intact elements' frame stiffness on their nodes' blocks, and their forces.
-  void add_lining_terms(bool with_matrix);
-  /// The linings' nodes onto their blocks; those of install_stage 0 installed.
-  void attach_linings();
-  /// Each installed lining's elements from the moved nodes (update_lining_element).
-  void update_linings();
-  /// Grouted bolts' crossings (dda/system_grouted.cc): their forces at the step start and
-  /// k_a e e^T + k_s t t^T on the relative displacement while elastic.
-  void add_grouted_bolt_terms(bool with_matrix);
-  /// A grouted bolt onto its blocks' material points at its crossings (InputError if none).
-  void attach_grouted_bolt(const BoltDescription& d);
   /// The blocks and everything on them take the step's displacements d (6 per block).
   void update_blocks(double dt, const Eigen::VectorXd& d);
   /// Adds the step's work of loads and gravity, boundaries and moving supports [J] (before the
@@ -587,10 +582,6 @@ private:
   void advance_block_states(double dt, const Eigen::VectorXd& d);
   /// The bonded joints' spring forces at the gaps of the moved joint ends.
   void update_joint_forces();
-  /// Each bolt's state and record from its moved ends (evaluate_bolt, record_bolt).
-  void update_bolts();
-  /// Each grouted bolt's crossings' state and record (evaluate_crossing, record_crossing).
-  void update_grouted_bolts();
   double stored_spring_energy() const;
   /// Outward unit normal of a boundary edge in the configuration the step is linearised about.
   Vector2 boundary_normal(const BoundaryEdge& e) const;
@@ -612,10 +603,9 @@ private:
   std::vector<AttachedLoad> loads;
   std::vector<AttachedFixedPoint> fixed_points;
   std::vector<MaterialPoint> monitors;
-  std::vector<Bolt> bolts;
-  std::vector<Lining> linings;
-  std::size_t stages_begun = 0; ///< begin_stage calls: when linings are installed
-  std::vector<GroutedBolt> grouted_bolts;
+  /// The element kinds (make_element_kinds), in the order the step takes them.
+  std::vector<std::unique_ptr<ElementKind>> element_kinds;
+  std::size_t stages_begun = 0; ///< begin_stage calls: the stage ElementKind::begin_stage gets
   std::vector<Point> monitor_origins; ///< where each monitor's displacement is measured from
   std::vector<BoundaryEdge> boundary_edges;
   /// Each boundary edge's stiffness and force in the current step (set by assemble, used for

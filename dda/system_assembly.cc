@@ -20,9 +20,9 @@ void System::assemble(double dt, bool with_matrix)
   add_point_terms(t1, with_matrix);
   add_boundary_terms(dt, t1, with_matrix);
   add_joint_terms(with_matrix);
-  add_bolt_terms(with_matrix);
-  add_lining_terms(with_matrix);
-  add_grouted_bolt_terms(with_matrix);
+  StepSystem step{matrix, rhs};
+  for (const std::unique_ptr<ElementKind>& k : element_kinds)
+    k->assemble(*this, step, with_matrix);
 }
 
 void System::add_block_terms(double dt, bool with_matrix)
@@ -146,33 +146,6 @@ void System::add_joint_terms(bool with_matrix)
       rhs.segment<6>(6 * j.block_a).noalias() += ta.transpose() * force;
       rhs.segment<6>(6 * j.block_b).noalias() -= tb.transpose() * force;
     }
-  }
-}
-
-void System::add_bolt_terms(bool with_matrix)
-{
-  // Bolts: the force N at the step start, +N e on the head's block and -N e on the anchor's,
-  // and k e e^T on the relative displacement T_anchor d_anchor - T_head d_head while elastic,
-  // e = unit(x_anchor - x_head) (dda/bolt.h).
-  for (const Bolt& b : bolts)
-  {
-    const Vector2 e = b.direction(small_displacement());
-    const Matrix26 th = point_matrix(b.head);
-    const Matrix26 ta = point_matrix(b.anchor);
-    rhs.segment<6>(6 * b.head.block).noalias() += th.transpose() * (b.forces.axial_force * e);
-    rhs.segment<6>(6 * b.anchor.block).noalias() -= ta.transpose() * (b.forces.axial_force * e);
-    const double k = bolt_tangent_stiffness(b.law, b.forces);
-    if (!with_matrix || k == 0.0)
-      continue;
-    const Eigen::Matrix2d kee = k * (e * e.transpose());
-    matrix.diagonal(b.head.block).noalias() += th.transpose() * kee * th;
-    matrix.diagonal(b.anchor.block).noalias() += ta.transpose() * kee * ta;
-    // The coupling block (i, j), i < j: row i's end against column j's.
-    const std::size_t coupling = coupling_of(b.head.block, b.anchor.block);
-    if (b.head.block < b.anchor.block)
-      matrix.upper(coupling).noalias() -= th.transpose() * kee * ta;
-    else
-      matrix.upper(coupling).noalias() -= ta.transpose() * kee * th;
   }
 }
 

@@ -25,24 +25,8 @@ void System::transfer_state(Archive& a)
   transfer_in_place(a, loads, "loads", [&a](AttachedLoad& l) { transfer_all(a, l.point); });
   transfer_in_place(a, fixed_points, "fixed points",
                     [&a](AttachedFixedPoint& p) { transfer_all(a, p.point); });
-  transfer_in_place(a, bolts, "bolts",
-                    [&a](Bolt& b) { transfer_all(a, b.head, b.anchor, b.forces, b.record); });
-  transfer_in_place(a, linings, "linings",
-                    [&a](Lining& l)
-                    {
-                      transfer_all(a, l.nodes, l.elements, l.installed, l.install_time);
-                      transfer_all(a, l.max_utilisation, l.max_utilisation_time,
-                                   l.max_utilisation_element, l.first_break_time,
-                                   l.first_break_element);
-                    });
-  transfer_in_place(a, grouted_bolts, "grouted bolts",
-                    [&a](GroutedBolt& b)
-                    {
-                      transfer_all(a, b.head, b.anchor);
-                      transfer_in_place(a, b.crossings, "crossings",
-                                        [&a](GroutedCrossing& c)
-                                        { transfer_all(a, c.on_a, c.on_b, c.forces, c.record); });
-                    });
+  for (std::unique_ptr<ElementKind>& k : element_kinds)
+    transfer_object(a, *k);
   transfer_all(a, stages_begun, monitors, monitor_origins);
   transfer_in_place(a, boundary_edges, "boundary edges",
                     [&a](BoundaryEdge& e) { transfer_all(a, e.midpoint); });

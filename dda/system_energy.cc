@@ -15,19 +15,8 @@ double System::stored_spring_energy() const
     for (const JointPoint& p : j.points)
       e += joint_point_energy(p, jm);
   }
-  for (const Bolt& b : bolts)
-    e += bolt_energy(b.law, b.forces);
-  for (const Lining& l : linings)
-    for (const LiningElement& el : l.elements)
-      if (l.installed && el.state == LiningElementState::intact)
-        e += frame_energy(l.section, el.length0,
-                          frame_deformation(l.nodes[el.a].installed, l.nodes[el.b].installed,
-                                            l.nodes[el.a].point.position,
-                                            l.nodes[el.b].point.position, l.nodes[el.a].rotation,
-                                            l.nodes[el.b].rotation));
-  for (const GroutedBolt& b : grouted_bolts)
-    for (const GroutedCrossing& c : b.crossings)
-      e += crossing_energy(b.law, c.forces);
+  for (const std::unique_ptr<ElementKind>& k : element_kinds)
+    k->add_energy(e);
   for (const AttachedFixedPoint& f : fixed_points)
     e += 0.5 * f.stiffness * (f.point.position - f.target(current_time)).squaredNorm();
   for (const Contact& c : contacts)

@@ -115,9 +115,11 @@ bool System::assemble_step(double dt)
   // With updated geometry every step has its own matrix; a small-displacement analysis (no
   // contacts) keeps the matrix of the initial configuration while dt is unchanged.
   const auto start = Clock::now();
-  // Bolts and linings change their stiffness with their state: assembled anew every step.
-  const bool new_matrix = !small_displacement() || !bolts.empty() || !grouted_bolts.empty() ||
-                          !linings.empty() || dt != matrix_dt ||
+  // Elements whose stiffness changes with their state are assembled anew every step.
+  const bool elements_change =
+      std::any_of(element_kinds.begin(), element_kinds.end(),
+                  [](const std::unique_ptr<ElementKind>& k) { return k->changes_stiffness(); });
+  const bool new_matrix = !small_displacement() || elements_change || dt != matrix_dt ||
                           step_integration.mass_factor(dt) != matrix_mass_factor;
   assemble(dt, new_matrix);
   if (new_matrix)
@@ -282,24 +284,8 @@ void System::measure_balance(StepStatus& status)
     add(f.point.block, f.stiffness * (f.target(current_time) - f.point.position).norm());
   for (const Support& s : supports)
     add(s.point.block, s.force().norm());
-  for (const Bolt& b : bolts)
-  {
-    add(b.head.block, b.forces.axial_force);
-    add(b.anchor.block, b.forces.axial_force);
-  }
-  for (const Lining& l : linings)
-    for (const LiningElement& e : l.elements)
-    {
-      const double f = std::hypot(e.forces.axial_force, e.forces.shear_force);
-      add(l.nodes[e.a].point.block, f);
-      add(l.nodes[e.b].point.block, f);
-    }
-  for (const GroutedBolt& b : grouted_bolts)
-    for (const GroutedCrossing& c : b.crossings)
-    {
-      add(c.on_a.block, std::hypot(c.forces.axial_force, c.forces.shear_force));
-      add(c.on_b.block, std::hypot(c.forces.axial_force, c.forces.shear_force));
-    }
+  for (const std::unique_ptr<ElementKind>& k : element_kinds)
+    k->add_loads(add);
   for (const Joint& j : joints)
     for (const JointPoint& p : j.points)
     {

@@ -16,9 +16,8 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
   move_material_points(d);
   advance_block_states(dt, d);
   update_joint_forces();
-  update_bolts();
-  update_linings();
-  update_grouted_bolts();
+  for (const std::unique_ptr<ElementKind>& k : element_kinds)
+    k->update(*this, current_time);
 }
 
 void System::add_work_of_step(double dt, const Eigen::VectorXd& d)
@@ -87,27 +86,8 @@ void System::move_material_points(const Eigen::VectorXd& d)
       move(p.on_a);
       move(p.on_b);
     }
-  for (Bolt& b : bolts)
-  {
-    move(b.head);
-    move(b.anchor);
-  }
-  for (Lining& l : linings) // a node turns with its block: r0
-    for (LiningNode& n : l.nodes)
-    {
-      move(n.point);
-      n.rotation += d[static_cast<Eigen::Index>(6 * n.point.block + 2)];
-    }
-  for (GroutedBolt& b : grouted_bolts)
-  {
-    move(b.head);
-    move(b.anchor);
-    for (GroutedCrossing& c : b.crossings)
-    {
-      move(c.on_a);
-      move(c.on_b);
-    }
-  }
+  for (const std::unique_ptr<ElementKind>& k : element_kinds)
+    k->move_points(*this, d);
 }
 
 void System::advance_block_states(double dt, const Eigen::VectorXd& d)
@@ -143,17 +123,6 @@ void System::update_joint_forces()
     const Vector2 n = Joint::normal_of(t);
     for (JointPoint& p : j.points)
       update_joint_point_forces(p, jm, n, t);
-  }
-}
-
-void System::update_bolts()
-{
-  // The clock of a static stage stands still: its events are recorded at the stage's time.
-  for (Bolt& b : bolts)
-  {
-    const double length = b.length();
-    b.forces = evaluate_bolt(b.law, b.forces, length);
-    b.record = record_bolt(b.record, b.forces, length - b.law.free_length, current_time);
   }
 }
 

@@ -1,6 +1,7 @@
 #include "app/run/grouted_outputs.h"
 
 #include "common/format.h"
+#include "dda/grouted_bolt.h"
 
 #include <cmath>
 #include <string>
@@ -71,7 +72,7 @@ void add_grouted_bolt_channels(std::vector<HistoryChannel>& channels,
 void append_grouted_bolt_row(std::vector<double>& row, const dda::System& system)
 {
   const bool small = system.get_model().geometry == dda::GeometryMode::small_displacement;
-  for (const dda::GroutedBolt& b : system.get_grouted_bolts())
+  for (const dda::GroutedBolt& b : system.elements<dda::GroutedBolts>().all())
     for (const dda::GroutedCrossing& c : b.crossings)
     {
       const auto [opening, slip] = b.opening_and_slip(c, small);
@@ -84,7 +85,7 @@ nlohmann::json grouted_bolts_summary(const dda::System& system)
 {
   const bool small = system.get_model().geometry == dda::GeometryMode::small_displacement;
   nlohmann::json bolts = nlohmann::json::array();
-  for (const dda::GroutedBolt& b : system.get_grouted_bolts())
+  for (const dda::GroutedBolt& b : system.elements<dda::GroutedBolts>().all())
   {
     nlohmann::json crossings = nlohmann::json::array();
     for (const dda::GroutedCrossing& c : b.crossings)
@@ -108,7 +109,7 @@ nlohmann::json grouted_bolts_summary(const dda::System& system)
 
 void describe_grouted_bolts(const dda::System& system, std::ostream& out)
 {
-  const std::vector<dda::GroutedBolt>& bolts = system.get_grouted_bolts();
+  const std::vector<dda::GroutedBolt>& bolts = system.elements<dda::GroutedBolts>().all();
   if (!bolts.empty())
     out << "  grouted bolts: " << bolts.size() << "\n";
   for (const dda::GroutedBolt& b : bolts)

@@ -326,26 +326,8 @@ std::vector<bool> KeyblockRecorder::held_keyblocks(const dda::System& system) co
     hold(j.block_a);
     hold(j.block_b);
   }
-  for (const dda::Bolt& b : system.get_bolts())
-    if (b.forces.state != dda::BoltState::ruptured)
-    {
-      hold(b.head.block);
-      hold(b.anchor.block);
-    }
-  for (const dda::GroutedBolt& b : system.get_grouted_bolts())
-    for (const dda::GroutedCrossing& c : b.crossings)
-      if (c.forces.state != dda::BoltState::ruptured)
-      {
-        hold(c.on_a.block);
-        hold(c.on_b.block);
-      }
-  for (const dda::Lining& l : system.get_linings())
-    for (const dda::LiningElement& e : l.elements)
-      if (l.installed && e.state == dda::LiningElementState::intact)
-      {
-        hold(l.nodes[e.a].point.block);
-        hold(l.nodes[e.b].point.block);
-      }
+  for (const std::unique_ptr<dda::ElementKind>& k : system.get_element_kinds())
+    k->add_held_blocks(hold);
   return held;
 }
 

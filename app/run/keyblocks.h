@@ -111,8 +111,8 @@ private:
   nlohmann::json fallen_per_opening(const dda::System& system) const;
   /// Track::thrown_out of every keyblock after a row.
   void update_thrown_out(const dda::System& system);
-  /// Per keyblock: held by an intact bonded joint, a closed contact, a bolt (or a grouted
-  /// bolt's crossing) not ruptured or an installed lining's intact element at the end.
+  /// Per keyblock: held by an intact bonded joint, a closed contact or a support element that
+  /// still ties it to another block (dda::ElementKind::add_held_blocks) at the end.
   std::vector<bool> held_keyblocks(const dda::System& system) const;
   /// Keyblock k's entry of the summary's `blocks`, with its verdicts.
   nlohmann::json keyblock_summary(std::size_t k, const dda::System& system, bool held) const;

@@ -1,6 +1,7 @@
 #include "app/run/lining_outputs.h"
 
 #include "common/format.h"
+#include "dda/lining.h"
 
 #include <algorithm>
 #include <cmath>
@@ -68,7 +69,7 @@ void add_lining_channels(std::vector<HistoryChannel>& channels, const dda::Model
 
 void add_lining_row(std::vector<double>& row, const dda::System& system)
 {
-  for (const dda::Lining& l : system.get_linings())
+  for (const dda::Lining& l : system.elements<dda::Linings>().all())
   {
     const std::size_t k = l.worst_element();
     const dda::LiningElement& e = l.elements[k];
@@ -82,7 +83,7 @@ void add_lining_row(std::vector<double>& row, const dda::System& system)
 nlohmann::json linings_summary(const dda::System& system)
 {
   nlohmann::json out = nlohmann::json::array();
-  for (const dda::Lining& l : system.get_linings())
+  for (const dda::Lining& l : system.elements<dda::Linings>().all())
   {
     nlohmann::json elements = nlohmann::json::array();
     for (std::size_t k = 0; k < l.elements.size(); ++k)
@@ -114,7 +115,7 @@ nlohmann::json linings_summary(const dda::System& system)
 
 void describe_linings(const dda::System& system, std::ostream& out)
 {
-  for (const dda::Lining& l : system.get_linings())
+  for (const dda::Lining& l : system.elements<dda::Linings>().all())
   {
     std::set<std::pair<std::size_t, std::size_t>> pairs;
     std::size_t n_coupling = 0;

@@ -4,6 +4,8 @@
 #include "app/run/grouted_outputs.h"
 #include "app/run/lining_outputs.h"
 #include "app/run/run_support.h"
+#include "dda/bolt_snapshot.h"
+#include "dda/lining.h"
 
 #include "common/stopwatch.h"
 #include "common/vtk_collection.h"
@@ -23,7 +25,7 @@ std::vector<double> history_row(const dda::System& system, const LastStep& last)
     row.insert(row.end(), {s.displacement.x(), s.displacement.y(), s.velocity.x(), s.velocity.y(),
                            s.stress[0], s.stress[1], s.stress[2]});
   }
-  for (const dda::Bolt& b : system.get_bolts())
+  for (const dda::Bolt& b : system.elements<dda::Bolts>().all())
     row.insert(row.end(), {b.forces.axial_force, b.length() - b.law.free_length,
                            static_cast<double>(b.forces.state)});
   add_lining_row(row, system);
@@ -148,14 +150,17 @@ void RunOutputs::write_snapshot()
     time_far_field += seconds_since(far_field_start);
     files.push_back(name(ties_vtu.write(system.time(), tied->tie_snapshot())));
   }
-  if (!system.get_linings().empty())
-    lining_vtu.write(system.time(), dda::lining_snapshot(system.get_linings()));
+  if (!system.elements<dda::Linings>().all().empty())
+    lining_vtu.write(system.time(), dda::lining_snapshot(system.elements<dda::Linings>().all()));
   for (std::size_t part = 0; part < files.size(); ++part)
     model_data_sets.push_back({system.time(), static_cast<unsigned>(part), files[part]});
   // Part 4 whether or not a far field and ties come before (tools/paraview_open.py's PARTS).
   if (!system.get_model().bolts.empty())
     model_data_sets.push_back(
-        {system.time(), 4u, name(bolts_vtu.write(system.time(), system.bolt_snapshot()))});
+        {system.time(), 4u,
+         name(bolts_vtu.write(system.time(),
+                              dda::bolt_snapshot(system.elements<dda::Bolts>().all(),
+                                                 system.elements<dda::GroutedBolts>().all())))});
   write_model_pvd();
 }
 
@@ -172,7 +177,7 @@ void RunOutputs::save(CheckpointOut& a) const
   blocks_vtu.save(a);
   contacts_vtu.save(a);
   ties_vtu.save(a);
-  if (!system.get_linings().empty()) // the same scene resumes: the same linings
+  if (!system.elements<dda::Linings>().all().empty()) // the same scene resumes: the same linings
     lining_vtu.save(a);
   if (!system.get_model().bolts.empty())
     bolts_vtu.save(a);
@@ -195,7 +200,7 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir_, const dda::System& sys
   blocks_vtu.load(a);
   contacts_vtu.load(a);
   ties_vtu.load(a);
-  if (!system.get_linings().empty())
+  if (!system.elements<dda::Linings>().all().empty())
     lining_vtu.load(a);
   if (!system.get_model().bolts.empty())
     bolts_vtu.load(a);

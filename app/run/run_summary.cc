@@ -3,6 +3,9 @@
 #include "app/run/grouted_outputs.h"
 #include "app/run/lining_outputs.h"
 #include "app/run/run_support.h"
+#include "dda/bolt.h"
+#include "dda/grouted_bolt.h"
+#include "dda/lining.h"
 
 #include "common/format.h"
 
@@ -60,7 +63,7 @@ nlohmann::json time_or_null(double t)
 nlohmann::json bolts_summary(const dda::System& system)
 {
   nlohmann::json bolts = nlohmann::json::array();
-  for (const dda::Bolt& b : system.get_bolts())
+  for (const dda::Bolt& b : system.elements<dda::Bolts>().all())
     bolts.push_back({{"name", b.name},
                      {"head_m", {b.head.initial.x(), b.head.initial.y()}},
                      {"anchor_m", {b.anchor.initial.x(), b.anchor.initial.y()}},
@@ -114,11 +117,11 @@ void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
                           {"tie_terms", t.tie_terms},     {"tied_body", t.tied_body}};
   // Parts of timings_s: the far field's VTU files within output.
   summary["timings_detail_s"] = {{"output_far_field_vtu", outputs.far_field_vtu_seconds()}};
-  if (!system.get_bolts().empty())
+  if (!system.elements<dda::Bolts>().all().empty())
     summary["bolts"] = bolts_summary(system);
-  if (!system.get_linings().empty())
+  if (!system.elements<dda::Linings>().all().empty())
     summary["linings"] = linings_summary(system);
-  if (!system.get_grouted_bolts().empty())
+  if (!system.elements<dda::GroutedBolts>().all().empty())
     summary["grouted_bolts"] = grouted_bolts_summary(system);
   const dda::EnergyBalance e = system.energy();
   summary["energy_J"] = {{"kinetic", e.kinetic},

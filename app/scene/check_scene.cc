@@ -11,6 +11,7 @@
 
 #include "common/format.h"
 #include "common/resource_limits.h"
+#include "dda/bolt.h"
 
 #include "dda/system.h"
 #include "dda/time_step_advice.h"
@@ -126,9 +127,9 @@ void describe_stepping(const Scene& scene, const dda::System& system, std::ostre
       << " (default penalty " << format_significant(system.default_fixed_point_stiffness())
       << " N/m)"
       << ", monitors: " << model.monitors.size() << "\n";
-  if (!system.get_bolts().empty())
-    out << "  bolts: " << system.get_bolts().size() << "\n";
-  for (const dda::Bolt& b : system.get_bolts())
+  if (!system.elements<dda::Bolts>().all().empty())
+    out << "  bolts: " << system.elements<dda::Bolts>().all().size() << "\n";
+  for (const dda::Bolt& b : system.elements<dda::Bolts>().all())
     out << "  bolt " << b.name << ": blocks " << b.head.block << " to " << b.anchor.block << ", L0 "
         << format_significant(b.law.free_length, 5) << " m, k "
         << format_significant(b.law.stiffness, 5) << " N/m, pretension "

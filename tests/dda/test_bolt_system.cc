@@ -5,6 +5,7 @@
 // in the fixed block: L0 = 2 m, A_s = 1e-4 m^2, E_s = 200e9 Pa, so k = E_s A_s / L0 = 1e7 N/m.
 // The block weighs W = 2650 x 9.81 = 25 996.5 N, so it hangs W / k = 2.59965 mm lower.
 #include "common/input_error.h"
+#include "dda/bolt.h"
 #include "dda/dynamic_stage.h"
 #include "dda/static_stage.h"
 #include "tests/dda/checkpoint_round_trip.h"
@@ -51,14 +52,14 @@ std::vector<Vector2> no_displacement(const System& s)
 TEST(BoltSystem, StaticStageHangsTheBlockOnItsBolt)
 {
   System s(hanging_block(2.0 * weight));
-  ASSERT_EQ(s.get_bolts().size(), 1u);
-  EXPECT_EQ(s.get_bolts()[0].head.block, 1u);
-  EXPECT_EQ(s.get_bolts()[0].anchor.block, 0u);
-  EXPECT_DOUBLE_EQ(s.get_bolts()[0].law.stiffness, stiffness);
+  ASSERT_EQ(s.elements<Bolts>().all().size(), 1u);
+  EXPECT_EQ(s.elements<Bolts>().all()[0].head.block, 1u);
+  EXPECT_EQ(s.elements<Bolts>().all()[0].anchor.block, 0u);
+  EXPECT_DOUBLE_EQ(s.elements<Bolts>().all()[0].law.stiffness, stiffness);
   s.begin_stage(StageMode::static_equilibrium);
   const StaticStageResult r = run_static_stage(s, hanging_static_stage(), s.get_model().time);
   ASSERT_EQ(r.outcome, StaticOutcome::equilibrium);
-  const Bolt& b = s.get_bolts()[0];
+  const Bolt& b = s.elements<Bolts>().all()[0];
   EXPECT_EQ(b.forces.state, BoltState::elastic);
   EXPECT_NEAR(b.forces.axial_force / weight, 1.0, 1e-6);
   const double sag = -s.sample_monitor(0).displacement.y();
@@ -78,7 +79,7 @@ TEST(BoltSystem, PretensionTakesPartOfTheSag)
   s.begin_stage(StageMode::static_equilibrium);
   ASSERT_EQ(run_static_stage(s, hanging_static_stage(), s.get_model().time).outcome,
             StaticOutcome::equilibrium);
-  const Bolt& b = s.get_bolts()[0];
+  const Bolt& b = s.elements<Bolts>().all()[0];
   EXPECT_NEAR(b.forces.axial_force / weight, 1.0, 1e-6);
   EXPECT_NEAR((b.length() - b.law.free_length) / (0.5 * weight / stiffness), 1.0, 1e-3);
 }
@@ -90,7 +91,7 @@ TEST(BoltSystem, TooWeakABoltYieldsRupturesAndReleasesTheBlock)
   System s(hanging_block(0.98 * weight));
   s.begin_stage(StageMode::static_equilibrium);
   const StaticStageResult r = run_static_stage(s, hanging_static_stage(), s.get_model().time);
-  const Bolt& b = s.get_bolts()[0];
+  const Bolt& b = s.elements<Bolts>().all()[0];
   EXPECT_EQ(b.forces.state, BoltState::ruptured);
   EXPECT_EQ(b.forces.axial_force, 0.0);
   EXPECT_NEAR(b.record.max_force, 0.98 * weight, 1e-6 * weight);
@@ -111,8 +112,9 @@ TEST(BoltSystem, SuddenlyLoadedBoltPeaksAtTwiceTheWeight)
   stage.end_time = 0.06;
   const DynamicStageResult r = run_dynamic_stage(s, stage, s.get_model().time, no_displacement(s));
   ASSERT_EQ(r.failure.outcome, StepOutcome::success);
-  EXPECT_NEAR(s.get_bolts()[0].record.max_force / (2.0 * weight), 1.0, 0.01);
-  EXPECT_NEAR(s.get_bolts()[0].record.max_elongation / (2.0 * weight / stiffness), 1.0, 0.01);
+  EXPECT_NEAR(s.elements<Bolts>().all()[0].record.max_force / (2.0 * weight), 1.0, 0.01);
+  EXPECT_NEAR(s.elements<Bolts>().all()[0].record.max_elongation / (2.0 * weight / stiffness), 1.0,
+              0.01);
 }
 
 // A checkpoint keeps the bolts' ends, state and record: a run stopped after 20 steps, saved and
@@ -124,8 +126,8 @@ TEST(BoltSystem, ACheckpointKeepsTheBoltsBitForBit)
   const System& whole = *run.whole;
   const System& resumed = *run.resumed;
 
-  const Bolt& a = whole.get_bolts()[0];
-  const Bolt& b = resumed.get_bolts()[0];
+  const Bolt& a = whole.elements<Bolts>().all()[0];
+  const Bolt& b = resumed.elements<Bolts>().all()[0];
   ASSERT_GT(a.record.yield_time, run.stop_time); // it yielded after the checkpoint
   EXPECT_EQ(b.forces.state, a.forces.state);
   EXPECT_EQ(b.forces.axial_force, a.forces.axial_force);

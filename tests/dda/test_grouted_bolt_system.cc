@@ -8,6 +8,7 @@
 // E_s A_s / L_d = 5e7 N/m. The block weighs W = 2650 x 9.81 = 25 996.5 N: the joint opens and the
 // crossing carries W at an opening W / k_a = 0.52 mm.
 #include "dda/dynamic_stage.h"
+#include "dda/grouted_bolt.h"
 #include "dda/static_stage.h"
 #include "tests/dda/checkpoint_round_trip.h"
 #include "tests/dda/hanging_block_model.h"
@@ -60,18 +61,18 @@ StaticStageResult settle(System& s)
 TEST(GroutedBoltSystem, TheCrossingCarriesTheHangingBlock)
 {
   System s(hanging_block(2.0 * weight));
-  ASSERT_EQ(s.get_grouted_bolts().size(), 1u);
-  const GroutedBolt& b = s.get_grouted_bolts()[0];
+  ASSERT_EQ(s.elements<GroutedBolts>().all().size(), 1u);
+  const GroutedBolt& b = s.elements<GroutedBolts>().all()[0];
   ASSERT_EQ(b.crossings.size(), 1u);
   EXPECT_EQ(b.crossings[0].on_a.block, 1u); // the head's side: the hanging block
   EXPECT_EQ(b.crossings[0].on_b.block, 0u);
   EXPECT_DOUBLE_EQ(b.law.axial_stiffness, axial_stiffness);
   ASSERT_EQ(settle(s).outcome, StaticOutcome::equilibrium);
-  const GroutedCrossing& c = s.get_grouted_bolts()[0].crossings[0];
+  const GroutedCrossing& c = s.elements<GroutedBolts>().all()[0].crossings[0];
   EXPECT_EQ(c.forces.state, BoltState::elastic);
   EXPECT_NEAR(c.forces.axial_force / weight, 1.0, 1e-6);
   EXPECT_NEAR(std::abs(c.forces.shear_force), 0.0, 1e-6 * weight);
-  const auto [opening, slip] = s.get_grouted_bolts()[0].opening_and_slip(c);
+  const auto [opening, slip] = s.elements<GroutedBolts>().all()[0].opening_and_slip(c);
   EXPECT_NEAR(opening / (weight / axial_stiffness), 1.0, 1e-3);
   // The block's centre sags by the opening and a little more: the fixed block moves 5 W / 3e11 =
   // 4e-7 m (8e-4 of it) and the block, hanging from its top, stretches by about
@@ -89,7 +90,7 @@ TEST(GroutedBoltSystem, TheDowelCarriesASideLoad)
   const double load = 0.2 * weight;
   System s(hanging_block(2.0 * weight, load));
   ASSERT_EQ(settle(s).outcome, StaticOutcome::equilibrium);
-  const GroutedBolt& b = s.get_grouted_bolts()[0];
+  const GroutedBolt& b = s.elements<GroutedBolts>().all()[0];
   const GroutedCrossing& c = b.crossings[0];
   // e = (0, 1) from head to anchor, t = (-1, 0): the block's +x slip is a positive slip.
   EXPECT_NEAR(c.forces.shear_force / load, 1.0, 2e-3);
@@ -107,8 +108,8 @@ TEST(GroutedBoltSystem, ACheckpointKeepsTheCrossingsBitForBit)
   const System& whole = *run.whole;
   const System& resumed = *run.resumed;
 
-  const GroutedCrossing& a = whole.get_grouted_bolts()[0].crossings[0];
-  const GroutedCrossing& b = resumed.get_grouted_bolts()[0].crossings[0];
+  const GroutedCrossing& a = whole.elements<GroutedBolts>().all()[0].crossings[0];
+  const GroutedCrossing& b = resumed.elements<GroutedBolts>().all()[0].crossings[0];
   ASSERT_GT(a.record.yield_time, run.stop_time); // it yielded after the checkpoint
   EXPECT_EQ(b.forces.state, a.forces.state);
   EXPECT_EQ(b.forces.axial_force, a.forces.axial_force);

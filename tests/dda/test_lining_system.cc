@@ -9,6 +9,7 @@
 // 6 x 1.25 W / t^2 = 779.9 kPa.
 #include "common/input_error.h"
 #include "dda/dynamic_stage.h"
+#include "dda/lining.h"
 #include "dda/static_stage.h"
 #include "tests/dda/checkpoint_round_trip.h"
 #include "tests/dda/hanging_static_stage.h"
@@ -63,20 +64,21 @@ ModelDescription hanging_block(double tensile_strength)
 TEST(LiningSystem, StaticStageHangsTheBlockOnTheCantilever)
 {
   System s(hanging_block(4e6));
-  ASSERT_EQ(s.get_linings().size(), 1u);
-  const Lining& l = s.get_linings()[0];
+  ASSERT_EQ(s.elements<Linings>().all().size(), 1u);
+  const Lining& l = s.elements<Linings>().all()[0];
   ASSERT_EQ(l.elements.size(), 1u);
   EXPECT_EQ(l.nodes[0].point.block, 0u);
   EXPECT_EQ(l.nodes[1].point.block, 1u);
   s.begin_stage(StageMode::static_equilibrium);
   ASSERT_EQ(run_static_stage(s, hanging_static_stage(), s.get_model().time).outcome,
             StaticOutcome::equilibrium);
-  const FrameForces& f = s.get_linings()[0].elements[0].forces;
+  const FrameForces& f = s.elements<Linings>().all()[0].elements[0].forces;
   EXPECT_NEAR(f.shear_force / weight, 1.0, 1e-3);
   EXPECT_NEAR(f.bending_moment_b() / (-0.25 * weight), 1.0, 1e-3);
   EXPECT_NEAR(f.bending_moment_a() / (-1.25 * weight), 1.0, 1e-3);
   EXPECT_LT(std::abs(f.axial_force), 1e-3 * weight);
-  EXPECT_NEAR(s.get_linings()[0].elements[0].check.utilisation / (clamp_stress / 4e6), 1.0, 1e-3);
+  EXPECT_NEAR(s.elements<Linings>().all()[0].elements[0].check.utilisation / (clamp_stress / 4e6),
+              1.0, 1e-3);
   EXPECT_GT(s.energy().spring, 0.0);
 }
 
@@ -88,12 +90,12 @@ TEST(LiningSystem, TheElementHoldsAboveAndBreaksBelowItsDemand)
   const StaticStageResult held =
       run_static_stage(strong, hanging_static_stage(), strong.get_model().time);
   EXPECT_EQ(held.outcome, StaticOutcome::equilibrium);
-  EXPECT_EQ(strong.get_linings()[0].n_broken(), 0u);
+  EXPECT_EQ(strong.elements<Linings>().all()[0].n_broken(), 0u);
 
   System weak(hanging_block(0.98 * clamp_stress));
   weak.begin_stage(StageMode::static_equilibrium);
   const StaticStageResult r = run_static_stage(weak, hanging_static_stage(), weak.get_model().time);
-  const Lining& l = weak.get_linings()[0];
+  const Lining& l = weak.elements<Linings>().all()[0];
   EXPECT_EQ(l.n_broken(), 1u);
   EXPECT_FALSE(std::isnan(l.first_break_time));
   EXPECT_EQ(l.first_break_element, 0u);
@@ -110,19 +112,19 @@ TEST(LiningSystem, ALiningInstalledLaterStartsFromTheCurrentPositions)
   ModelDescription m = hanging_block(4e6);
   m.linings[0].install_stage = 1;
   System s(m);
-  EXPECT_FALSE(s.get_linings()[0].installed);
+  EXPECT_FALSE(s.elements<Linings>().all()[0].installed);
   s.begin_stage(StageMode::dynamic);
   Stage stage;
   stage.end_time = 0.01;
   const std::vector<Vector2> zero(2, Vector2::Zero());
   run_dynamic_stage(s, stage, m.time, zero);
-  EXPECT_EQ(s.get_linings()[0].elements[0].forces.shear_force, 0.0);
-  const Point moved = s.get_linings()[0].nodes[1].point.position;
+  EXPECT_EQ(s.elements<Linings>().all()[0].elements[0].forces.shear_force, 0.0);
+  const Point moved = s.elements<Linings>().all()[0].nodes[1].point.position;
   EXPECT_LT(moved.y(), -1e-4);
   s.begin_stage(StageMode::static_equilibrium);
-  EXPECT_TRUE(s.get_linings()[0].installed);
-  EXPECT_EQ(s.get_linings()[0].nodes[1].installed, moved);
-  EXPECT_EQ(s.get_linings()[0].nodes[1].rotation, 0.0);
+  EXPECT_TRUE(s.elements<Linings>().all()[0].installed);
+  EXPECT_EQ(s.elements<Linings>().all()[0].nodes[1].installed, moved);
+  EXPECT_EQ(s.elements<Linings>().all()[0].nodes[1].rotation, 0.0);
 }
 
 // A checkpoint keeps the linings' nodes, elements and records: a run stopped after 3 steps,
@@ -149,8 +151,8 @@ TEST(LiningSystem, ACheckpointKeepsTheLiningBitForBit)
   round_trip(first, first_run, resumed, resumed_run);
   resumed_run.run();
 
-  const Lining& a = whole.get_linings()[0];
-  const Lining& b = resumed.get_linings()[0];
+  const Lining& a = whole.elements<Linings>().all()[0];
+  const Lining& b = resumed.elements<Linings>().all()[0];
   ASSERT_FALSE(std::isnan(a.first_break_time));
   EXPECT_GT(a.first_break_time, first.time()); // it broke after the checkpoint
   EXPECT_EQ(b.first_break_time, a.first_break_time);
