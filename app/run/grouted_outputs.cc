@@ -1,4 +1,8 @@
-#include "app/run/grouted_outputs.h"
+// What a run reports of its grouted bolts (dda/grouted_bolt.h, docs/support.md): per crossing
+// k (from the head) the history channels bolts/<name>/crossing<k>/{axial_force, shear_force,
+// opening, slip, state}, summary.json's `grouted_bolts` (each bolt's law and per crossing its
+// blocks, point, extremes, final state, yield and rupture times) and `check`'s lines.
+#include "app/run/element_outputs.h"
 
 #include "common/format.h"
 #include "dda/grouted_bolt.h"
@@ -41,10 +45,20 @@ nlohmann::json crossing_summary(const dda::GroutedBolt& b, const dda::GroutedCro
           {"yield_time_s", time_or_null(c.record.yield_time)},
           {"rupture_time_s", time_or_null(c.record.rupture_time)}};
 }
-} // namespace
 
-void add_grouted_bolt_channels(std::vector<HistoryChannel>& channels,
-                               const dda::ModelDescription& model)
+/// The kind's outputs (app/run/element_outputs.h).
+class GroutedBoltOutputs final : public ElementOutputs
+{
+public:
+  void add_channels(std::vector<HistoryChannel>& channels,
+                    const dda::ModelDescription& model) const override;
+  void add_row(std::vector<double>& row, const dda::System& system) const override;
+  void add_summary(nlohmann::json& summary, const dda::System& system) const override;
+  void describe(const dda::System& system, std::ostream& out) const override;
+};
+
+void GroutedBoltOutputs::add_channels(std::vector<HistoryChannel>& channels,
+                                      const dda::ModelDescription& model) const
 {
   for (const dda::BoltDescription& b : model.bolts)
   {
@@ -69,7 +83,7 @@ void add_grouted_bolt_channels(std::vector<HistoryChannel>& channels,
   }
 }
 
-void append_grouted_bolt_row(std::vector<double>& row, const dda::System& system)
+void GroutedBoltOutputs::add_row(std::vector<double>& row, const dda::System& system) const
 {
   const bool small = system.get_model().geometry == dda::GeometryMode::small_displacement;
   for (const dda::GroutedBolt& b : system.elements<dda::GroutedBolts>().all())
@@ -107,7 +121,13 @@ nlohmann::json grouted_bolts_summary(const dda::System& system)
   return bolts;
 }
 
-void describe_grouted_bolts(const dda::System& system, std::ostream& out)
+void GroutedBoltOutputs::add_summary(nlohmann::json& summary, const dda::System& system) const
+{
+  if (!system.elements<dda::GroutedBolts>().all().empty())
+    summary["grouted_bolts"] = grouted_bolts_summary(system);
+}
+
+void GroutedBoltOutputs::describe(const dda::System& system, std::ostream& out) const
 {
   const std::vector<dda::GroutedBolt>& bolts = system.elements<dda::GroutedBolts>().all();
   if (!bolts.empty())
@@ -124,6 +144,13 @@ void describe_grouted_bolts(const dda::System& system, std::ostream& out)
           << format_point(c.on_a.initial.x(), c.on_a.initial.y());
     out << "\n";
   }
+}
+
+} // namespace
+
+std::unique_ptr<ElementOutputs> make_grouted_bolt_outputs()
+{
+  return std::make_unique<GroutedBoltOutputs>();
 }
 
 } // namespace ddafem

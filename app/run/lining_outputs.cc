@@ -1,4 +1,9 @@
-#include "app/run/lining_outputs.h"
+// What a run reports of its linings (dda/lining.h, docs/support.md "Lining"): per lining its
+// history channels linings/<name>/... (the largest utilisation of the intact elements, that
+// element's index and forces, the number of broken elements), summary.json's `linings` (each
+// lining's section, extremes, first break and its elements between two blocks with their final
+// forces) and `check`'s lines (nodes, elements and the blocks they couple).
+#include "app/run/element_outputs.h"
 
 #include "common/format.h"
 #include "dda/lining.h"
@@ -49,9 +54,20 @@ nlohmann::json element_json(const dda::Lining& l, std::size_t k)
           {"max_utilisation", e.max_utilisation},
           {"break_time_s", time_or_null(e.break_time)}};
 }
-} // namespace
 
-void add_lining_channels(std::vector<HistoryChannel>& channels, const dda::ModelDescription& model)
+/// The kind's outputs (app/run/element_outputs.h).
+class LiningOutputs final : public ElementOutputs
+{
+public:
+  void add_channels(std::vector<HistoryChannel>& channels,
+                    const dda::ModelDescription& model) const override;
+  void add_row(std::vector<double>& row, const dda::System& system) const override;
+  void add_summary(nlohmann::json& summary, const dda::System& system) const override;
+  void describe(const dda::System& system, std::ostream& out) const override;
+};
+
+void LiningOutputs::add_channels(std::vector<HistoryChannel>& channels,
+                                 const dda::ModelDescription& model) const
 {
   for (const dda::LiningDescription& l : model.linings)
   {
@@ -67,7 +83,7 @@ void add_lining_channels(std::vector<HistoryChannel>& channels, const dda::Model
   }
 }
 
-void add_lining_row(std::vector<double>& row, const dda::System& system)
+void LiningOutputs::add_row(std::vector<double>& row, const dda::System& system) const
 {
   for (const dda::Lining& l : system.elements<dda::Linings>().all())
   {
@@ -113,7 +129,13 @@ nlohmann::json linings_summary(const dda::System& system)
   return out;
 }
 
-void describe_linings(const dda::System& system, std::ostream& out)
+void LiningOutputs::add_summary(nlohmann::json& summary, const dda::System& system) const
+{
+  if (!system.elements<dda::Linings>().all().empty())
+    summary["linings"] = linings_summary(system);
+}
+
+void LiningOutputs::describe(const dda::System& system, std::ostream& out) const
 {
   for (const dda::Lining& l : system.elements<dda::Linings>().all())
   {
@@ -141,6 +163,13 @@ void describe_linings(const dda::System& system, std::ostream& out)
       out << " " << a << "-" << b;
     out << "\n";
   }
+}
+
+} // namespace
+
+std::unique_ptr<ElementOutputs> make_lining_outputs()
+{
+  return std::make_unique<LiningOutputs>();
 }
 
 } // namespace ddafem

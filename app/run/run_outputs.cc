@@ -1,8 +1,7 @@
 #include "app/run/run_outputs.h"
 
 #include "app/run/checkpoint_types.h"
-#include "app/run/grouted_outputs.h"
-#include "app/run/lining_outputs.h"
+#include "app/run/element_outputs.h"
 #include "app/run/run_support.h"
 #include "dda/bolt_snapshot.h"
 #include "dda/lining.h"
@@ -25,11 +24,8 @@ std::vector<double> history_row(const dda::System& system, const LastStep& last)
     row.insert(row.end(), {s.displacement.x(), s.displacement.y(), s.velocity.x(), s.velocity.y(),
                            s.stress[0], s.stress[1], s.stress[2]});
   }
-  for (const dda::Bolt& b : system.elements<dda::Bolts>().all())
-    row.insert(row.end(), {b.forces.axial_force, b.length() - b.law.free_length,
-                           static_cast<double>(b.forces.state)});
-  add_lining_row(row, system);
-  append_grouted_bolt_row(row, system);
+  for (const std::unique_ptr<ElementOutputs>& o : make_element_outputs())
+    o->add_row(row, system);
   const dda::EnergyBalance e = system.energy();
   row.insert(row.end(),
              {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
@@ -61,17 +57,8 @@ std::vector<HistoryChannel> history_channels(const dda::ModelDescription& model)
   std::vector<HistoryChannel> channels;
   for (const dda::Monitor& m : model.monitors)
     run_support::add_monitor_channels(channels, m.name, "of the material point", "of its block");
-  for (const dda::BoltDescription& b : model.bolts)
-  {
-    if (b.type == dda::BoltType::grouted)
-      continue; // add_grouted_bolt_channels
-    channels.push_back({"bolts/" + b.name + "/axial_force", 1, "N", "tension positive"});
-    channels.push_back({"bolts/" + b.name + "/elongation", 1, "m", "L - L0"});
-    channels.push_back(
-        {"bolts/" + b.name + "/state", 1, "", "0 elastic, 1 yielding, 2 slack, 3 ruptured"});
-  }
-  add_lining_channels(channels, model);
-  add_grouted_bolt_channels(channels, model);
+  for (const std::unique_ptr<ElementOutputs>& o : make_element_outputs())
+    o->add_channels(channels, model);
   channels.push_back({"energy/kinetic", 1, "J", "sum of v^T M v / 2"});
   channels.push_back({"energy/strain", 1, "J", "elastic energy of the blocks"});
   channels.push_back({"energy/spring", 1, "J", "joint and fixed-point penalty springs"});

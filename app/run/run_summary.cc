@@ -1,11 +1,7 @@
 #include "app/run/run_summary.h"
 
-#include "app/run/grouted_outputs.h"
-#include "app/run/lining_outputs.h"
+#include "app/run/element_outputs.h"
 #include "app/run/run_support.h"
-#include "dda/bolt.h"
-#include "dda/grouted_bolt.h"
-#include "dda/lining.h"
 
 #include "common/format.h"
 
@@ -53,37 +49,6 @@ nlohmann::json tunnel_summary(const TunnelPlan& plan)
           {"end_time_s", plan.end_time}};
 }
 
-/// A time [s], or null for an event that never happened (NaN).
-nlohmann::json time_or_null(double t)
-{
-  return std::isnan(t) ? nlohmann::json(nullptr) : nlohmann::json(t);
-}
-
-/// Each bolt: where it is, its law, its extremes and final state, when it yielded and broke.
-nlohmann::json bolts_summary(const dda::System& system)
-{
-  nlohmann::json bolts = nlohmann::json::array();
-  for (const dda::Bolt& b : system.elements<dda::Bolts>().all())
-    bolts.push_back({{"name", b.name},
-                     {"head_m", {b.head.initial.x(), b.head.initial.y()}},
-                     {"anchor_m", {b.anchor.initial.x(), b.anchor.initial.y()}},
-                     {"free_length_m", b.law.free_length},
-                     {"stiffness_n_per_m", b.law.stiffness},
-                     {"pretension_n", b.law.pretension},
-                     {"yield_force_n", b.law.yield_force},
-                     {"max_force_n", b.record.max_force},
-                     {"max_elongation_m", b.record.max_elongation},
-                     {"final_head_m", {b.head.position.x(), b.head.position.y()}},
-                     {"final_anchor_m", {b.anchor.position.x(), b.anchor.position.y()}},
-                     {"final_force_n", b.forces.axial_force},
-                     {"final_elongation_m", b.length() - b.law.free_length},
-                     {"plastic_elongation_m", b.forces.plastic_elongation},
-                     {"final_state", name_of(b.forces.state)},
-                     {"yield_time_s", time_or_null(b.record.yield_time)},
-                     {"rupture_time_s", time_or_null(b.record.rupture_time)}});
-  return bolts;
-}
-
 /// The blocks' model, solver, contacts, energies and timings.
 void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
                         const RunOutputs& outputs)
@@ -117,12 +82,8 @@ void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
                           {"tie_terms", t.tie_terms},     {"tied_body", t.tied_body}};
   // Parts of timings_s: the far field's VTU files within output.
   summary["timings_detail_s"] = {{"output_far_field_vtu", outputs.far_field_vtu_seconds()}};
-  if (!system.elements<dda::Bolts>().all().empty())
-    summary["bolts"] = bolts_summary(system);
-  if (!system.elements<dda::Linings>().all().empty())
-    summary["linings"] = linings_summary(system);
-  if (!system.elements<dda::GroutedBolts>().all().empty())
-    summary["grouted_bolts"] = grouted_bolts_summary(system);
+  for (const std::unique_ptr<ElementOutputs>& o : make_element_outputs())
+    o->add_summary(summary, system);
   const dda::EnergyBalance e = system.energy();
   summary["energy_J"] = {{"kinetic", e.kinetic},
                          {"strain", e.strain},

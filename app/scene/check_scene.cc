@@ -1,9 +1,8 @@
 // `ddafem check`: what a scene builds into (blocks, joints, boundaries, the far field and the
 // interface, or a far field alone), the engineering rules' findings and the suggested dt.
 #include "app/far_field_module/far_field_module.h"
-#include "app/run/grouted_outputs.h"
+#include "app/run/element_outputs.h"
 #include "app/run/keyblocks.h"
-#include "app/run/lining_outputs.h"
 #include "app/run/run.h"
 #include "app/run/run_warnings.h"
 #include "app/run/stage_records.h"
@@ -11,7 +10,6 @@
 
 #include "common/format.h"
 #include "common/resource_limits.h"
-#include "dda/bolt.h"
 
 #include "dda/system.h"
 #include "dda/time_step_advice.h"
@@ -127,17 +125,8 @@ void describe_stepping(const Scene& scene, const dda::System& system, std::ostre
       << " (default penalty " << format_significant(system.default_fixed_point_stiffness())
       << " N/m)"
       << ", monitors: " << model.monitors.size() << "\n";
-  if (!system.elements<dda::Bolts>().all().empty())
-    out << "  bolts: " << system.elements<dda::Bolts>().all().size() << "\n";
-  for (const dda::Bolt& b : system.elements<dda::Bolts>().all())
-    out << "  bolt " << b.name << ": blocks " << b.head.block << " to " << b.anchor.block << ", L0 "
-        << format_significant(b.law.free_length, 5) << " m, k "
-        << format_significant(b.law.stiffness, 5) << " N/m, pretension "
-        << format_significant(b.law.pretension, 5) << " N, yield force "
-        << format_significant(b.law.yield_force, 5) << " N, ruptures beyond "
-        << format_significant(b.law.rupture_elongation, 5) << " m\n";
-  describe_linings(system, out);
-  describe_grouted_bolts(system, out);
+  for (const std::unique_ptr<ElementOutputs>& o : make_element_outputs())
+    o->describe(system, out);
   const auto n_steps = static_cast<std::size_t>(std::llround(model.time.end_time / model.time.dt));
   out << "  time: dt " << format_significant(model.time.dt) << " s, end "
       << format_significant(model.time.end_time) << " s, " << n_steps << " steps, integrator "

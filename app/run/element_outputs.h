@@ -1,0 +1,52 @@
+// What a run reports of each element kind of the blocks (dda/element.h): history channels and
+// rows (histories.h5), its section of summary.json and `check`'s lines. One ElementOutputs per
+// kind, each in its own file (app/run/<kind>_outputs.cc); make_element_outputs orders them as the
+// histories' channels.
+#pragma once
+
+#include "common/history_writer.h"
+#include "dda/system.h"
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <ostream>
+#include <vector>
+
+namespace ddafem
+{
+class ElementOutputs
+{
+public:
+  virtual ~ElementOutputs() = default;
+  /// Appends the history channels of the scene's elements of its kind.
+  virtual void add_channels(std::vector<HistoryChannel>& channels,
+                            const dda::ModelDescription& model) const = 0;
+  /// Appends the values of its channels, in their order, for the System's current state.
+  virtual void add_row(std::vector<double>& row, const dda::System& system) const = 0;
+  /// Adds its section to summary.json if the scene has elements of its kind.
+  virtual void add_summary(nlohmann::json& summary, const dda::System& system) const = 0;
+  /// `check`'s lines on its elements (none if the scene has none).
+  virtual void describe(const dda::System& system, std::ostream& out) const = 0;
+};
+
+/// End-anchored bolts (app/run/bolt_outputs.cc): bolts/<name>/..., summary.json's `bolts`.
+std::unique_ptr<ElementOutputs> make_bolt_outputs();
+/// Linings (app/run/lining_outputs.cc): linings/<name>/..., summary.json's `linings`.
+std::unique_ptr<ElementOutputs> make_lining_outputs();
+/// Grouted bolts (app/run/grouted_outputs.cc): bolts/<name>/crossing<k>/...,
+/// summary.json's `grouted_bolts`.
+std::unique_ptr<ElementOutputs> make_grouted_bolt_outputs();
+
+/// Every kind's outputs in the order of their history channels: end-anchored bolts, linings,
+/// grouted bolts (as dda::make_element_kinds steps them).
+inline std::vector<std::unique_ptr<ElementOutputs>> make_element_outputs()
+{
+  std::vector<std::unique_ptr<ElementOutputs>> outputs;
+  outputs.push_back(make_bolt_outputs());
+  outputs.push_back(make_lining_outputs());
+  outputs.push_back(make_grouted_bolt_outputs());
+  return outputs;
+}
+
+} // namespace ddafem
