@@ -1,9 +1,11 @@
 // What a run reports of each element kind of the blocks (dda/element.h): history channels and
-// rows (histories.h5), its section of summary.json and `check`'s lines. One ElementOutputs per
+// rows (histories.h5), its own VTU series if it has one, its section of summary.json and
+// `check`'s lines. One ElementOutputs per
 // kind, each in its own file (app/run/<kind>_outputs.cc); make_element_outputs orders them as the
 // histories' channels.
 #pragma once
 
+#include "common/checkpoint_fwd.h"
 #include "common/history_writer.h"
 #include "dda/system.h"
 
@@ -11,6 +13,7 @@
 
 #include <memory>
 #include <ostream>
+#include <string>
 #include <vector>
 
 namespace ddafem
@@ -28,6 +31,15 @@ public:
   virtual void add_summary(nlohmann::json& summary, const dda::System& system) const = 0;
   /// `check`'s lines on its elements (none if the scene has none).
   virtual void describe(const dda::System& system, std::ostream& out) const = 0;
+
+  /// A kind with a VTU series of its own beside model.pvd (e.g. lining.pvd) opens it in
+  /// `directory` if the scene has elements of its kind; the others have none (the default).
+  virtual void open_series(const std::string& /*directory*/, const dda::System& /*system*/) {}
+  /// A snapshot of its series at the System's time.
+  virtual void write_series(const dda::System& /*system*/) {}
+  /// Checkpoints of its series: the files written so far (load: of the same scene).
+  virtual void save_series(CheckpointOut& /*archive*/) const {}
+  virtual void load_series(CheckpointIn& /*archive*/) {}
 };
 
 /// End-anchored bolts (app/run/bolt_outputs.cc): bolts/<name>/..., summary.json's `bolts`.

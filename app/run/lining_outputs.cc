@@ -7,10 +7,12 @@
 
 #include "common/format.h"
 #include "dda/lining.h"
+#include "dda/vtu_writer.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <set>
 
 namespace ddafem
@@ -64,6 +66,30 @@ public:
   void add_row(std::vector<double>& row, const dda::System& system) const override;
   void add_summary(nlohmann::json& summary, const dda::System& system) const override;
   void describe(const dda::System& system, std::ostream& out) const override;
+  /// lining.pvd: the linings' elements as lines (docs/support.md), apart from model.pvd.
+  void open_series(const std::string& directory, const dda::System& system) override
+  {
+    if (!system.elements<dda::Linings>().all().empty())
+      series.emplace(directory, "lining");
+  }
+  void write_series(const dda::System& system) override
+  {
+    if (series)
+      series->write(system.time(), dda::lining_snapshot(system.elements<dda::Linings>().all()));
+  }
+  void save_series(CheckpointOut& archive) const override
+  {
+    if (series)
+      series->save(archive);
+  }
+  void load_series(CheckpointIn& archive) override
+  {
+    if (series)
+      series->load(archive);
+  }
+
+private:
+  std::optional<dda::VtuSeriesWriter> series;
 };
 
 void LiningOutputs::add_channels(std::vector<HistoryChannel>& channels,

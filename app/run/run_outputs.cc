@@ -4,7 +4,6 @@
 #include "app/run/element_outputs.h"
 #include "app/run/run_support.h"
 #include "dda/bolt_snapshot.h"
-#include "dda/lining.h"
 
 #include "common/stopwatch.h"
 #include "common/vtk_collection.h"
@@ -15,7 +14,9 @@ namespace
 {
 
 /// The blocks' values of a history row, in the order of history_channels.
-std::vector<double> history_row(const dda::System& system, const LastStep& last)
+std::vector<double> history_row(const dda::System& system,
+                                const std::vector<std::unique_ptr<ElementOutputs>>& elements,
+                                const LastStep& last)
 {
   std::vector<double> row;
   for (std::size_t k = 0; k < system.get_model().monitors.size(); ++k)
@@ -24,7 +25,7 @@ std::vector<double> history_row(const dda::System& system, const LastStep& last)
     row.insert(row.end(), {s.displacement.x(), s.displacement.y(), s.velocity.x(), s.velocity.y(),
                            s.stress[0], s.stress[1], s.stress[2]});
   }
-  for (const std::unique_ptr<ElementOutputs>& o : make_element_outputs())
+  for (const std::unique_ptr<ElementOutputs>& o : elements)
     o->add_row(row, system);
   const dda::EnergyBalance e = system.energy();
   row.insert(row.end(),
@@ -95,11 +96,13 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir_, const std::string& sce
       vtu_compression(vtu_compression_),
       history((dir / "histories.h5").string(), all_channels(system.get_model(), tied, keyblocks)),
       blocks_vtu(dir.string(), "blocks"), contacts_vtu(dir.string(), "contacts"),
-      ties_vtu(dir.string(), "ties"), lining_vtu(dir.string(), "lining"),
-      bolts_vtu(dir.string(), "bolts")
+      ties_vtu(dir.string(), "ties"), bolts_vtu(dir.string(), "bolts"),
+      element_outputs(make_element_outputs())
 {
   history.set_attribute("scene", scene_file);
   history.set_attribute("version", DDAFEM_VERSION);
+  for (const std::unique_ptr<ElementOutputs>& o : element_outputs)
+    o->open_series(dir.string(), system);
 }
 
 void RunOutputs::write_state(bool snapshot, const LastStep& last)
@@ -108,7 +111,7 @@ void RunOutputs::write_state(bool snapshot, const LastStep& last)
   const auto start = Clock::now();
   if (last_row_time != system.time())
   {
-    std::vector<double> row = history_row(system, last);
+    std::vector<double> row = history_row(system, element_outputs, last);
     if (tied)
       tied->append_row(row);
     keyblocks.append_row(system, row);
@@ -137,8 +140,8 @@ void RunOutputs::write_snapshot()
     time_far_field += seconds_since(far_field_start);
     files.push_back(name(ties_vtu.write(system.time(), tied->tie_snapshot())));
   }
-  if (!system.elements<dda::Linings>().all().empty())
-    lining_vtu.write(system.time(), dda::lining_snapshot(system.elements<dda::Linings>().all()));
+  for (const std::unique_ptr<ElementOutputs>& o : element_outputs)
+    o->write_series(system);
   for (std::size_t part = 0; part < files.size(); ++part)
     model_data_sets.push_back({system.time(), static_cast<unsigned>(part), files[part]});
   // Part 4 whether or not a far field and ties come before (tools/paraview_open.py's PARTS).
@@ -164,8 +167,8 @@ void RunOutputs::save(CheckpointOut& a) const
   blocks_vtu.save(a);
   contacts_vtu.save(a);
   ties_vtu.save(a);
-  if (!system.elements<dda::Linings>().all().empty()) // the same scene resumes: the same linings
-    lining_vtu.save(a);
+  for (const std::unique_ptr<ElementOutputs>& o : element_outputs)
+    o->save_series(a);
   if (!system.get_model().bolts.empty())
     bolts_vtu.save(a);
   a << model_data_sets << time_output << time_far_field;
@@ -181,14 +184,17 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir_, const dda::System& sys
       history((dir / "histories.h5").string(), all_channels(system.get_model(), tied, keyblocks),
               HistoryWriter::Reopen{load_history_rows(a, "outputs")}),
       blocks_vtu(dir.string(), "blocks"), contacts_vtu(dir.string(), "contacts"),
-      ties_vtu(dir.string(), "ties"), lining_vtu(dir.string(), "lining"),
-      bolts_vtu(dir.string(), "bolts")
+      ties_vtu(dir.string(), "ties"), bolts_vtu(dir.string(), "bolts"),
+      element_outputs(make_element_outputs())
 {
   blocks_vtu.load(a);
   contacts_vtu.load(a);
   ties_vtu.load(a);
-  if (!system.elements<dda::Linings>().all().empty())
-    lining_vtu.load(a);
+  for (const std::unique_ptr<ElementOutputs>& o : element_outputs)
+  {
+    o->open_series(dir.string(), system); // the same scene resumes: the same series
+    o->load_series(a);
+  }
   if (!system.get_model().bolts.empty())
     bolts_vtu.load(a);
   a >> model_data_sets >> time_output >> time_far_field;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "app/far_field_module/far_field_module.h"
+#include "app/run/element_outputs.h"
 #include "app/run/keyblocks.h"
 
 #include "common/checkpoint_fwd.h"
@@ -19,6 +20,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -73,10 +75,10 @@ private:
   fem::VtuCompression vtu_compression;
   HistoryWriter history;
   dda::VtuSeriesWriter blocks_vtu, contacts_vtu, ties_vtu;
-  /// lining.pvd: the linings' elements as lines (docs/support.md), apart from model.pvd.
-  dda::VtuSeriesWriter lining_vtu;
   /// The bolts' polylines (part 4 of model.pvd), if the model has bolts.
   dda::VtuSeriesWriter bolts_vtu;
+  /// What the run reports of each element kind, with the kinds' own VTU series.
+  std::vector<std::unique_ptr<ElementOutputs>> element_outputs;
   /// model.pvd's: every snapshot's parts (blocks, contacts, far field, ties) at their time, so
   /// that ParaView opens the whole model from one file.
   std::vector<CollectionDataSet> model_data_sets;
