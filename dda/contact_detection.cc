@@ -54,9 +54,9 @@ void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_
 {
   mark_jointed_vertices();
   set_contact_structure(find_trial_contacts(pairs));
-  detected.predecessors.clear();
-  detected.epoch = geometry_epoch;
-  inherit_contact_states();
+  contact_set.detected.predecessors.clear();
+  contact_set.detected.epoch = geometry_epoch;
+  contact_set.inherit(parallel, w0);
 }
 
 void System::refresh_joint_lists()
@@ -204,7 +204,7 @@ System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t
     for (std::size_t k = bucket[i] + 1; k < bucket[i + 1]; ++k)
       for (std::size_t m = k; m > bucket[i] && order[m]->key() < order[m - 1]->key(); --m)
         std::swap(order[m], order[m - 1]);
-  std::vector<Contact>& found = detected.contacts;
+  std::vector<Contact>& found = contact_set.detected.contacts;
   found.resize(order.size());
   parallel.for_chunks(order.size(), 1024,
                       [&](std::size_t begin, std::size_t end)
@@ -259,94 +259,6 @@ void System::add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& c
   }
 }
 
-void System::inherit_contact_states()
-{
-  // The trial contacts start as detected; each finds its predecessor on the threads (copied
-  // there too: the contact is at hand when it inherits); the new ones take ids afterwards, in
-  // contact order, so the ids do not depend on the number of threads either.
-  constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
-  const std::vector<Contact>& found = detected.contacts;
-  std::vector<std::size_t>& predecessors = detected.predecessors;
-  const bool search = predecessors.size() != found.size();
-  if (search)
-    predecessors.resize(found.size());
-  trial_contacts.resize(found.size());
-  parallel.for_chunks(
-      found.size(), 1024,
-      [&](std::size_t begin, std::size_t end)
-      {
-        // Both lists are in key order: one search per chunk, then a walk.
-        auto at = contacts.begin();
-        if (search && begin < end)
-          at = std::lower_bound(contacts.begin(), contacts.end(), found[begin].key(),
-                                [](const Contact& x, const auto& key) { return x.key() < key; });
-        for (std::size_t k = begin; k < end; ++k)
-        {
-          trial_contacts[k] = found[k];
-          if (search)
-          {
-            const auto key = trial_contacts[k].key();
-            while (at != contacts.end() && at->key() < key)
-              ++at;
-            predecessors[k] = find_predecessor(trial_contacts[k], at, none);
-          }
-          const std::size_t p = predecessors[k];
-          inherit_contact_state(trial_contacts[k], p == none ? nullptr : &contacts[p], none);
-        }
-      });
-  for (Contact& c : trial_contacts)
-    if (c.id == none)
-      c.id = next_contact_id++;
-}
-
-std::size_t System::find_predecessor(const Contact& c, std::vector<Contact>::const_iterator at,
-                                     std::size_t none) const
-{
-  // The same key; else a vertex that moved on to another edge of the same block inherits its
-  // previous contact there (sliding past a corner): the last one not open.
-  if (at != contacts.end() && at->key() == c.key())
-    return static_cast<std::size_t>(at - contacts.begin());
-  const auto same_vertex = [&](const Contact& x)
-  {
-    return x.vertex_block == c.vertex_block && x.vertex == c.vertex && x.edge_block == c.edge_block;
-  };
-  auto first = at;
-  while (first != contacts.begin() && same_vertex(*(first - 1)))
-    --first;
-  std::size_t previous = none;
-  for (auto it = first; it != contacts.end() && same_vertex(*it); ++it)
-    if (it->forces.state != ContactState::open)
-      previous = static_cast<std::size_t>(it - contacts.begin());
-  return previous;
-}
-
-void System::inherit_contact_state(Contact& c, const Contact* previous, std::size_t no_id) const
-{
-  // Keep id, state and forces of contacts that persist.
-  if (previous)
-  {
-    c.id = previous->id;
-    c.forces = previous->forces;
-    c.total_slip = previous->total_slip;
-    c.slide_duration = previous->slide_duration;
-    c.penalty_factor = previous->penalty_factor;
-  }
-  else
-  {
-    // A new contact starts closed if its blocks touch (within the 1e-9 of the model size that
-    // joins shared edges): blocks stacked in the scene then start closed together, where
-    // starting open would close them one course per open-close iteration (a stack of n
-    // courses would need n iterations, and Shi's 6 then cut dt without end). Those in
-    // tension open in the first iteration.
-    c.id = no_id;
-    c.forces.state = c.gap <= 2e-9 * w0 ? ContactState::lock : ContactState::open;
-  }
-  if (!raised_penalties.empty())
-    if (const auto raised = raised_penalties.find(c.key()); raised != raised_penalties.end())
-      c.penalty_factor = std::max(c.penalty_factor, raised->second);
-  c.trial = c.forces;
-}
-
 void System::set_contact_structure(std::vector<std::pair<std::size_t, std::size_t>> touching)
 {
   // The matrix couples joined blocks and blocks in contact (both lists sorted: merged).
@@ -356,8 +268,8 @@ void System::set_contact_structure(std::vector<std::pair<std::size_t, std::size_
   set_matrix_structure(std::move(couplings));
 
   // Each contact's coupling and frame, in the configuration at the step start.
-  frames.resize(detected.contacts.size());
-  parallel.for_chunks(detected.contacts.size(), 1024,
+  frames.resize(contact_set.detected.contacts.size());
+  parallel.for_chunks(contact_set.detected.contacts.size(), 1024,
                       [&](std::size_t begin, std::size_t end)
                       {
                         for (std::size_t k = begin; k < end; ++k)
@@ -367,7 +279,7 @@ void System::set_contact_structure(std::vector<std::pair<std::size_t, std::size_
 
 void System::set_contact_frame(std::size_t k)
 {
-  Contact& c = detected.contacts[k];
+  Contact& c = contact_set.detected.contacts[k];
   c.coupling = coupling_of(c.vertex_block, c.edge_block);
   const Block& vb = blocks[c.vertex_block];
   const Block& eb = blocks[c.edge_block];
@@ -433,7 +345,7 @@ std::size_t System::coupling_of(std::size_t i, std::size_t j) const
 ContactCounts System::contact_counts() const
 {
   ContactCounts n;
-  for (const Contact& c : contacts)
+  for (const Contact& c : contact_set.accepted)
     switch (c.forces.state)
     {
     case ContactState::open:
@@ -452,8 +364,8 @@ ContactCounts System::contact_counts() const
 std::vector<ContactSnapshot> System::contact_snapshot() const
 {
   std::vector<ContactSnapshot> out;
-  out.reserve(contacts.size() + 2 * joints.size());
-  for (const Contact& c : contacts)
+  out.reserve(contact_set.accepted.size() + 2 * joints.size());
+  for (const Contact& c : contact_set.accepted)
   {
     const std::vector<Point>& ev = blocks[c.edge_block].vertices;
     const Vector2 t = (ev[(c.edge + 1) % ev.size()] - ev[c.edge]).normalized();

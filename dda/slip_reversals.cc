@@ -30,9 +30,9 @@ System::ReversalScan System::scan_slip_reversals(double dt) const
 {
   const double negligible = negligible_contact_force();
   ReversalScan scan;
-  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
+  for (std::size_t k = 0; k < contact_set.trial.size(); ++k)
   {
-    const Contact& c = trial_contacts[k];
+    const Contact& c = contact_set.trial[k];
     // A contact that stuck at the step's start after a slide (a lock as short as the step
     // that ended at the reversal) still holds the old friction in its spring: sliding the
     // other way at the step's end, friction turns around within the step as from a slide.
@@ -106,7 +106,7 @@ void System::restart_at_friction_jumps(const std::vector<std::size_t>& turning)
   };
   for (const std::size_t k : turning)
   {
-    const Contact& c = trial_contacts[k];
+    const Contact& c = contact_set.trial[k];
     const ContactFrame& f = frames[k];
     // S acts on the vertex block as -S t and on the edge block as +S t.
     const Vector2 jump = (c.trial.shear_force - c.forces.shear_force) * f.tangent;

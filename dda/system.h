@@ -8,6 +8,7 @@
 #include "common/parallel.h"
 #include "dda/block.h"
 #include "dda/contact/contact.h"
+#include "dda/contact/contact_set.h"
 #include "dda/contact/narrow_phase.h"
 #include "dda/element.h"
 #include "dda/joints.h"
@@ -272,7 +273,7 @@ public:
     throw std::logic_error("System::elements: no such element kind");
   }
   /// The contacts of the last accepted step, ordered by (vertex block, vertex, edge block, edge).
-  const std::vector<Contact>& get_contacts() const { return contacts; }
+  const std::vector<Contact>& get_contacts() const { return contact_set.accepted; }
   ContactCounts contact_counts() const;
   /// Half the model's size w0 [m] (Shi), the reference of the step displacement bound.
   double half_model_size() const { return w0; }
@@ -386,7 +387,7 @@ private:
   /// Phase 1: block pairs whose boxes, inflated by d0, overlap.
   std::vector<std::pair<std::size_t, std::size_t>> find_contact_candidates() const;
   /// Phase 2: the vertex-edge contacts of the pairs, matched to the previous step's to keep
-  /// id, state and forces; sets trial_contacts and the matrix structure.
+  /// id, state and forces; sets contact_set.trial and the matrix structure.
   void update_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
   /// The vertices tied by an intact joint to another block, (block, vertex, other block)
   /// sorted, into `jointed_vertices`: they make no contact with that block.
@@ -396,7 +397,8 @@ private:
   /// common third block (which keeps the two corners apart).
   bool held_by_common_block(std::size_t a, std::size_t va, std::size_t b, std::size_t vb) const;
   /// The narrow phase: the vertex-edge contacts of the pairs, sorted by key, into
-  /// detected.contacts (without state; inherit_contact_states makes them the trial contacts).
+  /// contact_set.detected.contacts (without state; ContactSet::inherit makes them the trial
+  /// contacts).
   /// Returns the pairs with contacts, sorted (the matrix couples them).
   std::vector<std::pair<std::size_t, std::size_t>>
   find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
@@ -404,18 +406,6 @@ private:
   /// The contacts of candidate pair (a, b), a < b, not held by an intact joint, appended to
   /// `chunk.found` (in key order); block_features holds both blocks' features.
   void add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& chunk) const;
-  /// trial_contacts: detected.contacts with the id, state, forces and slip history of the
-  /// previous step's contacts that persist; a new contact starts closed if its blocks touch,
-  /// else open. The predecessors are searched for once per geometry_epoch (kept in
-  /// `detected`); a retry only copies the contacts and their states again.
-  void inherit_contact_states();
-  /// Index in `contacts` of c's predecessor, or `none`; `at` is the first accepted contact
-  /// whose key is not below c's.
-  std::size_t find_predecessor(const Contact& c, std::vector<Contact>::const_iterator at,
-                               std::size_t none) const;
-  /// c's state from the accepted contact `previous` (or a new contact's first state and id
-  /// `no_id` if `previous` is null), with a raised penalty.
-  void inherit_contact_state(Contact& c, const Contact* previous, std::size_t no_id) const;
   /// The matrix structure (joined blocks and blocks in contact) and the contacts' frames at
   /// the step's start.
   void set_contact_structure(std::vector<std::pair<std::size_t, std::size_t>> touching);
@@ -619,10 +609,9 @@ private:
   std::vector<Point> tie_origins;
   std::vector<Matrix26> tie_matrices;  ///< T of each tie point at the step start
   std::vector<std::size_t> tie_blocks; ///< blocks with tie points, sorted
-  TieTerms tie_pairs;            ///< T^T H T of the tied body, pair by pair of its runs of points
-  std::vector<Contact> contacts; ///< of the last accepted step
-  std::vector<Contact> trial_contacts; ///< of the step being tried
-  std::vector<ContactFrame> frames;    ///< of trial_contacts
+  TieTerms tie_pairs;     ///< T^T H T of the tied body, pair by pair of its runs of points
+  ContactSet contact_set; ///< accepted and trial contacts, and their persistence
+  std::vector<ContactFrame> frames; ///< of contact_set.trial
   /// find_trial_contacts' scratch per chunk of candidate pairs, kept from step to step (a cache
   /// line each: chunks run on different threads).
   struct alignas(64) NarrowPhaseChunk
@@ -640,20 +629,6 @@ private:
   /// Counts the changes of what contact detection depends on (the blocks' geometry, removed
   /// blocks, joints, stage, ties, the accepted contacts): detection is redone only when it moved.
   std::uint64_t geometry_epoch = 0;
-  /// The narrow phase's result at `epoch` (trial contacts before inherit_contact_states, with
-  /// their couplings; `frames` and the matrix structure go with it): a retried step (cut dt,
-  /// slip reversal, raised penalties) starts from the same accepted state and reuses it.
-  struct DetectedContacts
-  {
-    std::uint64_t epoch = std::numeric_limits<std::uint64_t>::max();
-    std::vector<Contact> contacts;
-    /// Per contact its predecessor's index in `contacts` (the accepted ones), or the maximum
-    /// std::size_t; empty until inherit_contact_states searched them at `epoch`.
-    std::vector<std::size_t> predecessors;
-  } detected;
-  std::size_t next_contact_id = 0;
-  /// Penalty factors raised by a failed step, by contact key, for the retry
-  std::map<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>, double> raised_penalties;
   std::size_t broken_joint_count = 0;
   /// Where a bonded joint ties a vertex to the other block: (vertex block, vertex, other block).
   std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> jointed_vertices;

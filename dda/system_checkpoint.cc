@@ -60,12 +60,13 @@ void System::transfer_state(Archive& a)
 template <class Archive>
 void System::transfer_contacts(Archive& a)
 {
-  transfer_all(a, contacts, trial_contacts);
+  transfer_all(a, contact_set.accepted, contact_set.trial);
   transfer_each(a, frames,
                 [&a](ContactFrame& f)
                 { transfer_all(a, f.t_vertex, f.t_edge, f.normal, f.tangent); });
-  transfer_all(a, geometry_epoch, detected.epoch, detected.contacts, detected.predecessors);
-  transfer_all(a, next_contact_id, raised_penalties);
+  transfer_all(a, geometry_epoch, contact_set.detected.epoch, contact_set.detected.contacts,
+               contact_set.detected.predecessors);
+  transfer_all(a, contact_set.next_id, contact_set.raised_penalties);
 }
 
 void System::save(CheckpointOut& archive) const

@@ -11,7 +11,7 @@ namespace ddafem::dda
 {
 void System::contact_spring(std::size_t k, Eigen::Matrix2d& k2, Vector2& force_on_vertex) const
 {
-  const Contact& c = trial_contacts[k];
+  const Contact& c = contact_set.trial[k];
   const ContactFrame& f = frames[k];
   const ContactLaw law = contact_law(c);
   k2 = law.normal_stiffness * (f.normal * f.normal.transpose());
@@ -30,13 +30,13 @@ void System::contact_spring(std::size_t k, Eigen::Matrix2d& k2, Vector2& force_o
 
 void System::add_contact_terms()
 {
-  contact_terms.states.resize(trial_contacts.size());
+  contact_terms.states.resize(contact_set.trial.size());
   contact_terms.indexed = false; // the contacts of a new attempt
   Eigen::Matrix2d k2;
   Vector2 force;
-  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
+  for (std::size_t k = 0; k < contact_set.trial.size(); ++k)
   {
-    const Contact& c = trial_contacts[k];
+    const Contact& c = contact_set.trial[k];
     contact_terms.states[k] = c.trial.state;
     if (c.trial.state == ContactState::open)
       continue;
@@ -58,9 +58,9 @@ void System::update_contact_terms(const BlockSparseMatrix& start)
   ContactTermsIndex& x = contact_terms;
   x.changed_blocks.clear();
   x.changed_couplings.clear();
-  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
+  for (std::size_t k = 0; k < contact_set.trial.size(); ++k)
   {
-    const Contact& c = trial_contacts[k];
+    const Contact& c = contact_set.trial[k];
     if (c.trial.state == x.states[k])
       continue;
     x.states[k] = c.trial.state;
@@ -81,11 +81,11 @@ void System::update_contact_terms(const BlockSparseMatrix& start)
     for (std::size_t e = x.block_start[i]; e < x.block_start[i + 1]; ++e)
     {
       const std::size_t k = x.block_contacts[e];
-      if (trial_contacts[k].trial.state == ContactState::open)
+      if (contact_set.trial[k].trial.state == ContactState::open)
         continue;
       contact_spring(k, k2, force);
       const Matrix26& t =
-          trial_contacts[k].vertex_block == i ? frames[k].t_vertex : frames[k].t_edge;
+          contact_set.trial[k].vertex_block == i ? frames[k].t_vertex : frames[k].t_edge;
       const Matrix26 k_t = k2 * t;
       matrix.diagonal(i).noalias() += t.transpose() * k_t;
     }
@@ -96,7 +96,7 @@ void System::update_contact_terms(const BlockSparseMatrix& start)
     for (std::size_t e = x.coupling_start[u]; e < x.coupling_start[u + 1]; ++e)
     {
       const std::size_t k = x.coupling_contacts[e];
-      const Contact& c = trial_contacts[k];
+      const Contact& c = contact_set.trial[k];
       if (c.trial.state == ContactState::open)
         continue;
       contact_spring(k, k2, force);
@@ -113,9 +113,9 @@ void System::update_contact_terms(const BlockSparseMatrix& start)
       }
     }
   }
-  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
+  for (std::size_t k = 0; k < contact_set.trial.size(); ++k)
   {
-    const Contact& c = trial_contacts[k];
+    const Contact& c = contact_set.trial[k];
     if (c.trial.state == ContactState::open)
       continue;
     contact_spring(k, k2, force);
@@ -135,15 +135,15 @@ void System::index_contact_terms()
                          std::vector<std::size_t>& entries)
   {
     start.assign(n + 1, 0);
-    for (std::size_t k = 0; k < trial_contacts.size(); ++k)
-      for (const std::size_t key : keys_of(trial_contacts[k]))
+    for (std::size_t k = 0; k < contact_set.trial.size(); ++k)
+      for (const std::size_t key : keys_of(contact_set.trial[k]))
         ++start[key + 1];
     for (std::size_t i = 0; i < n; ++i)
       start[i + 1] += start[i];
     entries.resize(start[n]);
     std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (std::size_t k = 0; k < trial_contacts.size(); ++k)
-      for (const std::size_t key : keys_of(trial_contacts[k]))
+    for (std::size_t k = 0; k < contact_set.trial.size(); ++k)
+      for (const std::size_t key : keys_of(contact_set.trial[k]))
         entries[next[key]++] = k;
   };
   index(

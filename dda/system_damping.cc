@@ -66,7 +66,7 @@ double System::viscous_shear(std::size_t k) const
 {
   // The shear force of the dashpot a sticking contact has over this step (contact_dashpot's
   // rule: locked at the start), at the end velocity of the solution being tried.
-  const Contact& c = trial_contacts[k];
+  const Contact& c = contact_set.trial[k];
   if (c.forces.state != ContactState::lock)
     return 0.0;
   const JointMaterial& jm = model.joint_materials[c.joint_material];
@@ -118,9 +118,9 @@ void System::add_work_of_damping(const Eigen::VectorXd& d)
       work_of_damping -= (c * v).dot(du);
     }
   }
-  for (std::size_t k = 0; k < trial_contacts.size(); ++k)
+  for (std::size_t k = 0; k < contact_set.trial.size(); ++k)
   {
-    const Contact& c = trial_contacts[k];
+    const Contact& c = contact_set.trial[k];
     const ContactFrame& f = frames[k];
     const Eigen::Matrix2d cd = contact_dashpot(c, f);
     if (cd.isZero(0.0))

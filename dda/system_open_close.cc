@@ -153,7 +153,7 @@ Eigen::VectorXd System::tie_increments(const Eigen::VectorXd& d) const
 double System::negligible_contact_force() const
 {
   double largest_force = 0.0;
-  for (const Contact& c : trial_contacts)
+  for (const Contact& c : contact_set.trial)
     largest_force = std::max(largest_force, c.trial.normal_force);
   return model.contacts.flip_force_ratio * largest_force;
 }
@@ -165,9 +165,9 @@ std::size_t System::update_trial_states(unsigned iteration, std::size_t& n_ignor
   const double negligible = negligible_contact_force();
   const bool localising = localising_slip_reversals();
   constexpr std::size_t grain = 1024;
-  std::vector<std::array<std::size_t, 2>> counts((trial_contacts.size() + grain - 1) / grain,
+  std::vector<std::array<std::size_t, 2>> counts((contact_set.trial.size() + grain - 1) / grain,
                                                  {0, 0});
-  parallel.for_chunks(trial_contacts.size(), grain,
+  parallel.for_chunks(contact_set.trial.size(), grain,
                       [&](std::size_t begin, std::size_t end)
                       {
                         std::array<std::size_t, 2>& n = counts[begin / grain];
@@ -186,7 +186,7 @@ std::size_t System::update_trial_states(unsigned iteration, std::size_t& n_ignor
 void System::update_trial_state(std::size_t k, unsigned iteration, double negligible,
                                 bool localising, std::array<std::size_t, 2>& n)
 {
-  Contact& c = trial_contacts[k];
+  Contact& c = contact_set.trial[k];
   const ContactFrame& f = frames[k];
   const Vector2 relative = f.t_vertex * solution.segment<6>(6 * c.vertex_block) -
                            f.t_edge * solution.segment<6>(6 * c.edge_block);
@@ -218,11 +218,11 @@ bool System::raise_penalties()
 {
   const double cap = model.contacts.max_penalty_factor;
   bool raised = false;
-  for (const Contact& c : trial_contacts)
+  for (const Contact& c : contact_set.trial)
     if (c.trial.state != ContactState::open && -c.end_gap > penetration_limit &&
         c.penalty_factor < cap)
     {
-      raised_penalties[c.key()] = std::min(cap, 10.0 * c.penalty_factor);
+      contact_set.raised_penalties[c.key()] = std::min(cap, 10.0 * c.penalty_factor);
       raised = true;
     }
   return raised;

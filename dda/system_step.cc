@@ -90,11 +90,11 @@ StepStatus System::attempt_step(double dt, const StepPart part)
 void System::detect_contacts()
 {
   auto start = Clock::now();
-  if (detected.epoch == geometry_epoch)
+  if (contact_set.detected.epoch == geometry_epoch)
   {
     // A retry from the same accepted state: the same contacts, frames and structure; only
     // their states are inherited again (penalties may have been raised).
-    inherit_contact_states();
+    contact_set.inherit(parallel, w0);
     timings.narrow_phase += seconds_since(start);
     return;
   }
@@ -156,7 +156,7 @@ StepStatus System::solve_step(const StepLabel& when, bool new_matrix)
 {
   const auto start = Clock::now();
   StepStatus status;
-  if (trial_contacts.empty() && !tied_body)
+  if (contact_set.trial.empty() && !tied_body)
   {
     status.solve = solver.solve(matrix, rhs, solution,
                                 new_matrix ? MatrixChange::unknown : MatrixChange::unchanged,
@@ -186,7 +186,7 @@ void System::check_motion_limits(StepStatus& status, const StepLabel& when)
     return;
   }
   const Contact* deepest = nullptr;
-  for (const Contact& c : trial_contacts)
+  for (const Contact& c : contact_set.trial)
     if (c.trial.state != ContactState::open && -c.end_gap > status.max_penetration)
     {
       status.max_penetration = -c.end_gap;
@@ -219,7 +219,7 @@ StepResult System::accept_step(double dt)
   start = Clock::now();
   record_half(dt, solution);
   update_blocks(dt, solution);
-  for (Contact& c : trial_contacts)
+  for (Contact& c : contact_set.trial)
   {
     if (c.trial.state == ContactState::slide)
       c.total_slip += c.step_slip;
@@ -234,8 +234,8 @@ StepResult System::accept_step(double dt)
                                                              : dt;
     c.forces = c.trial;
   }
-  contacts.swap(trial_contacts);
-  raised_penalties.clear();
+  contact_set.accepted.swap(contact_set.trial);
+  contact_set.raised_penalties.clear();
   ++geometry_epoch;
   if (mode == StageMode::static_equilibrium)
     set_at_rest();
@@ -292,7 +292,7 @@ void System::measure_balance(StepStatus& status)
       add(j.block_a, std::hypot(p.normal_force, p.shear_force));
       add(j.block_b, std::hypot(p.normal_force, p.shear_force));
     }
-  for (const Contact& c : trial_contacts)
+  for (const Contact& c : contact_set.trial)
     if (c.forces.state != ContactState::open)
     {
       add(c.vertex_block, std::hypot(c.forces.normal_force, c.forces.shear_force));

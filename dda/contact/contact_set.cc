@@ -1,0 +1,97 @@
+// The contacts' persistence from step to step (dda/contact/contact_set.h).
+#include "dda/contact/contact_set.h"
+
+#include <algorithm>
+
+namespace ddafem::dda
+{
+void ContactSet::inherit(const Parallel& parallel, double w0)
+{
+  // The trial contacts start as detected; each finds its predecessor on the threads (copied
+  // there too: the contact is at hand when it inherits); the new ones take ids afterwards, in
+  // contact order, so the ids do not depend on the number of threads either.
+  constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+  const std::vector<Contact>& found = detected.contacts;
+  std::vector<std::size_t>& predecessors = detected.predecessors;
+  const bool search = predecessors.size() != found.size();
+  if (search)
+    predecessors.resize(found.size());
+  trial.resize(found.size());
+  parallel.for_chunks(found.size(), 1024,
+                      [&](std::size_t begin, std::size_t end)
+                      {
+                        // Both lists are in key order: one search per chunk, then a walk.
+                        auto at = accepted.begin();
+                        if (search && begin < end)
+                          at = std::lower_bound(
+                              accepted.begin(), accepted.end(), found[begin].key(),
+                              [](const Contact& x, const auto& key) { return x.key() < key; });
+                        for (std::size_t k = begin; k < end; ++k)
+                        {
+                          trial[k] = found[k];
+                          if (search)
+                          {
+                            const auto key = trial[k].key();
+                            while (at != accepted.end() && at->key() < key)
+                              ++at;
+                            predecessors[k] = find_predecessor(trial[k], at, none);
+                          }
+                          const std::size_t p = predecessors[k];
+                          inherit_state(trial[k], p == none ? nullptr : &accepted[p], none, w0);
+                        }
+                      });
+  for (Contact& c : trial)
+    if (c.id == none)
+      c.id = next_id++;
+}
+
+std::size_t ContactSet::find_predecessor(const Contact& c, std::vector<Contact>::const_iterator at,
+                                         std::size_t none) const
+{
+  // The same key; else a vertex that moved on to another edge of the same block inherits its
+  // previous contact there (sliding past a corner): the last one not open.
+  if (at != accepted.end() && at->key() == c.key())
+    return static_cast<std::size_t>(at - accepted.begin());
+  const auto same_vertex = [&](const Contact& x)
+  {
+    return x.vertex_block == c.vertex_block && x.vertex == c.vertex && x.edge_block == c.edge_block;
+  };
+  auto first = at;
+  while (first != accepted.begin() && same_vertex(*(first - 1)))
+    --first;
+  std::size_t previous = none;
+  for (auto it = first; it != accepted.end() && same_vertex(*it); ++it)
+    if (it->forces.state != ContactState::open)
+      previous = static_cast<std::size_t>(it - accepted.begin());
+  return previous;
+}
+
+void ContactSet::inherit_state(Contact& c, const Contact* previous, std::size_t no_id,
+                               double w0) const
+{
+  // Keep id, state and forces of contacts that persist.
+  if (previous)
+  {
+    c.id = previous->id;
+    c.forces = previous->forces;
+    c.total_slip = previous->total_slip;
+    c.slide_duration = previous->slide_duration;
+    c.penalty_factor = previous->penalty_factor;
+  }
+  else
+  {
+    // A new contact starts closed if its blocks touch (within the 1e-9 of the model size that
+    // joins shared edges): blocks stacked in the scene then start closed together, where
+    // starting open would close them one course per open-close iteration (a stack of n
+    // courses would need n iterations, and Shi's 6 then cut dt without end). Those in
+    // tension open in the first iteration.
+    c.id = no_id;
+    c.forces.state = c.gap <= 2e-9 * w0 ? ContactState::lock : ContactState::open;
+  }
+  if (!raised_penalties.empty())
+    if (const auto raised = raised_penalties.find(c.key()); raised != raised_penalties.end())
+      c.penalty_factor = std::max(c.penalty_factor, raised->second);
+  c.trial = c.forces;
+}
+
+} // namespace ddafem::dda
