@@ -82,8 +82,8 @@ void System::refresh_joint_lists()
     add(j.block_a, j.edge_a, j.block_b);
     add(j.block_b, j.edge_b, j.block_a);
   }
-  // An element between two blocks (a bolt, a frame) couples them in the matrix
-  // like a joint (not in contact detection).
+  // An element between two blocks (a bolt, a frame) couples them in the matrix like a joint
+  // (not in contact detection).
   for (const std::unique_ptr<ElementKind>& k : element_kinds)
     k->add_couplings(joint_lists.joined);
   std::sort(joint_lists.bonded_pairs.begin(), joint_lists.bonded_pairs.end());

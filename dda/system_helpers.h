@@ -1,4 +1,5 @@
-// Small helpers of the System implementation files (private: only dda/system*.cc include it).
+// Small helpers of the System implementation files and the element kinds (private: only
+// dda/system*.cc and dda/*.cc of element kinds include it).
 #pragma once
 
 #include "common/format.h"

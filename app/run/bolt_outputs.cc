@@ -13,12 +13,6 @@ namespace ddafem
 {
 namespace
 {
-/// A time [s], or null for an event that never happened (NaN).
-nlohmann::json time_or_null(double t)
-{
-  return std::isnan(t) ? nlohmann::json(nullptr) : nlohmann::json(t);
-}
-
 class BoltOutputs final : public ElementOutputs
 {
 public:
@@ -52,16 +46,16 @@ public:
     nlohmann::json bolts = nlohmann::json::array();
     for (const dda::Bolt& b : all)
       bolts.push_back({{"name", b.name},
-                       {"head_m", {b.head.initial.x(), b.head.initial.y()}},
-                       {"anchor_m", {b.anchor.initial.x(), b.anchor.initial.y()}},
+                       {"head_m", point_json(b.head.initial)},
+                       {"anchor_m", point_json(b.anchor.initial)},
                        {"free_length_m", b.law.free_length},
                        {"stiffness_n_per_m", b.law.stiffness},
                        {"pretension_n", b.law.pretension},
                        {"yield_force_n", b.law.yield_force},
                        {"max_force_n", b.record.max_force},
                        {"max_elongation_m", b.record.max_elongation},
-                       {"final_head_m", {b.head.position.x(), b.head.position.y()}},
-                       {"final_anchor_m", {b.anchor.position.x(), b.anchor.position.y()}},
+                       {"final_head_m", point_json(b.head.position)},
+                       {"final_anchor_m", point_json(b.anchor.position)},
                        {"final_force_n", b.forces.axial_force},
                        {"final_elongation_m", b.length() - b.law.free_length},
                        {"plastic_elongation_m", b.forces.plastic_elongation},

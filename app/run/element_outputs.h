@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -18,6 +19,18 @@
 
 namespace ddafem
 {
+/// summary.json's time of an event [s], or null for one that never happened (NaN).
+inline nlohmann::json time_or_null(double t)
+{
+  return std::isnan(t) ? nlohmann::json(nullptr) : nlohmann::json(t);
+}
+
+/// summary.json's point: [x, y] [m].
+inline nlohmann::json point_json(const dda::Point& p)
+{
+  return {p.x(), p.y()};
+}
+
 class ElementOutputs
 {
 public:

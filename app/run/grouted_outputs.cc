@@ -14,16 +14,6 @@ namespace ddafem
 {
 namespace
 {
-nlohmann::json point_json(const dda::Point& p)
-{
-  return {p.x(), p.y()};
-}
-
-nlohmann::json time_or_null(double t)
-{
-  return std::isnan(t) ? nlohmann::json(nullptr) : nlohmann::json(t);
-}
-
 nlohmann::json crossing_summary(const dda::GroutedBolt& b, const dda::GroutedCrossing& c,
                                 bool small_displacement)
 {

@@ -19,16 +19,6 @@ namespace ddafem
 {
 namespace
 {
-nlohmann::json time_or_null(double t)
-{
-  return std::isnan(t) ? nlohmann::json(nullptr) : nlohmann::json(t);
-}
-
-nlohmann::json point_json(const dda::Point& p)
-{
-  return {p.x(), p.y()};
-}
-
 /// The bending moment of larger magnitude of the two ends [N m/m], signed.
 double governing_moment(const dda::FrameForces& f)
 {
