@@ -2,6 +2,7 @@
 // incident wave), the `interface` that ties blocks to it, and the checks between them and the rest
 // of the scene.
 #include "app/scene/scene_readers.h"
+#include "app/schema/bound_sections.h"
 
 #include <algorithm>
 #include <cmath>
@@ -129,8 +130,7 @@ fem::HoleDescription read_hole(const MapReader& r, const fem::FarFieldDescriptio
                       "]: expected it strictly inside the far field [" + format_number(d.lower[0]) +
                       ", " + format_number(d.upper[0]) + "] x [" + format_number(d.lower[1]) +
                       ", " + format_number(d.upper[1]) + "]");
-  hole.element_size = r.number("element_size");
-  hole.growth_ratio = r.number("growth_ratio");
+  schema::far_field_hole_keys().fill(r, hole);
   return hole;
 }
 
@@ -166,19 +166,14 @@ fem::BoundaryCondition read_far_field_boundary(const MapReader& r,
       d.mesh_file.parts.count(fem::BoundaryPart::hole) == 0)
     throw r.error("part", "the far field has no hole: expected a `far_field.hole` section or "
                           "a `hole` tag in `far_field.mesh.parts`");
-  bc.kind = r.choice_of<fem::BoundaryKind>("type");
-  bc.a = r.number("a");
-  bc.b = r.number("b");
+  schema::far_field_boundary_keys().fill(r, bc);
   if (r.has("springs"))
   {
     if (bc.kind != fem::BoundaryKind::lysmer)
       throw r.error("springs", "springs stand beside Lysmer dashpots: expected `type: lysmer`");
     const MapReader sr = r.section_reader("springs");
     bc.springs.enabled = true;
-    const Vector2 c = sr.vector2("center");
-    bc.springs.center = {c.x(), c.y()};
-    bc.springs.alpha_n = sr.number("alpha_n");
-    bc.springs.alpha_t = sr.number("alpha_t");
+    schema::far_field_springs_keys().fill(sr, bc.springs);
   }
   return bc;
 }
@@ -368,9 +363,7 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
     d.lower = {lower.x(), lower.y()};
     d.upper = {upper.x(), upper.y()};
   }
-  d.element_size = f.number("element_size");
-  d.max_frequency = f.number("max_frequency");
-  d.points_per_wavelength = f.number("points_per_wavelength");
+  schema::far_field_keys().fill(f, d); // element size, frequency, solver and its tolerance
   if (f.has("incident"))
   {
     const MapReader inc = f.section_reader("incident");
@@ -384,12 +377,10 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
                                   "(or an incident record, whose spectrum chooses it)");
   if (f.has("hole"))
     d.hole = read_hole(f.section_reader("hole"), d);
-  d.solver = f.choice_of<fem::LinearSolver>("solver");
   if (f.has("static_stage"))
     d.static_stage = read_static_stage(f.section_reader("static_stage"), d);
   if (f.has("rayleigh"))
     d.rayleigh = read_rayleigh(f.section_reader("rayleigh"));
-  d.solver_tolerance = f.number("solver_tolerance");
   const long long degree = f.integer("degree");
   if (degree != 1 && degree != 2)
     throw f.error("degree", "expected 1 or 2");

@@ -1,6 +1,7 @@
 // The model's sections: analysis, materials and joints, time functions, boundaries, time,
 // contacts, stages, solver and output.
 #include "app/scene/scene_readers.h"
+#include "app/schema/bound_sections.h"
 
 #include <algorithm>
 #include <cassert>
@@ -307,9 +308,7 @@ SceneNames read_materials(const MapReader& top, dda::ModelDescription& model)
   {
     dda::Material m;
     m.name = name;
-    m.density = r.number("density");
-    m.youngs_modulus = r.number("youngs_modulus");
-    m.poisson_ratio = r.number("poisson_ratio");
+    schema::material_keys().fill(r, m);
     m.damping = read_damping(r);
     model.materials.push_back(m);
     material_names.push_back(name);
@@ -322,12 +321,7 @@ SceneNames read_materials(const MapReader& top, dda::ModelDescription& model)
   {
     dda::JointMaterial j;
     j.name = name;
-    j.normal_stiffness = r.number("normal_stiffness");
-    j.shear_ratio = r.number("shear_ratio");
-    j.friction_angle = r.number("friction_angle");
-    j.cohesion = r.number("cohesion");
-    j.tensile_strength = r.number("tensile_strength");
-    j.bonded = r.boolean("bonded");
+    schema::joint_material_keys().fill(r, j);
     j.damping = read_damping(r);
     model.joint_materials.push_back(j);
     joint_names.push_back(name);
@@ -394,39 +388,17 @@ void read_time(const MapReader& top, dda::TimeSettings& time_settings)
   if (!top.has("time"))
     throw top.error("time", "expected a `time` section (dt, end_time) or a `tunnel`");
   const MapReader time = top.section_reader("time");
-  time_settings.dt = time.number("dt");
-  time_settings.end_time = time.number("end_time");
+  schema::time_keys().fill(time, time_settings);
   if (time_settings.end_time < time_settings.dt)
     throw time.error("end_time",
                      "expected end_time >= dt = " + format_number(time_settings.dt) + " s");
-  time_settings.integrator = time.choice_of<dda::Integrator>("integrator");
-  time_settings.spectral_radius = time.number("spectral_radius");
-  time_settings.control = time.choice_of<dda::TimeControl>("control");
-  if (time.has("dt_min"))
-  {
-    time_settings.dt_min = time.number("dt_min");
-    if (time_settings.dt_min > time_settings.dt)
-      throw time.error("dt_min",
-                       "expected dt_min <= dt = " + format_number(time_settings.dt) + " s");
-  }
-  time_settings.cut_factor = time.number("cut_factor");
-  time_settings.growth_factor = time.number("growth_factor");
-  time_settings.reversal_tolerance = time.number("reversal_tolerance");
+  if (time.has("dt_min") && time_settings.dt_min > time_settings.dt)
+    throw time.error("dt_min", "expected dt_min <= dt = " + format_number(time_settings.dt) + " s");
 }
 
 void read_contacts(const MapReader& top, dda::ContactSettings& contact_settings)
 {
-  const MapReader contacts = top.section_reader("contacts");
-  contact_settings.max_displacement_ratio = contacts.number("max_displacement_ratio");
-  if (contacts.has("search_distance"))
-    contact_settings.search_distance = contacts.number("search_distance");
-  if (contacts.has("max_penetration"))
-    contact_settings.max_penetration = contacts.number("max_penetration");
-  contact_settings.max_open_close_iterations =
-      static_cast<unsigned>(contacts.integer("max_open_close_iterations"));
-  contact_settings.angle_tolerance_deg = contacts.number("angle_tolerance");
-  contact_settings.max_penalty_factor = contacts.number("max_penalty_factor");
-  contact_settings.flip_force_ratio = contacts.number("flip_force_ratio");
+  schema::contacts_keys().fill(top.section_reader("contacts"), contact_settings);
 }
 
 void read_stages(const MapReader& top, dda::ModelDescription& model)
@@ -437,12 +409,8 @@ void read_stages(const MapReader& top, dda::ModelDescription& model)
 
 dda::SolverSettings read_solver(const MapReader& top)
 {
-  const MapReader r = top.section_reader("solver");
   dda::SolverSettings s;
-  s.method = r.choice_of<dda::SolverMethod>("method");
-  s.direct = r.choice_of<dda::SolverKind>("type");
-  s.tolerance = r.number("tolerance");
-  s.max_iterations = static_cast<unsigned>(r.integer("max_iterations"));
+  schema::solver_keys().fill(top.section_reader("solver"), s);
   return s;
 }
 
@@ -450,14 +418,9 @@ OutputSettings read_output(const MapReader& top)
 {
   OutputSettings settings;
   const MapReader output = top.section_reader("output");
-  settings.directory = output.string("directory");
+  schema::output_keys().fill(output, settings);
   if (trim(settings.directory).empty())
     throw output.error("directory", "expected a non-empty directory name");
-  settings.interval = output.number("interval");
-  settings.history_every = static_cast<std::size_t>(output.integer("history_every"));
-  settings.flush_interval = output.number("flush_interval");
-  settings.checkpoint_every = output.number("checkpoint_every");
-  settings.vtu_compression = output.choice_of<fem::VtuCompression>("vtu_compression");
   return settings;
 }
 

@@ -1,13 +1,79 @@
 // The scene schema: the deal.II far field and its interface with the blocks.
+#include "app/schema/bound_sections.h"
 #include "app/schema/schema_sections.h"
 #include "common/wave_type.h"
 #include "fem/far_field_description.h"
 
 namespace ddafem::schema
 {
+BoundKeys<fem::FarFieldDescription> far_field_keys()
+{
+  using S = fem::FarFieldDescription;
+  using T = ValueType;
+  BoundKeys<S> k;
+  k.add(key("material", T::string).required().meaning("name of a material in `materials`"));
+  k.add(key("lower", T::vector2)
+            .unit("m")
+            .default_note("required unless `mesh` is given")
+            .meaning("lower-left corner [x0, y0]"));
+  k.add(key("upper", T::vector2)
+            .unit("m")
+            .default_note("required unless `mesh` is given")
+            .meaning("upper-right corner [x1, y1]"));
+  k.field("element_size", &S::element_size)
+      .unit("m")
+      .at_least(0)
+      .meaning("element edge length; 0: VS / (max_frequency points_per_wavelength) x degree");
+  k.field("max_frequency", &S::max_frequency)
+      .unit("Hz")
+      .at_least(0)
+      .meaning("highest frequency to resolve (needed when element_size is 0, unless the "
+               "incident wave is a record: then its spectrum's f99)");
+  k.field("points_per_wavelength", &S::points_per_wavelength)
+      .greater_than(0)
+      .meaning("nodes per shortest S wavelength");
+  k.add(key("degree", T::integer).default_yaml("2").at_least(1).meaning("FE_Q degree: 1 or 2"));
+  k.add(key("hole", T::section)
+            .section("far_field.hole")
+            .default_note("none")
+            .meaning("a hole in the rectangle (for the near field), elements graded towards it"));
+  k.add(key("mesh", T::section)
+            .section("far_field.mesh")
+            .default_note("none: the generated rectangle")
+            .meaning("a Gmsh mesh instead of the rectangle"));
+  k.field("solver", &S::solver)
+      .meaning("direct: sparse LU factorized once; cg: conjugate gradients (Jacobi), "
+               "warm-started from the predicted displacement: faster on large models");
+  k.field("solver_tolerance", &S::solver_tolerance)
+      .greater_than(0)
+      .less_than(1)
+      .meaning("cg: residual relative to the right-hand side (1e-12: monitors agree with "
+               "`direct` to about 1e-8)");
+  k.add(key("static_stage", T::section)
+            .section("far_field.static_stage")
+            .default_note("none: the dynamic stage starts unstressed")
+            .meaning("gravity and in-situ stress solved statically before the dynamic stage"));
+  k.add(key("rayleigh", T::section)
+            .section("far_field.rayleigh")
+            .default_note("none")
+            .meaning("Rayleigh damping C += alpha M + beta K"));
+  k.add(key("boundaries", T::section_list)
+            .section("far_field.boundaries[i]")
+            .default_note("all parts free")
+            .meaning("what each side of the rectangle does"));
+  k.add(key("incident", T::section)
+            .section("far_field.incident")
+            .default_note("none")
+            .meaning("a vertically incident plane wave entering through an `input` side"));
+  k.add(key("integrator", T::choice)
+            .choices(names_of<fem::Integrator>())
+            .default_note("dda with time.integrator dda, else newmark_trapezoidal")
+            .meaning("the far field's Newmark scheme"));
+  return k;
+}
+
 Section far_field_section()
 {
-  using T = ValueType;
   return {
       "far_field",
       "A rectangular elastic continuum meshed with FE_Q elements (deal.II), in the scene's "
@@ -16,70 +82,7 @@ Section far_field_section()
       "field surrounds them (a `hole`, or a side they adjoin) and `interface` ties the two into "
       "one implicit system per step of the blocks (per half step of Bathe's scheme), on the dt "
       "levels time.dt / 2^k of adaptive control.",
-      {key("material", T::string).required().meaning("name of a material in `materials`"),
-       key("lower", T::vector2)
-           .unit("m")
-           .default_note("required unless `mesh` is given")
-           .meaning("lower-left corner [x0, y0]"),
-       key("upper", T::vector2)
-           .unit("m")
-           .default_note("required unless `mesh` is given")
-           .meaning("upper-right corner [x1, y1]"),
-       key("element_size", T::number)
-           .unit("m")
-           .default_yaml("0")
-           .at_least(0)
-           .meaning("element edge length; 0: VS / (max_frequency points_per_wavelength) x degree"),
-       key("max_frequency", T::number)
-           .unit("Hz")
-           .default_yaml("0")
-           .at_least(0)
-           .meaning("highest frequency to resolve (needed when element_size is 0, unless the "
-                    "incident wave is a record: then its spectrum's f99)"),
-       key("points_per_wavelength", T::number)
-           .default_yaml("10")
-           .greater_than(0)
-           .meaning("nodes per shortest S wavelength"),
-       key("degree", T::integer).default_yaml("2").at_least(1).meaning("FE_Q degree: 1 or 2"),
-       key("hole", T::section)
-           .section("far_field.hole")
-           .default_note("none")
-           .meaning("a hole in the rectangle (for the near field), elements graded towards it"),
-       key("mesh", T::section)
-           .section("far_field.mesh")
-           .default_note("none: the generated rectangle")
-           .meaning("a Gmsh mesh instead of the rectangle"),
-       key("solver", T::choice)
-           .default_yaml("direct")
-           .choices(names_of<fem::LinearSolver>())
-           .meaning("direct: sparse LU factorized once; cg: conjugate gradients (Jacobi), "
-                    "warm-started from the predicted displacement: faster on large models"),
-       key("solver_tolerance", T::number)
-           .default_yaml("1e-12")
-           .greater_than(0)
-           .less_than(1)
-           .meaning("cg: residual relative to the right-hand side (1e-12: monitors agree with "
-                    "`direct` to about 1e-8)"),
-       key("static_stage", T::section)
-           .section("far_field.static_stage")
-           .default_note("none: the dynamic stage starts unstressed")
-           .meaning("gravity and in-situ stress solved statically before the dynamic stage"),
-       key("rayleigh", T::section)
-           .section("far_field.rayleigh")
-           .default_note("none")
-           .meaning("Rayleigh damping C += alpha M + beta K"),
-       key("boundaries", T::section_list)
-           .section("far_field.boundaries[i]")
-           .default_note("all parts free")
-           .meaning("what each side of the rectangle does"),
-       key("incident", T::section)
-           .section("far_field.incident")
-           .default_note("none")
-           .meaning("a vertically incident plane wave entering through an `input` side"),
-       key("integrator", T::choice)
-           .choices(names_of<fem::Integrator>())
-           .default_note("dda with time.integrator dda, else newmark_trapezoidal")
-           .meaning("the far field's Newmark scheme")}};
+      far_field_keys().keys()};
 }
 
 Section interface_section()
@@ -124,61 +127,108 @@ Section interface_section()
                     "blocks' extent")}};
 }
 
+BoundKeys<fem::BoundaryCondition> far_field_boundary_keys()
+{
+  using S = fem::BoundaryCondition;
+  using T = ValueType;
+  BoundKeys<S> k;
+  k.add(key("part", T::choice)
+            .required()
+            .choices(names_of<fem::BoundaryPart>())
+            .meaning("the side, or the hole's boundary"));
+  k.field("type", &S::kind)
+      .required()
+      .meaning("fixed: zero displacement; lysmer: dashpots t = -rho (a VP (v.n) n + b VS (v "
+               "- (v.n) n)) (Lysmer & Kuhlemeyer 1969); input: those dashpots plus the "
+               "traction rho c 2 v_in of the incident wave (Joyner & Chen 1975); roller: the "
+               "displacement component the incident wave does not move is fixed (uy for a "
+               "vertical SV wave, ux for P), keeping a column one-dimensional; free_field "
+               "(left, right): dashpots on the motion relative to a 1D column solved "
+               "alongside plus its stress, t = sigma_ff n - D (v - v_ff) (free-field "
+               "boundary of Zienkiewicz et al. 1989, Nielsen 2006)");
+  k.field("a", &S::a).greater_than(0).meaning("normal dashpot factor");
+  k.field("b", &S::b).greater_than(0).meaning("tangential dashpot factor");
+  k.add(key("springs", T::section)
+            .section("far_field.boundaries[i].springs")
+            .default_note("none: dashpots only")
+            .meaning("lysmer: springs beside the dashpots (viscous-spring boundary) for waves "
+                     "radiating from a source inside"));
+  return k;
+}
+
 Section far_field_boundaries_section()
 {
-  using T = ValueType;
-  return {
-      "far_field.boundaries[i]",
-      "One side of the far-field rectangle. Sides not listed are traction free.",
-      {key("part", T::choice)
-           .required()
-           .choices(names_of<fem::BoundaryPart>())
-           .meaning("the side, or the hole's boundary"),
-       key("type", T::choice)
-           .required()
-           .choices(names_of<fem::BoundaryKind>())
-           .meaning("fixed: zero displacement; lysmer: dashpots t = -rho (a VP (v.n) n + b VS (v "
-                    "- (v.n) n)) (Lysmer & Kuhlemeyer 1969); input: those dashpots plus the "
-                    "traction rho c 2 v_in of the incident wave (Joyner & Chen 1975); roller: the "
-                    "displacement component the incident wave does not move is fixed (uy for a "
-                    "vertical SV wave, ux for P), keeping a column one-dimensional; free_field "
-                    "(left, right): dashpots on the motion relative to a 1D column solved "
-                    "alongside plus its stress, t = sigma_ff n - D (v - v_ff) (free-field "
-                    "boundary of Zienkiewicz et al. 1989, Nielsen 2006)"),
-       key("a", T::number).default_yaml("1").greater_than(0).meaning("normal dashpot factor"),
-       key("b", T::number).default_yaml("1").greater_than(0).meaning("tangential dashpot factor"),
-       key("springs", T::section)
-           .section("far_field.boundaries[i].springs")
-           .default_note("none: dashpots only")
-           .meaning("lysmer: springs beside the dashpots (viscous-spring boundary) for waves "
-                    "radiating from a source inside")}};
+  return {"far_field.boundaries[i]",
+          "One side of the far-field rectangle. Sides not listed are traction free.",
+          far_field_boundary_keys().keys()};
+}
+
+BoundKeys<fem::BoundarySprings> far_field_springs_keys()
+{
+  using S = fem::BoundarySprings;
+  BoundKeys<S> k;
+  k.field("center", &S::center)
+      .unit("m")
+      .required()
+      .meaning("where the waves come from (the source, the opening)");
+  k.field("alpha_n", &S::alpha_n)
+      .at_least(0)
+      .meaning("normal spring factor (Liu et al. 2006, 2D: 0.8 to 1.2)");
+  k.field("alpha_t", &S::alpha_t).at_least(0).meaning("tangential spring factor (0.35 to 0.65)");
+  return k;
 }
 
 Section far_field_boundaries_springs_section()
 {
-  using T = ValueType;
   return {"far_field.boundaries[i].springs",
           "The viscous-spring artificial boundary (Deeks & Randolph 1994; Liu et al. 2006): "
           "springs K = G / R (alpha_n n n^T + alpha_t (I - n n^T)) per unit length beside the "
           "dashpots, R the distance from the source. A wave from a source inside reaches the "
           "boundary as a cylindrical wave whose near-field part the dashpots alone reflect.",
-          {key("center", T::vector2)
-               .unit("m")
-               .required()
-               .meaning("where the waves come from (the source, the opening)"),
-           key("alpha_n", T::number)
-               .default_yaml("1")
-               .at_least(0)
-               .meaning("normal spring factor (Liu et al. 2006, 2D: 0.8 to 1.2)"),
-           key("alpha_t", T::number)
-               .default_yaml("0.5")
-               .at_least(0)
-               .meaning("tangential spring factor (0.35 to 0.65)")}};
+          far_field_springs_keys().keys()};
+}
+
+BoundKeys<fem::HoleDescription> far_field_hole_keys()
+{
+  using S = fem::HoleDescription;
+  using T = ValueType;
+  BoundKeys<S> k;
+  k.add(key("shape", T::choice)
+            .required()
+            .choices(names_of<fem::HoleShape>())
+            .meaning("the hole's shape"));
+  k.add(key("lower", T::vector2)
+            .unit("m")
+            .default_note("rectangle only")
+            .meaning("lower-left "
+                     "corner"));
+  k.add(key("upper", T::vector2)
+            .unit("m")
+            .default_note("rectangle only")
+            .meaning("upper-right "
+                     "corner"));
+  k.add(key("vertices", T::point_list)
+            .unit("m")
+            .default_note("polygon only")
+            .meaning("at least 3 vertices, star-shaped about their centroid (e.g. convex)"));
+  k.add(key("center", T::vector2).unit("m").default_note("circle only").meaning("centre"));
+  k.add(key("radius", T::number)
+            .unit("m")
+            .default_note("circle only")
+            .greater_than(0)
+            .meaning("radius; the boundary follows the circle under refinement"));
+  k.field("element_size", &S::element_size)
+      .unit("m")
+      .at_least(0)
+      .meaning("element size at the hole; 0: the far size (no grading)");
+  k.field("growth_ratio", &S::growth_ratio)
+      .greater_than(1)
+      .meaning("size ratio of neighbouring elements away from the hole");
+  return k;
 }
 
 Section far_field_hole_section()
 {
-  using T = ValueType;
   return {
       "far_field.hole",
       "A hole in the far-field rectangle, its boundary the part `hole`. The mesh is an O-grid of "
@@ -187,39 +237,7 @@ Section far_field_hole_section()
       "min(far size, element_size + (growth_ratio - 1) d), d the distance from the hole. Give "
       "the keys of the shape: rectangle `lower`, `upper`; polygon `vertices`; circle `center`, "
       "`radius`.",
-      {key("shape", T::choice)
-           .required()
-           .choices(names_of<fem::HoleShape>())
-           .meaning("the hole's shape"),
-       key("lower", T::vector2)
-           .unit("m")
-           .default_note("rectangle only")
-           .meaning("lower-left "
-                    "corner"),
-       key("upper", T::vector2)
-           .unit("m")
-           .default_note("rectangle only")
-           .meaning("upper-right "
-                    "corner"),
-       key("vertices", T::point_list)
-           .unit("m")
-           .default_note("polygon only")
-           .meaning("at least 3 vertices, star-shaped about their centroid (e.g. convex)"),
-       key("center", T::vector2).unit("m").default_note("circle only").meaning("centre"),
-       key("radius", T::number)
-           .unit("m")
-           .default_note("circle only")
-           .greater_than(0)
-           .meaning("radius; the boundary follows the circle under refinement"),
-       key("element_size", T::number)
-           .unit("m")
-           .default_yaml("0")
-           .at_least(0)
-           .meaning("element size at the hole; 0: the far size (no grading)"),
-       key("growth_ratio", T::number)
-           .default_yaml("1.3")
-           .greater_than(1)
-           .meaning("size ratio of neighbouring elements away from the hole")}};
+      far_field_hole_keys().keys()};
 }
 
 Section far_field_static_stage_section()

@@ -19,6 +19,7 @@ public:
     k.name = std::move(name);
     k.type = type;
   }
+  explicit KeyBuilder(Key key) : k(std::move(key)) {}
   KeyBuilder& unit(std::string u)
   {
     k.unit = std::move(u);

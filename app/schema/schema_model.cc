@@ -1,5 +1,6 @@
-// The scene schema: blocks, materials, joints, loads, boundaries, time, contacts, stages, solver,
-// output.
+// The scene schema: blocks, materials, joints, loads, boundaries and stages (the settings
+// sections time, contacts, solver and output: app/schema/schema_settings.cc).
+#include "app/schema/bound_sections.h"
 #include "app/schema/schema_sections.h"
 #include "common/wave_type.h"
 #include "dda/model_description.h"
@@ -203,69 +204,75 @@ Section analysis_section()
                         "(matrix assembled and factorized once; for waves of small amplitude)")}};
 }
 
+BoundKeys<dda::Material> material_keys()
+{
+  using S = dda::Material;
+  BoundKeys<S> k;
+  k.field("density", &S::density)
+      .unit("kg/m^3")
+      .required()
+      .greater_than(0)
+      .meaning("mass density rho");
+  k.field("youngs_modulus", &S::youngs_modulus)
+      .unit("Pa")
+      .required()
+      .greater_than(0)
+      .meaning("Young's modulus E");
+  k.field("poisson_ratio", &S::poisson_ratio)
+      .required()
+      .at_least(0)
+      .less_than(0.5)
+      .meaning("Poisson's ratio nu");
+  k.add(damping_key("materials.<name>.damping", "the blocks' strain rates"));
+  return k;
+}
+
 Section materials_section()
 {
-  using T = ValueType;
   return {"materials.<name>",
           "A linear elastic, isotropic block material. `<name>` is any name; blocks refer to it.",
-          {key("density", T::number)
-               .unit("kg/m^3")
-               .required()
-               .greater_than(0)
-               .meaning("mass density rho"),
-           key("youngs_modulus", T::number)
-               .unit("Pa")
-               .required()
-               .greater_than(0)
-               .meaning("Young's modulus E"),
-           key("poisson_ratio", T::number)
-               .required()
-               .at_least(0)
-               .less_than(0.5)
-               .meaning("Poisson's ratio nu"),
-           damping_key("materials.<name>.damping", "the blocks' strain rates")}};
+          material_keys().keys()};
+}
+
+BoundKeys<dda::JointMaterial> joint_material_keys()
+{
+  using S = dda::JointMaterial;
+  BoundKeys<S> k;
+  k.field("normal_stiffness", &S::normal_stiffness)
+      .unit("N/m")
+      .required()
+      .greater_than(0)
+      .meaning("penalty spring at each contact point");
+  k.field("shear_ratio", &S::shear_ratio).greater_than(0).meaning("shear spring / normal spring");
+  k.field("friction_angle", &S::friction_angle)
+      .unit("deg")
+      .at_least(0)
+      .less_than(90)
+      .meaning("Coulomb friction angle phi");
+  k.field("cohesion", &S::cohesion)
+      .unit("Pa")
+      .at_least(0)
+      .meaning("cohesion c: of a bonded joint, or of a frictional contact until it first slides "
+               "or opens (per unit joint length carried by the contact)");
+  k.field("tensile_strength", &S::tensile_strength)
+      .unit("Pa")
+      .at_least(0)
+      .meaning("tensile strength: of a bonded joint, or of a frictional contact until it first "
+               "slides or opens");
+  k.field("bonded", &S::bonded)
+      .meaning("true: blocks sharing an edge are glued by springs until the strength is "
+               "exceeded, then they meet through frictional contacts (residual friction, no "
+               "cohesion); false: frictional contacts from the start");
+  k.add(damping_key("joint_materials.<name>.damping", "the joints' and contacts' relative motion"));
+  return k;
 }
 
 Section joint_materials_section()
 {
-  using T = ValueType;
-  return {
-      "joint_materials.<name>",
-      "Properties of the joints (contacts) between blocks. `<name>` is any name; `joints` "
-      "refers to it.",
-      {key("normal_stiffness", T::number)
-           .unit("N/m")
-           .required()
-           .greater_than(0)
-           .meaning("penalty spring at each contact point"),
-       key("shear_ratio", T::number)
-           .default_yaml("0.4")
-           .greater_than(0)
-           .meaning("shear spring / normal spring"),
-       key("friction_angle", T::number)
-           .unit("deg")
-           .default_yaml("0")
-           .at_least(0)
-           .less_than(90)
-           .meaning("Coulomb friction angle phi"),
-       key("cohesion", T::number)
-           .unit("Pa")
-           .default_yaml("0")
-           .at_least(0)
-           .meaning("cohesion c: of a bonded joint, or of a frictional contact until it first "
-                    "slides or opens (per unit joint length carried by the contact)"),
-       key("tensile_strength", T::number)
-           .unit("Pa")
-           .default_yaml("0")
-           .at_least(0)
-           .meaning("tensile strength: of a bonded joint, or of a frictional contact until it "
-                    "first slides or opens"),
-       key("bonded", T::boolean)
-           .default_yaml("true")
-           .meaning("true: blocks sharing an edge are glued by springs until the strength is "
-                    "exceeded, then they meet through frictional contacts (residual friction, no "
-                    "cohesion); false: frictional contacts from the start"),
-       damping_key("joint_materials.<name>.damping", "the joints' and contacts' relative motion")}};
+  return {"joint_materials.<name>",
+          "Properties of the joints (contacts) between blocks. `<name>` is any name; `joints` "
+          "refers to it.",
+          joint_material_keys().keys()};
 }
 
 Section joints_section()
@@ -490,129 +497,6 @@ Section boundaries_on_line_section()
                .meaning("direction of the line [dx, dy], non-zero (any length)")}};
 }
 
-Section time_section()
-{
-  using T = ValueType;
-  return {
-      "time",
-      "Time stepping.",
-      {key("dt", T::number).unit("s").required().greater_than(0).meaning("time step"),
-       key("end_time", T::number)
-           .unit("s")
-           .required()
-           .greater_than(0)
-           .meaning("simulated duration; must be >= dt"),
-       key("integrator", T::choice)
-           .choices(names_of<dda::Integrator>())
-           .default_yaml("bathe")
-           .meaning("bathe (the default): Bathe's composite scheme, a generalized-alpha "
-                    "(rho_inf 1/2) and a three-point backward Euler half step per dt, two solves "
-                    "per step; right for frictional sliding and falls (within 0.71%) and for "
-                    "waves (the bar's record error 0.70% at 200 steps per period), "
-                    "docs/verification/failure.md; with a far field, the far field takes the "
-                    "trapezoidal rule on each half step. generalized_alpha "
-                    "(Chung & Hulbert 1993): one solve per step, sliding within 0.51%, but the "
-                    "bar's record error 1.55% at 200 steps per period; dda: Shi's first-order "
-                    "scheme (damps waves, but not stiff contact modes: its spectral radius "
-                    "returns to 1 as omega dt grows); newmark_trapezoidal: energy-conserving, "
-                    "second order (penalty contacts ring: blocks bounce and slide too far)"),
-       key("spectral_radius", T::number)
-           .default_yaml("0.2")
-           .at_least(0)
-           .at_most(1)
-           .meaning("generalized_alpha: the spectral radius at infinite frequency rho_inf (1: "
-                    "no algorithmic damping; 0: stiff modes annihilated in one step)"),
-       key("control", T::choice)
-           .choices(names_of<dda::TimeControl>())
-           .default_yaml("adaptive")
-           .meaning("adaptive: dt is the largest step, cut by cut_factor when a step fails "
-                    "(open-close iteration not converged, a vertex moving more than "
-                    "contacts.max_displacement_ratio allows, too deep a penetration) and grown "
-                    "back by growth_factor (blocks tied to a far field: on the levels "
-                    "dt / 2^k, doubling after as many steps as growth_factor takes to double; "
-                    "coupling/README.md); fixed: every step has dt and such a failure stops "
-                    "the run (wave problems)"),
-       key("dt_min", T::number)
-           .unit("s")
-           .default_note("dt / 10^4")
-           .greater_than(0)
-           .meaning("smallest step of adaptive control; a step that needs less stops the run"),
-       key("cut_factor", T::number)
-           .default_yaml("0.3")
-           .greater_than(0)
-           .less_than(1)
-           .meaning("dt multiplier after a failed step (Shi: 0.3)"),
-       key("growth_factor", T::number)
-           .default_yaml("1.2")
-           .at_least(1)
-           .meaning("dt multiplier after an accepted step, up to dt"),
-       key("reversal_tolerance", T::number)
-           .unit("m")
-           .default_yaml("1e-6")
-           .at_least(0)
-           .meaning("adaptive control: the slip error a sliding contact's reversal within a "
-                    "step may leave (its friction acted the wrong way for part of the step: "
-                    "the speed error times the duration of the slide it ends); a step with a "
-                    "larger one is redone to end just before the reversal and dt goes back up "
-                    "at the next step; with generalized-alpha, a step in which friction turns "
-                    "around is redone from the jump and the open-close iteration locks a "
-                    "contact whose sliding reverses between trials (these two only on slides "
-                    "of at least 10 steps: shorter ones are contacts chattering under a wave). "
-                    "1e-6 makes two-way sliding on a shaken joint exact "
-                    "(docs/verification/failure.md, part 1b); 0: none (docs/design.md, "
-                    "Integrators)")}};
-}
-
-Section contacts_section()
-{
-  using T = ValueType;
-  return {"contacts",
-          "Contact detection and the open-close iteration (Shi 1988). w0 is half the model's size "
-          "(the larger side of the blocks' bounding box, halved). The step displacement bound is "
-          "g2 w0, but at most a tenth of the shortest block edge.",
-          {key("max_displacement_ratio", T::number)
-               .default_yaml("0.01")
-               .greater_than(0)
-               .less_than(1)
-               .meaning("Shi's g2: the largest vertex displacement of a step over w0 (the bound is "
-                        "at most a tenth of the shortest edge); a step beyond is cut"),
-           key("search_distance", T::number)
-               .unit("m")
-               .default_note("2.5 x the step displacement bound")
-               .greater_than(0)
-               .meaning("how close a vertex must come to an edge to be a contact candidate"),
-           key("max_penetration", T::number)
-               .unit("m")
-               .default_note("the step displacement bound")
-               .greater_than(0)
-               .meaning("deepest penetration a step may leave; a step beyond is cut"),
-           key("max_open_close_iterations", T::integer)
-               .default_yaml("6")
-               .at_least(1)
-               .meaning("open-close iterations before the step is cut (Shi: 6)"),
-           key("max_penalty_factor", T::number)
-               .default_yaml("100")
-               .at_least(1)
-               .meaning("a contact penetrating deeper than max_penetration has its springs raised "
-                        "x 10 and the step redone (ntdda), up to this multiple of its joint "
-                        "material's; then dt is cut"),
-           key("flip_force_ratio", T::number)
-               .default_yaml("1e-3")
-               .at_least(0)
-               .less_than(1)
-               .meaning("from the third open-close iteration on, a contact whose forces stay below "
-                        "this fraction of the step's largest contact normal force changes state "
-                        "without holding the iteration back (no flipping between slide and lock "
-                        "at almost no force); 0 counts every change"),
-           key("angle_tolerance", T::number)
-               .unit("deg")
-               .default_yaml("1")
-               .greater_than(0)
-               .less_than(30)
-               .meaning("edges this close to parallel touch edge to edge; vertices this close to "
-                        "180 degrees are straight (never enter)")}};
-}
-
 /// The keys of every stage and of static stages: name, mode, dt, end_time, max_steps, tolerance.
 std::vector<Key> stage_keys()
 {
@@ -712,80 +596,6 @@ Section stages_section()
       "preloads) and carries only the dynamic increment from the first dynamic stage on: "
       "static stages come first, with a linear interface.",
       std::move(keys)};
-}
-
-Section solver_section()
-{
-  using T = ValueType;
-  return {"solver",
-          "Linear solver for each step's system.",
-          {key("method", T::choice)
-               .choices(names_of<dda::SolverMethod>())
-               .default_yaml("direct")
-               .meaning("direct: the sparse direct solver of `type`, its factors reused as a "
-                        "preconditioner while they serve; block_pcg: conjugate gradients "
-                        "preconditioned by the blocks' 6x6 diagonal, warm-started, no "
-                        "factorization (for many contacts changing state; the direct solver when "
-                        "it does not converge, see docs/performance/contact_bench.md)"),
-           key("type", T::choice)
-               .choices(names_of<dda::SolverKind>())
-               .default_yaml("block_ldlt")
-               .meaning("the sparse direct solver (block_pcg's fallback): block_ldlt: sparse "
-                        "Cholesky on the 6x6 blocks (fastest, see docs/performance/dda_bench.md); "
-                        "eigen_ldlt: Eigen SimplicialLDLT; klu: SuiteSparse KLU"),
-           key("tolerance", T::number)
-               .default_yaml("1e-10")
-               .greater_than(0)
-               .less_than(1e-3)
-               .meaning("block_pcg: relative residual, in the norm of the diagonal blocks' "
-                        "inverses, at which it stops"),
-           key("max_iterations", T::integer)
-               .default_yaml("200")
-               .at_least(1)
-               .meaning("block_pcg: iterations before the direct solver takes over (for this dt "
-                        "for the next 100 solves)")}};
-}
-
-Section output_section()
-{
-  using T = ValueType;
-  return {
-      "output",
-      "Where and how often results are written.",
-      {key("directory", T::string)
-           .default_yaml("results")
-           .meaning("output directory, relative to the working directory; `-o DIR` overrides"),
-       key("interval", T::number)
-           .unit("s")
-           .default_yaml("0")
-           .at_least(0)
-           .meaning("simulated time between block snapshots; 0: first and last only"),
-       key("history_every", T::integer)
-           .default_yaml("1")
-           .at_least(1)
-           .meaning("time steps between rows of the monitor histories (a step of bathe is "
-                    "its pair of half steps)"),
-       key("flush_interval", T::number)
-           .unit("s")
-           .default_yaml("2")
-           .at_least(0)
-           .meaning("wall-clock time between flushes of histories.h5 and of the running "
-                    "summary.json to disk: a run killed at any moment keeps every history row "
-                    "up to its last flush readable; 0: after every step"),
-       key("checkpoint_every", T::number)
-           .unit("s")
-           .default_yaml("60")
-           .at_least(0)
-           .meaning("wall-clock time between checkpoints (checkpoint.bin) from which `ddafem "
-                    "resume DIR` continues a killed or stopped run, its histories bit for bit "
-                    "those of an uninterrupted run; written between two steps of a stage, "
-                    "and when a budget stops the run; 0: none"),
-       key("vtu_compression", T::choice)
-           .default_yaml("best_speed")
-           .choices(names_of<fem::VtuCompression>())
-           .meaning("zlib level of the far field's VTU files (deal.II DataOut): best_compression "
-                    "writes files a few percent smaller in about four times the time "
-                    "(docs/performance.md, profile); the blocks' files are plain text")}};
 }
 
 } // namespace ddafem::schema

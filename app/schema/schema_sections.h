@@ -18,8 +18,7 @@ Key joint_material_key(const std::string& along);
 /// The `type` key of one time-function variant.
 Key time_function_type(TimeFunctionType type);
 
-// blocks, materials, joints, loads, boundaries, time, contacts, stages, solver, output
-// (app/schema/schema_model.cc)
+// blocks, materials, joints, loads, boundaries, stages (app/schema/schema_model.cc)
 Section top_level_section();
 Section analysis_section();
 Section materials_section();
@@ -39,9 +38,10 @@ Section boundaries_section();
 Section in_situ_stress_section();
 Section boundaries_input_section();
 Section boundaries_on_line_section();
+Section stages_section();
+// time, contacts, solver, output: keys bound to their fields (app/schema/schema_settings.cc)
 Section time_section();
 Section contacts_section();
-Section stages_section();
 Section solver_section();
 Section output_section();
 
