@@ -141,7 +141,7 @@ struct LiningDescription
   bool closed = false;               ///< the last point joins the first (a ring)
   double segment_length = 0.0;       ///< largest element length [m], > 0
   double thickness = 0.0;            ///< [m], > 0
-  double youngs_modulus = 0.0;       ///< [Pa], > 0
+  double youngs_modulus = 30e9;      ///< [Pa], > 0 (shotcrete or concrete)
   double compressive_strength = 0.0; ///< [Pa], > 0
   double tensile_strength = 0.0;     ///< [Pa], > 0
   double shear_strength = 0.0;       ///< [Pa]; 0: not checked

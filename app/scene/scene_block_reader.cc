@@ -1,6 +1,7 @@
 // Blocks: `blocks` (polygons and grids) and `rock_mass`, the overlap check, `in_situ_stress`, and
 // the points that must lie in some block (`point_loads`, `fixed_points`, `monitors`).
 #include "app/scene/scene_readers.h"
+#include "app/schema/bound_sections.h"
 
 #include "common/format.h"
 #include "dda/contact/broad_phase.h"
@@ -308,11 +309,7 @@ void read_bolts(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescrip
                     "duplicate bolt name (also used by " + it->second + "): expected unique names");
     b.head = r.vector2("head");
     b.anchor = r.vector2("anchor");
-    b.area = r.number("area");
-    b.youngs_modulus = r.number("youngs_modulus");
-    b.yield_force = r.number("yield_force");
-    b.rupture_strain = r.number("rupture_strain");
-    b.pretension = r.number("pretension");
+    schema::bolt_keys().fill(r, b); // the steel, the type and the grout
     if (b.pretension >= b.yield_force)
       throw r.error("pretension", "expected a pretension below the yield force (" +
                                       format_significant(b.yield_force) + " N)");

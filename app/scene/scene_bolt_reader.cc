@@ -41,7 +41,6 @@ std::string find_grouted_crossings(dda::BoltDescription& b, const dda::ModelDesc
 
 void read_bolt_type(const MapReader& r, dda::BoltDescription& b, const dda::ModelDescription& model)
 {
-  b.type = r.choice_of<dda::BoltType>("type");
   if (b.type == dda::BoltType::end_anchored)
   {
     for (const char* key : grouted_keys)
@@ -50,8 +49,6 @@ void read_bolt_type(const MapReader& r, dda::BoltDescription& b, const dda::Mode
                       "a key of grouted bolts: expected `type: grouted` or no " + std::string(key));
     return;
   }
-  b.grout_modulus = r.number("grout_modulus");
-  b.debonded_length = r.number("debonded_length");
   b.shear_capacity =
       r.has("shear_capacity") ? r.number("shear_capacity") : b.yield_force / std::sqrt(3.0);
   if (const std::string problem = find_grouted_crossings(b, model); !problem.empty())

@@ -1,6 +1,7 @@
 // `linings` (dda/lining.h): the polyline's nodes must lie on or in blocks, `installed_after` must
 // name a stage; read after `stages`.
 #include "app/scene/scene_readers.h"
+#include "app/schema/bound_sections.h"
 
 #include "common/format.h"
 #include "dda/geometry.h"
@@ -118,12 +119,7 @@ void read_linings(const MapReader& top, const std::optional<RockMassReport>& roc
     if (l.closed && l.points.front() == l.points.back())
       throw r.item_error("points", l.points.size() - 1,
                          "a point different from the first (a closed lining joins them itself)");
-    l.segment_length = r.number("segment_length");
-    l.thickness = r.number("thickness");
-    l.youngs_modulus = r.number("youngs_modulus");
-    l.compressive_strength = r.number("compressive_strength");
-    l.tensile_strength = r.number("tensile_strength");
-    l.shear_strength = r.number("shear_strength");
+    schema::lining_section_keys().fill(r, l);
     l.install_stage = install_stage(r, model);
     check_lining_nodes(r, l, model);
     model.linings.push_back(l);

@@ -128,11 +128,7 @@ dda::SettleCriterion read_settle_criterion(const MapReader& r)
                                      "rest or max_duration: expected no `") +
                              key + "` here");
   dda::SettleCriterion c;
-  c.rest_speed = r.number("rest_speed");
-  c.rest_duration = r.number("rest_duration");
-  c.fall_distance = r.number("fall_distance");
-  c.max_duration = r.number("max_duration");
-  c.remove_fallen = r.boolean("remove_fallen");
+  schema::settle_keys().fill(r, c);
   if (c.remove_fallen && c.fall_distance <= 0.0)
     throw r.error("remove_fallen",
                   "fallen blocks are removed once they have fallen: expected fall_distance > 0 "
@@ -164,9 +160,7 @@ dda::Stage read_stage(const MapReader& r, const dda::ModelDescription& model)
     stage.settle = read_settle_criterion(r);
   stage.dt = r.has("dt") ? r.number("dt") : model.time.dt;
   stage.end_time = r.has("end_time") ? r.number("end_time") : model.time.end_time;
-  stage.max_steps = static_cast<std::size_t>(r.integer("max_steps"));
-  stage.tolerance = r.number("tolerance");
-  stage.release = r.choice_of<dda::ReleaseAction>("release");
+  schema::stage_keys().fill(r, stage); // max_steps, tolerance, release
   if (stage.mode == dda::StageMode::dynamic && !stage.settle)
   {
     if (r.has("dt"))
@@ -351,11 +345,7 @@ dda::BoundaryDescription read_boundary(const MapReader& r, const dda::ModelDescr
 {
   dda::BoundaryDescription b;
   b.origin = r.key_path();
-  b.type = r.choice_of<dda::BoundaryType>("type");
-  b.impedance = r.choice_of<dda::ImpedanceKind>("impedance");
-  b.a_n = r.number("a_n");
-  b.a_t = r.number("a_t");
-  b.outer = r.boolean("outer");
+  schema::boundary_keys().fill(r, b);
   if (r.has("input"))
   {
     if (b.type == dda::BoundaryType::free)

@@ -120,8 +120,8 @@ void read_bolts(const MapReader& top, const BlockBoxes& boxes, dda::ModelDescrip
 /// `opening` an index into the rock mass's openings.
 void read_linings(const MapReader& top, const std::optional<RockMassReport>& rock_mass,
                   dda::ModelDescription& model);
-/// `bolts[i].type` and, for a grouted bolt, its keys and its crossings
-/// (app/scene/scene_bolt_reader.cc).
+/// What `bolts[i].type` (already filled) asks: no grouted keys on an end-anchored bolt; a
+/// grouted bolt's shear capacity and crossings (app/scene/scene_bolt_reader.cc).
 void read_bolt_type(const MapReader& r, dda::BoltDescription& b,
                     const dda::ModelDescription& model);
 /// A grouted bolt's crossings through the model's blocks (into b.crossings); empty, or what is

@@ -2,6 +2,7 @@
 // dda::generate_blocks cuts from them.
 #include "app/scene/rock_mass_scene.h"
 #include "app/scene/scene_readers.h"
+#include "app/schema/bound_sections.h"
 
 namespace ddafem::scene_reading
 {
@@ -41,9 +42,7 @@ std::vector<Point> read_region(const MapReader& r)
 dda::JointSet read_joint_set(const MapReader& r)
 {
   dda::JointSet set;
-  set.dip = r.number("dip");
-  set.spacing = r.number("spacing");
-  set.offset = r.number("offset");
+  schema::joint_set_keys().fill(r, set); // dip, spacing, offset
   const bool has_trace = r.has("trace_length"), has_bridge = r.has("bridge");
   if (has_trace != has_bridge)
     throw r.error(has_trace ? "trace_length" : "bridge",
@@ -56,9 +55,7 @@ dda::JointSet read_joint_set(const MapReader& r)
     set.bridge = r.number("bridge");
   }
   const MapReader p = r.section_reader("perturbation");
-  set.perturbation.spacing = p.number("spacing");
-  set.perturbation.position = p.number("position");
-  set.perturbation.distribution = p.choice_of<dda::Distribution>("distribution");
+  schema::perturbation_keys().fill(p, set.perturbation);
   return set;
 }
 
@@ -82,7 +79,7 @@ dda::Opening read_opening(const MapReader& r, const std::vector<Point>& region,
     const MapReader c = r.section_reader("circle");
     o.shape = dda::Opening::Shape::circle;
     o.center = c.vector2("center");
-    o.radius = c.number("radius");
+    schema::circle_keys().fill(c, o);
   }
   else if (r.has("horseshoe"))
   {
@@ -90,8 +87,7 @@ dda::Opening read_opening(const MapReader& r, const std::vector<Point>& region,
     const MapReader h = r.section_reader("horseshoe");
     o.shape = dda::Opening::Shape::horseshoe;
     o.center = h.vector2("floor_center");
-    o.width = h.number("width");
-    o.wall_height = h.number("wall_height");
+    schema::horseshoe_keys().fill(h, o);
   }
   else
   {
@@ -128,8 +124,7 @@ RockMassReport read_rock_mass(const MapReader& r, const SceneNames& names,
   const std::size_t material =
       find_name(r, "material", r.string("material"), material_names, "material");
   d.region = read_region(r.section_reader("region"));
-  d.chord_tolerance = r.number("chord_tolerance");
-  d.seed = static_cast<std::uint64_t>(r.integer("seed"));
+  schema::rock_mass_keys().fill(r, d); // chord_tolerance, seed
   for (const MapReader& j : r.section_list("joint_sets"))
   {
     d.joint_sets.push_back(read_joint_set(j));

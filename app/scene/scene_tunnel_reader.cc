@@ -3,6 +3,7 @@
 #include "app/scene/scene_readers.h"
 #include "app/scene/tunnel_bolts.h"
 #include "app/scene/tunnel_scene.h"
+#include "app/schema/bound_sections.h"
 
 namespace ddafem::scene_reading
 {
@@ -78,7 +79,7 @@ void read_tunnel_rock(const MapReader& r, const YAML::Node& root, const Context&
 TimeFunction read_tunnel_wave(const MapReader& r, TunnelDescription& t)
 {
   const MapReader wave = r.section_reader("wave");
-  t.wave_type = wave.choice_of<WaveType>("type");
+  schema::tunnel_wave_keys().fill(wave, t); // the type
   const TimeFunction velocity = read_time_function(wave, "velocity", TimeFunctionUse::velocity);
   if (wave.has("frequency"))
     t.wave_frequency = wave.number("frequency");
@@ -111,11 +112,11 @@ void require_no_within_record_under_surface(const MapReader& r, const TimeFuncti
                     "is half of it) or incident");
 }
 
-/// The near field, the truncation, the far field's margins and mesh, the window and the time step.
+/// The near field (the truncation, margins, mesh, window and time step: tunnel_keys).
 void read_tunnel_domain(const MapReader& r, TunnelDescription& t)
 {
   const MapReader near = r.section_reader("near_field");
-  t.size_factor = near.number("size_factor");
+  schema::tunnel_near_field_keys().fill(near, t); // size_factor
   if (near.has("lower") != near.has("upper"))
     throw near.error(near.has("lower") ? "upper" : "lower",
                      "expected both `lower` and `upper`, or neither (size_factor)");
@@ -126,37 +127,16 @@ void read_tunnel_domain(const MapReader& r, TunnelDescription& t)
       throw near.error("upper", "expected upper > lower in both x and y");
     t.near_field = std::array<Point, 2>{lower, upper};
   }
-  t.truncation = r.choice_of<TunnelTruncation>("truncation");
-  if (r.has("margin"))
-    t.margin = r.number("margin");
-  if (r.has("reference_margin"))
-    t.reference_margin = r.number("reference_margin");
-  t.points_per_wavelength = r.number("points_per_wavelength");
-  t.growth_ratio = r.number("growth_ratio");
-  if (r.has("window"))
-    t.window = r.number("window");
-  if (r.has("dt"))
-    t.dt = r.number("dt");
 }
 
 /// `tunnel.static` and `tunnel.settle`: the stages before and after the wave.
 void read_tunnel_stages(const MapReader& r, TunnelDescription& t)
 {
-  const MapReader stage = r.section_reader("static");
-  if (stage.has("dt"))
-    t.static_dt = stage.number("dt");
-  t.static_tolerance = stage.number("tolerance");
-  t.static_max_steps = stage.integer("max_steps");
-  t.static_release = stage.choice_of<dda::ReleaseAction>("release");
+  schema::tunnel_static_keys().fill(r.section_reader("static"), t);
   const MapReader settle = r.section_reader("settle");
   if (settle.has("enabled"))
     t.settle = settle.boolean("enabled");
-  t.settle_rest_speed = settle.number("rest_speed");
-  if (settle.has("rest_duration"))
-    t.settle_rest_duration = settle.number("rest_duration");
-  if (settle.has("max_duration"))
-    t.settle_max_duration = settle.number("max_duration");
-  t.settle_remove_fallen = settle.boolean("remove_fallen");
+  schema::tunnel_settle_keys().fill(settle, t);
 }
 
 /// `tunnel.damping` (default: 2 % at the wave's dominant frequency, docs/damping.md; none with
@@ -226,8 +206,7 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
       read_opening(r.section_reader("opening"),
                    {Point(-far, -far), Point(far, -far), Point(far, far), Point(-far, far)},
                    t.rock_mass.chord_tolerance));
-  t.depth = r.number("depth");
-  t.k0 = r.number("k0");
+  schema::tunnel_keys().fill(r, t); // depth, k0, the truncation, margins, mesh and time step
   const TimeFunction velocity = read_tunnel_wave(r, t);
   read_tunnel_domain(r, t);
   read_tunnel_stages(r, t);

@@ -1,44 +1,45 @@
 // The scene schema: the lining (dda/lining.h, docs/support.md "Lining"), of block scenes
 // (`linings[i]`) and of the tunnel (`tunnel.lining`).
+#include "app/schema/bound_sections.h"
 #include "app/schema/schema_sections.h"
 
 namespace ddafem::schema
 {
-namespace
-{
 /// The section and strength keys both share.
-std::vector<Key> section_keys()
+BoundKeys<dda::LiningDescription> lining_section_keys()
 {
-  using T = ValueType;
-  return {key("segment_length", T::number)
-              .unit("m")
-              .required()
-              .greater_than(0)
-              .meaning("largest element length: each leg is split into equal elements no longer; "
-                       "an element that straddles a joint bridges it over this length"),
-          key("thickness", T::number).unit("m").required().greater_than(0).meaning("t"),
-          key("youngs_modulus", T::number)
-              .unit("Pa")
-              .default_yaml("30e9")
-              .greater_than(0)
-              .meaning("E of the shotcrete or concrete"),
-          key("compressive_strength", T::number)
-              .unit("Pa")
-              .required()
-              .greater_than(0)
-              .meaning("f_c: the fibre stress may not fall below -f_c"),
-          key("tensile_strength", T::number)
-              .unit("Pa")
-              .required()
-              .greater_than(0)
-              .meaning("f_t (flexural): the fibre stress may not exceed f_t"),
-          key("shear_strength", T::number)
-              .unit("Pa")
-              .default_yaml("0")
-              .at_least(0)
-              .meaning("f_v: 1.5 |V| / t may not exceed it; 0: not checked")};
+  using S = dda::LiningDescription;
+  BoundKeys<S> k;
+  k.field("segment_length", &S::segment_length)
+      .unit("m")
+      .required()
+      .greater_than(0)
+      .meaning("largest element length: each leg is split into equal elements no longer; an "
+               "element that straddles a joint bridges it over this length");
+  k.field("thickness", &S::thickness).unit("m").required().greater_than(0).meaning("t");
+  k.field("youngs_modulus", &S::youngs_modulus)
+      .unit("Pa")
+      .greater_than(0)
+      .meaning("E of the shotcrete or concrete");
+  k.field("compressive_strength", &S::compressive_strength)
+      .unit("Pa")
+      .required()
+      .greater_than(0)
+      .meaning("f_c: the fibre stress may not fall below -f_c");
+  k.field("tensile_strength", &S::tensile_strength)
+      .unit("Pa")
+      .required()
+      .greater_than(0)
+      .meaning("f_t (flexural): the fibre stress may not exceed f_t");
+  k.field("shear_strength", &S::shear_strength)
+      .unit("Pa")
+      .at_least(0)
+      .meaning("f_v: 1.5 |V| / t may not exceed it; 0: not checked");
+  return k;
 }
 
+namespace
+{
 const char* const law_text =
     "2D Euler-Bernoulli frame elements of thickness `thickness` (unit width) between nodes at "
     "most `segment_length` apart; each node is a material point of the block it lies on and "
@@ -69,7 +70,7 @@ Section linings_section()
           .default_note("from the start")
           .meaning("the name of the stage after which it is installed: it carries what "
                    "happens from the next stage on")};
-  for (Key& k : section_keys())
+  for (Key& k : lining_section_keys().keys())
     keys.push_back(std::move(k));
   return {"linings[i]",
           std::string("A lining of shotcrete or concrete on the blocks' surface along `points` "
@@ -86,7 +87,7 @@ Section tunnel_lining_section()
                       "stage: it carries the dynamic increment only, the rock having taken the "
                       "excavation's load. ") +
               law_text,
-          section_keys()};
+          lining_section_keys().keys()};
 }
 
 } // namespace ddafem::schema

@@ -390,9 +390,47 @@ Section monitors_section()
            key("point", T::vector2).unit("m").required().meaning("the monitored material point")}};
 }
 
+BoundKeys<dda::BoundaryDescription> boundary_keys()
+{
+  using S = dda::BoundaryDescription;
+  using T = ValueType;
+  BoundKeys<S> k;
+  k.field("type", &S::type)
+      .required()
+      .meaning("free: no boundary term (a traction-free edge; kept so that --set can "
+               "switch types); vb1: Bao, Hatzor & Huang (2012) eq. 39; vb2: Jiao et al. "
+               "(2007) eq. 40; dashpot: the consistent dashpot, the force -C v1 with the "
+               "integrator's end-of-step velocity v1");
+  k.field("impedance", &S::impedance)
+      .meaning("textbook: VP = sqrt(E (1-nu) / (rho (1+nu) (1-2nu))), VS = sqrt(E / (2 rho "
+               "(1+nu))); effective: the model's actual wave speeds (block modulus in "
+               "series with the joint compliance behind the boundary block)");
+  k.field("a_n", &S::a_n).greater_than(0).meaning("normal coefficient in cn = a_n rho l0 VP");
+  k.field("a_t", &S::a_t).greater_than(0).meaning("tangential coefficient in ct = a_t rho l0 VS");
+  k.add(key("edges", T::integer_pair_list)
+            .at_least(0)
+            .default_note("(give one selector)")
+            .meaning("explicit edges [[block, edge], ...]: block indexes the final block list "
+                     "(each grid cell is one block, in grid order; the `rock_mass` blocks follow "
+                     "the `blocks`); edge k runs from vertex k to "
+                     "vertex k + 1 of the block's polygon as stored: anticlockwise (clockwise "
+                     "vertices are reversed, a repeated first vertex is dropped), so edges 0 to 3 "
+                     "of a grid cell are its bottom, right, top and left sides"));
+  k.add(key("on_line", T::section)
+            .section("boundaries[i].on_line")
+            .default_note("(give one selector)")
+            .meaning("every outer edge lying on a straight line"));
+  k.field("outer", &S::outer)
+      .meaning("true selects every outer edge (an edge not shared by a joint)");
+  k.add(key("input", T::section)
+            .section("boundaries[i].input")
+            .default_note("none")
+            .meaning("an incident wave entering through the boundary (vb1, vb2, dashpot)"));
+  return k;
+}
+
 Section boundaries_section()
 {
-  using T = ValueType;
   return {
       "boundaries[i]",
       "A treatment of outer block edges (docs/reference/physics.md section 3). Give exactly one "
@@ -406,47 +444,7 @@ Section boundaries_section()
       "penalty and shear ratio 0.4), preloaded with the `in_situ_stress` traction; when the "
       "first dynamic stage starts their forces become constant edge loads and the dashpots "
       "take over.",
-      {key("type", T::choice)
-           .required()
-           .choices(names_of<dda::BoundaryType>())
-           .meaning("free: no boundary term (a traction-free edge; kept so that --set can "
-                    "switch types); vb1: Bao, Hatzor & Huang (2012) eq. 39; vb2: Jiao et al. "
-                    "(2007) eq. 40; dashpot: the consistent dashpot, the force -C v1 with the "
-                    "integrator's end-of-step velocity v1"),
-       key("impedance", T::choice)
-           .choices(names_of<dda::ImpedanceKind>())
-           .default_yaml("textbook")
-           .meaning("textbook: VP = sqrt(E (1-nu) / (rho (1+nu) (1-2nu))), VS = sqrt(E / (2 rho "
-                    "(1+nu))); effective: the model's actual wave speeds (block modulus in "
-                    "series with the joint compliance behind the boundary block)"),
-       key("a_n", T::number)
-           .default_yaml("1")
-           .greater_than(0)
-           .meaning("normal coefficient in cn = a_n rho l0 VP"),
-       key("a_t", T::number)
-           .default_yaml("1")
-           .greater_than(0)
-           .meaning("tangential coefficient in ct = a_t rho l0 VS"),
-       key("edges", T::integer_pair_list)
-           .at_least(0)
-           .default_note("(give one selector)")
-           .meaning("explicit edges [[block, edge], ...]: block indexes the final block list "
-                    "(each grid cell is one block, in grid order; the `rock_mass` blocks follow "
-                    "the `blocks`); edge k runs from vertex k to "
-                    "vertex k + 1 of the block's polygon as stored: anticlockwise (clockwise "
-                    "vertices are reversed, a repeated first vertex is dropped), so edges 0 to 3 "
-                    "of a grid cell are its bottom, right, top and left sides"),
-       key("on_line", T::section)
-           .section("boundaries[i].on_line")
-           .default_note("(give one selector)")
-           .meaning("every outer edge lying on a straight line"),
-       key("outer", T::boolean)
-           .default_yaml("false")
-           .meaning("true selects every outer edge (an edge not shared by a joint)"),
-       key("input", T::section)
-           .section("boundaries[i].input")
-           .default_note("none")
-           .meaning("an incident wave entering through the boundary (vb1, vb2, dashpot)")}};
+      boundary_keys().keys()};
 }
 
 Section in_situ_stress_section()
@@ -497,91 +495,88 @@ Section boundaries_on_line_section()
                .meaning("direction of the line [dx, dy], non-zero (any length)")}};
 }
 
-/// The keys of every stage and of static stages: name, mode, dt, end_time, max_steps, tolerance.
-std::vector<Key> stage_keys()
+/// The keys of every stage and of static stages: name, mode, dt, end_time, max_steps, tolerance,
+/// release.
+BoundKeys<dda::Stage> stage_keys()
 {
+  using S = dda::Stage;
   using T = ValueType;
-  return {key("name", T::string).required().meaning("shown in messages and summary.json"),
-          key("mode", T::choice)
-              .choices(stage_mode_names())
-              .required()
-              .meaning("static: seek equilibrium; dynamic: integrate the motion to end_time; "
-                       "settle: integrate the motion from where the previous stage ended until "
-                       "every block is at rest or has fallen (at most max_duration), so that a "
-                       "block reported as fallen fell"),
-          key("dt", T::number)
-              .unit("s")
-              .default_note("time.dt")
-              .greater_than(0)
-              .meaning("static stages: the (largest) pseudo time step"),
-          key("end_time", T::number)
-              .unit("s")
-              .default_note("time.end_time")
-              .greater_than(0)
-              .meaning("dynamic stages: the time the stage runs to"),
-          key("max_steps", T::integer)
-              .default_yaml("10000")
-              .at_least(1)
-              .meaning("static stages: the run fails if equilibrium is not reached in this many "
-                       "steps"),
-          key("tolerance", T::number)
-              .default_yaml("1e-5")
-              .greater_than(0)
-              .meaning("static stages: the out-of-balance force ratio of equilibrium, each "
-                       "block's resultant force over its own load (the sum of the magnitudes of "
-                       "the forces on it: weight, loads, joints, contacts, supports, ties)")};
+  BoundKeys<S> k;
+  k.add(key("name", T::string).required().meaning("shown in messages and summary.json"));
+  k.add(key("mode", T::choice)
+            .choices(stage_mode_names())
+            .required()
+            .meaning("static: seek equilibrium; dynamic: integrate the motion to end_time; "
+                     "settle: integrate the motion from where the previous stage ended until "
+                     "every block is at rest or has fallen (at most max_duration), so that a "
+                     "block reported as fallen fell"));
+  k.add(key("dt", T::number)
+            .unit("s")
+            .default_note("time.dt")
+            .greater_than(0)
+            .meaning("static stages: the (largest) pseudo time step"));
+  k.add(key("end_time", T::number)
+            .unit("s")
+            .default_note("time.end_time")
+            .greater_than(0)
+            .meaning("dynamic stages: the time the stage runs to"));
+  k.field("max_steps", &S::max_steps)
+      .at_least(1)
+      .meaning("static stages: the run fails if equilibrium is not reached in this many "
+               "steps");
+  k.field("tolerance", &S::tolerance)
+      .greater_than(0)
+      .meaning("static stages: the out-of-balance force ratio of equilibrium, each "
+               "block's resultant force over its own load (the sum of the magnitudes of "
+               "the forces on it: weight, loads, joints, contacts, supports, ties)");
+  k.field("release", &S::release)
+      .meaning("static stages: what becomes of a released block, one that cannot be in "
+               "equilibrium (its out-of-balance force stays >= 5% of its own load, does "
+               "not drop by 10% and drives it straight on for 50 steps): fall, held where "
+               "it is for the rest of the stage and free in the dynamic stage, where it "
+               "falls onto whatever is below; remove, inert for the rest of the run (held, "
+               "no joints, no contacts). Released blocks are listed in summary.json");
+  return k;
 }
 
-/// The keys of settle stages and the static stage's release.
-std::vector<Key> settle_stage_keys()
+/// The keys of settle stages.
+BoundKeys<dda::SettleCriterion> settle_keys()
 {
-  using T = ValueType;
-  return {key("rest_speed", T::number)
-              .unit("m/s")
-              .default_yaml("1e-3")
-              .greater_than(0)
-              .meaning("settle stages: a block is at rest while the largest speed of its "
-                       "vertices stays at most this for rest_duration"),
-          key("rest_duration", T::number)
-              .unit("s")
-              .default_yaml("0.1")
-              .greater_than(0)
-              .meaning("settle stages: how long a block must stay below rest_speed without a "
-                       "break (longer than the period of its slowest bounce)"),
-          key("fall_distance", T::number)
-              .unit("m")
-              .default_yaml("0")
-              .at_least(0)
-              .meaning("settle stages: a block whose centroid has moved this far along gravity "
-                       "since the first dynamic stage began has fallen and is not waited for; 0: "
-                       "every block must come to rest"),
-          key("max_duration", T::number)
-              .unit("s")
-              .default_yaml("2")
-              .greater_than(0)
-              .meaning("settle stages: the stage ends after this long even if blocks still move "
-                       "(summary.json lists them; not a failure)"),
-          key("remove_fallen", T::boolean)
-              .default_yaml("false")
-              .meaning("settle stages: a fallen block is removed as debris once it has left "
-                       "its place (along the direction it moved since the first dynamic stage "
-                       "began, its vertices' interval no longer overlaps the one they covered "
-                       "then): its tumble and impacts are not followed; needs fall_distance > 0"),
-          key("release", T::choice)
-              .choices(names_of<dda::ReleaseAction>())
-              .default_yaml("fall")
-              .meaning("static stages: what becomes of a released block, one that cannot be in "
-                       "equilibrium (its out-of-balance force stays >= 5% of its own load, does "
-                       "not drop by 10% and drives it straight on for 50 steps): fall, held where "
-                       "it is for the rest of the stage and free in the dynamic stage, where it "
-                       "falls onto whatever is below; remove, inert for the rest of the run (held, "
-                       "no joints, no contacts). Released blocks are listed in summary.json")};
+  using S = dda::SettleCriterion;
+  BoundKeys<S> k;
+  k.field("rest_speed", &S::rest_speed)
+      .unit("m/s")
+      .greater_than(0)
+      .meaning("settle stages: a block is at rest while the largest speed of its "
+               "vertices stays at most this for rest_duration");
+  k.field("rest_duration", &S::rest_duration)
+      .unit("s")
+      .greater_than(0)
+      .meaning("settle stages: how long a block must stay below rest_speed without a "
+               "break (longer than the period of its slowest bounce)");
+  k.field("fall_distance", &S::fall_distance)
+      .unit("m")
+      .at_least(0)
+      .meaning("settle stages: a block whose centroid has moved this far along gravity "
+               "since the first dynamic stage began has fallen and is not waited for; 0: "
+               "every block must come to rest");
+  k.field("max_duration", &S::max_duration)
+      .unit("s")
+      .greater_than(0)
+      .meaning("settle stages: the stage ends after this long even if blocks still move "
+               "(summary.json lists them; not a failure)");
+  k.field("remove_fallen", &S::remove_fallen)
+      .meaning("settle stages: a fallen block is removed as debris once it has left "
+               "its place (along the direction it moved since the first dynamic stage "
+               "began, its vertices' interval no longer overlaps the one they covered "
+               "then): its tumble and impacts are not followed; needs fall_distance > 0");
+  return k;
 }
 
 Section stages_section()
 {
-  std::vector<Key> keys = stage_keys();
-  for (Key& k : settle_stage_keys())
+  std::vector<Key> keys = stage_keys().keys();
+  for (Key& k : settle_keys().keys())
     keys.push_back(std::move(k));
   return {
       "stages[i]",

@@ -128,7 +128,9 @@ TEST(BoundKeys, ShortestNumberTextReadsBack)
        {0.0, 1.0, 1.2, 0.3, 1e-6, 1e-10, 2.5e10, 60.0, 0.01, 1.0 / 3.0, 1e300, -7e-5})
     EXPECT_EQ(std::stod(schema::shortest_number_text(v)), v) << v;
   EXPECT_EQ(schema::shortest_number_text(1e-10), "1e-10");
-  EXPECT_EQ(schema::shortest_number_text(2.5e10), "2.5e10");
+  EXPECT_EQ(schema::shortest_number_text(2.5e10), "25e9"); // moduli as engineers write them
+  EXPECT_EQ(schema::shortest_number_text(200e9), "200e9");
+  EXPECT_EQ(schema::shortest_number_text(1e6), "1e6");
   EXPECT_EQ(schema::shortest_number_text(100.0), "100");
   EXPECT_EQ(schema::shortest_number_text(1e-3), "1e-3"); // shorter than 0.001
   EXPECT_EQ(schema::shortest_number_text(0.01), "0.01"); // as short as 1e-2: fixed
