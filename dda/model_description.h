@@ -94,8 +94,8 @@ struct BlockDescription
 /// A force applied at a material point of the block that contains it: F(t) = force * f(t).
 struct PointLoad
 {
-  Point point;   ///< [m], inside or on the boundary of exactly one block
-  Vector2 force; ///< [N]
+  Point point = Point::Zero();     ///< [m], inside or on the boundary of exactly one block
+  Vector2 force = Vector2::Zero(); ///< [N]
   TimeFunction time_function;
   std::string origin;
 };
@@ -104,8 +104,8 @@ struct PointLoad
 /// prescribed displacement (ux(t), uy(t)) [m] (for a moving rigid base).
 struct FixedPoint
 {
-  Point point;            ///< [m]
-  double stiffness = 0.0; ///< penalty spring [N/m]; 0 selects the default (see System)
+  Point point = Point::Zero(); ///< [m]
+  double stiffness = 0.0;      ///< penalty spring [N/m]; 0 selects the default (see System)
   TimeFunction displacement_x = TimeFunction::constant(0.0);
   TimeFunction displacement_y = TimeFunction::constant(0.0);
   std::string origin;
@@ -154,7 +154,7 @@ struct LiningDescription
 struct Monitor
 {
   std::string name;
-  Point point; ///< [m], inside exactly one block
+  Point point = Point::Zero(); ///< [m], inside exactly one block
 };
 
 /// Treatment of the selected block edges (docs/reference/physics.md section 3).

@@ -1,6 +1,7 @@
 #include "app/scene/record_reader.h"
 
 #include "app/scene/scene_text.h"
+#include "app/schema/bound_sections.h"
 #include "app/schema/scene_schema.h"
 #include "common/format.h"
 
@@ -197,9 +198,11 @@ RawRecord read_table(const MapReader& r, const std::filesystem::path& path)
   if (fixed_dt && (r.has("time_column") || r.has("value_column")))
     throw r.error("dt", "with a fixed dt every number of a row is a sample: expected no "
                         "time_column or value_column");
-  const auto time_column = static_cast<std::size_t>(r.integer("time_column"));
-  const auto value_column = static_cast<std::size_t>(r.integer("value_column"));
-  const long long skip_rows = r.integer("skip_rows");
+  schema::RecordProcessing processing;
+  schema::record_keys().fill(r, processing);
+  const auto time_column = static_cast<std::size_t>(processing.columns.time_column);
+  const auto value_column = static_cast<std::size_t>(processing.columns.value_column);
+  const long long skip_rows = processing.columns.skip_rows;
   RawRecord raw;
   std::vector<double> times;
   std::ifstream in(path);
@@ -337,13 +340,15 @@ TimeFunction read_record(const MapReader& r, TimeFunctionUse use)
   info.dt = raw.dt;
   info.window_from = raw.dt * static_cast<double>(first);
   info.window_to = raw.dt * static_cast<double>(last);
-  info.start = r.number("start");
+  schema::RecordProcessing processing;
+  schema::record_keys().fill(r, processing);
+  info.start = processing.start;
   const double window = info.window_to - info.window_from;
   const double taper = r.has("taper") ? r.number("taper") : std::min(0.5, 0.05 * window);
   taper_ends(a, raw.dt, taper);
-  if (r.choice_of<schema::BaselineMethod>("baseline") == schema::BaselineMethod::polynomial)
+  if (processing.baseline == schema::BaselineMethod::polynomial)
     info.baseline =
-        correct_baseline(a, raw.dt, static_cast<int>(r.integer("baseline_degree")), taper);
+        correct_baseline(a, raw.dt, static_cast<int>(processing.baseline_degree), taper);
   const MotionSummary unscaled = summarize_motion(a, raw.dt);
   if (!(unscaled.pga > 0.0))
     throw r.error("file", "the record's window is at rest (zero acceleration): expected motion");

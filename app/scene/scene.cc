@@ -3,6 +3,7 @@
 #include "app/scene/scene.h"
 
 #include "app/scene/scene_readers.h"
+#include "app/schema/bound_sections.h"
 
 #include <yaml-cpp/yaml.h>
 
@@ -27,7 +28,7 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   Scene scene;
   scene.file = file;
   scene.name = top.has("name") ? top.string("name") : std::filesystem::path(file).stem().string();
-  scene.description = top.string("description");
+  schema::top_level_keys().fill(top, scene); // description, gravity
   dda::ModelDescription& model = scene.model;
   read_analysis(top, model);
   const SceneNames names = read_materials(top, model);
@@ -43,7 +44,6 @@ Scene read_validated_scene(const std::string& file, const YAML::Node& root, cons
   read_point_loads(top, boxes, model);
   read_fixed_points(top, boxes, model);
   read_bolts(top, boxes, model);
-  model.gravity = top.vector2("gravity");
   if (scene.far_field && scene.far_field->static_stage.enabled &&
       !top.section_reader("far_field").section_reader("static_stage").has("gravity"))
     scene.far_field->static_stage.gravity = {model.gravity.x(), model.gravity.y()};

@@ -176,8 +176,7 @@ void read_blocks(const MapReader& top, const SceneNames& names, dda::ModelDescri
     const MapReader& r = items[i];
     dda::BlockDescription block;
     block.material = find_name(r, "material", r.string("material"), names.materials, "material");
-    block.initial_velocity = r.vector2("initial_velocity");
-    block.initial_stress = r.voigt("initial_stress");
+    schema::block_keys().fill(r, block); // initial velocity and stress
     const bool has_vertices = r.has("vertices"), has_grid = r.has("grid");
     if (has_vertices == has_grid)
       throw top.ctx().locator.error(r.yaml(), r.key_path(), "",
@@ -240,9 +239,7 @@ void read_in_situ_stress(const MapReader& top, const std::vector<BlockSource>& s
                          dda::ModelDescription& model)
 {
   const MapReader r = top.section_reader("in_situ_stress");
-  model.in_situ_stress.stress = r.voigt("stress");
-  model.in_situ_stress.gradient = r.voigt("stress_gradient");
-  model.in_situ_stress.reference_y = r.number("reference_y");
+  schema::in_situ_stress_keys().fill(r, model.in_situ_stress);
   for (std::size_t i = 0; i < model.blocks.size(); ++i)
     if (!sources[i].initial_stress)
       model.blocks[i].initial_stress =
@@ -270,8 +267,7 @@ void read_point_loads(const MapReader& top, const BlockBoxes& boxes, dda::ModelD
   for (const MapReader& r : top.section_list("point_loads"))
   {
     dda::PointLoad load;
-    load.point = r.vector2("point");
-    load.force = r.vector2("force");
+    schema::point_load_keys().fill(r, load); // point and force
     load.time_function = read_time_function(r, "time_function", TimeFunctionUse::factor);
     load.origin = r.key_path();
     check_point_in_blocks(r, "point", load.point, model, boxes);
@@ -284,8 +280,7 @@ void read_fixed_points(const MapReader& top, const BlockBoxes& boxes, dda::Model
   for (const MapReader& r : top.section_list("fixed_points"))
   {
     dda::FixedPoint f;
-    f.point = r.vector2("point");
-    f.stiffness = r.number("stiffness");
+    schema::fixed_point_keys().fill(r, f); // point and stiffness
     f.displacement_x = read_time_function(r, "displacement_x", TimeFunctionUse::displacement);
     f.displacement_y = read_time_function(r, "displacement_y", TimeFunctionUse::displacement);
     f.origin = r.key_path();
@@ -336,14 +331,13 @@ void read_monitors(const MapReader& top, const BlockBoxes& boxes, dda::ModelDesc
   for (const MapReader& r : top.section_list("monitors"))
   {
     dda::Monitor m;
-    m.name = r.string("name");
+    schema::monitor_keys().fill(r, m); // name and point
     if (trim(m.name).empty())
       throw r.error("name", "expected a non-empty name");
     const auto [it, inserted] = monitor_paths.emplace(m.name, r.key_path());
     if (!inserted)
       throw r.error("name", "duplicate monitor name (also used by " + it->second +
                                 "): expected unique names");
-    m.point = r.vector2("point");
     // In a coupled scene a monitor belongs to the block it lies in, else to the far field.
     const bool in_blocks = !model.blocks.empty() && in_some_block(m.point, model, boxes);
     if (far_field && !in_blocks)

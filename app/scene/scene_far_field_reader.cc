@@ -137,18 +137,10 @@ fem::HoleDescription read_hole(const MapReader& r, const fem::FarFieldDescriptio
 /// `far_field.static_stage`: gravity (else the scene's), the in-situ stress and the support.
 fem::StaticStage read_static_stage(const MapReader& r, const fem::FarFieldDescription& d)
 {
-  fem::StaticStage s = d.static_stage;
+  fem::StaticStage s = d.static_stage; // gravity: the scene's unless the stage gives its own
   s.enabled = true;
-  if (r.has("gravity"))
-  {
-    const Vector2 g = r.vector2("gravity");
-    s.gravity = {g.x(), g.y()};
-  }
-  const Voigt stress = r.voigt("stress"), gradient = r.voigt("stress_gradient");
-  s.stress = {stress[0], stress[1], stress[2]};
-  s.stress_gradient = {gradient[0], gradient[1], gradient[2]};
-  s.reference_y = r.has("reference_y") ? r.number("reference_y") : d.upper[1];
-  s.support = r.choice_of<fem::StaticSupport>("support");
+  s.reference_y = d.upper[1];
+  schema::far_field_static_stage_keys().fill(r, s);
   return s;
 }
 
@@ -214,7 +206,6 @@ coupling::InterfaceDescription read_interface(const MapReader& r,
                                               const std::vector<std::string>& joint_names)
 {
   coupling::InterfaceDescription d;
-  d.part = r.choice_of<fem::BoundaryPart>("part");
   // Springs from the named joint material (and its strength), else from joints.default.
   const dda::JointMaterial* source = nullptr;
   if (r.has("joint_material"))
@@ -227,17 +218,15 @@ coupling::InterfaceDescription read_interface(const MapReader& r,
   }
   else if (model.default_joint_material < model.joint_materials.size())
     source = &model.joint_materials[model.default_joint_material];
-  d.normal_stiffness = r.has("normal_stiffness") ? r.number("normal_stiffness")
-                       : source                  ? source->normal_stiffness
-                                                 : 0.0;
+  if (source)
+  {
+    d.normal_stiffness = source->normal_stiffness;
+    d.shear_ratio = source->shear_ratio;
+  }
+  schema::interface_keys().fill(r, d); // part, the springs given, points per face, tolerance
   if (!(d.normal_stiffness > 0.0))
     throw r.error("normal_stiffness", "no spring for the ties: expected `normal_stiffness` [N/m], "
                                       "a `joint_material`, or `joints.default`");
-  d.shear_ratio = r.has("shear_ratio") ? r.number("shear_ratio")
-                  : source             ? source->shear_ratio
-                                       : d.shear_ratio;
-  d.points_per_face = static_cast<unsigned>(r.integer("points_per_face"));
-  d.tolerance = r.number("tolerance");
   return d;
 }
 } // namespace
@@ -363,7 +352,9 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
     d.lower = {lower.x(), lower.y()};
     d.upper = {upper.x(), upper.y()};
   }
-  schema::far_field_keys().fill(f, d); // element size, frequency, solver and its tolerance
+  schema::far_field_keys().fill(f, d); // element size, frequency, degree, solver, tolerance
+  if (d.degree != 1 && d.degree != 2)
+    throw f.error("degree", "expected 1 or 2");
   if (f.has("incident"))
   {
     const MapReader inc = f.section_reader("incident");
@@ -381,10 +372,6 @@ fem::FarFieldDescription read_far_field(const MapReader& f, const dda::ModelDesc
     d.static_stage = read_static_stage(f.section_reader("static_stage"), d);
   if (f.has("rayleigh"))
     d.rayleigh = read_rayleigh(f.section_reader("rayleigh"));
-  const long long degree = f.integer("degree");
-  if (degree != 1 && degree != 2)
-    throw f.error("degree", "expected 1 or 2");
-  d.degree = static_cast<unsigned int>(degree);
   d.plane_mode = model.plane_mode;
   std::set<std::string> parts;
   for (const MapReader& r : f.section_list("boundaries"))

@@ -80,7 +80,7 @@ void read_lining_path(const MapReader& r, const std::optional<RockMassReport>& r
   if (r.has("points"))
   {
     l.points = points_of(r.pair_list("points"));
-    l.closed = r.boolean("closed");
+    schema::lining_path_keys().fill(r, l); // closed
     return;
   }
   const long long k = r.integer("opening");

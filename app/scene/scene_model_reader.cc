@@ -17,9 +17,10 @@ namespace
 TimeFunction read_csv_table(const MapReader& r)
 {
   const std::string file = r.string("file");
-  const long long time_column = r.integer("time_column");
-  const long long value_column = r.integer("value_column");
-  const long long skip_rows = r.integer("skip_rows");
+  schema::TableColumns columns;
+  schema::csv_keys().fill(r, columns);
+  const long long time_column = columns.time_column, value_column = columns.value_column;
+  const long long skip_rows = columns.skip_rows;
   const std::filesystem::path csv_path = scene_file(r, "file", "CSV file");
   const std::string shown = csv_path.lexically_normal().string();
   std::ifstream in(csv_path);
@@ -188,8 +189,11 @@ TimeFunction read_time_function(const MapReader& parent, const std::string& name
   case schema::TimeFunctionType::constant:
     return TimeFunction::constant(r.number("value"));
   case schema::TimeFunctionType::sine_pulse:
-    return TimeFunction::sine_pulse(r.number("amplitude"), r.number("frequency"),
-                                    r.number("cycles"), r.number("start"));
+  {
+    schema::SinePulseParameters p;
+    schema::sine_pulse_keys().fill(r, p);
+    return TimeFunction::sine_pulse(p.amplitude, p.frequency, p.cycles, p.start);
+  }
   case schema::TimeFunctionType::table:
   {
     std::vector<double> times, values;
@@ -212,8 +216,7 @@ TimeFunction read_time_function(const MapReader& parent, const std::string& name
 void read_analysis(const MapReader& top, dda::ModelDescription& model)
 {
   const MapReader analysis = top.section_reader("analysis");
-  model.plane_mode = analysis.choice_of<PlaneMode>("plane");
-  model.geometry = analysis.choice_of<dda::GeometryMode>("geometry");
+  schema::analysis_keys().fill(analysis, model);
 }
 
 /// The `damping` of a material or joint material, if any: its ratio and its frequency (0 when

@@ -124,7 +124,7 @@ RockMassReport read_rock_mass(const MapReader& r, const SceneNames& names,
   const std::size_t material =
       find_name(r, "material", r.string("material"), material_names, "material");
   d.region = read_region(r.section_reader("region"));
-  schema::rock_mass_keys().fill(r, d); // chord_tolerance, seed
+  schema::rock_mass_keys().fill(r, d); // chord tolerance, seed, sliver width and action
   for (const MapReader& j : r.section_list("joint_sets"))
   {
     d.joint_sets.push_back(read_joint_set(j));
@@ -141,8 +141,6 @@ RockMassReport read_rock_mass(const MapReader& r, const SceneNames& names,
     d.openings.push_back(read_opening(o, d.region, d.chord_tolerance));
   if (r.has("min_block_area"))
     d.slivers.min_area = r.number("min_block_area");
-  d.slivers.min_inscribed_radius = r.number("min_inscribed_radius");
-  d.slivers.action = r.choice_of<dda::SliverAction>("slivers");
 
   if (const auto refusal = dda::refuse_beyond(d, model.blocks.size(), r.ctx().limits))
     throw r.section_list("joint_sets")[refusal->joint_set].error("spacing", refusal->message);

@@ -133,10 +133,7 @@ void read_tunnel_domain(const MapReader& r, TunnelDescription& t)
 void read_tunnel_stages(const MapReader& r, TunnelDescription& t)
 {
   schema::tunnel_static_keys().fill(r.section_reader("static"), t);
-  const MapReader settle = r.section_reader("settle");
-  if (settle.has("enabled"))
-    t.settle = settle.boolean("enabled");
-  schema::tunnel_settle_keys().fill(settle, t);
+  schema::tunnel_settle_keys().fill(r.section_reader("settle"), t);
 }
 
 /// `tunnel.damping` (default: 2 % at the wave's dominant frequency, docs/damping.md; none with
@@ -197,16 +194,16 @@ TunnelPlan expand_tunnel(YAML::Node& root, const Context& context)
   const MapReader r(tunnel_node, context.schema.section("tunnel"), "tunnel", context);
   TunnelDescription t;
   read_tunnel_rock(r, root, context, t);
-  t.rock_mass.chord_tolerance = r.number("chord_tolerance");
-  t.rock_mass.seed = static_cast<std::uint64_t>(r.integer("seed"));
   read_tunnel_joints(r, root, t.rock_mass);
+  // depth, k0, the truncation, margins, mesh, time step, and the rock mass's seed and chord
+  // tolerance (the opening's polygon below)
+  schema::tunnel_keys().fill(r, t);
   t.limits = context.limits;
   const double far = 1e12;
   t.rock_mass.openings.push_back(
       read_opening(r.section_reader("opening"),
                    {Point(-far, -far), Point(far, -far), Point(far, far), Point(-far, far)},
                    t.rock_mass.chord_tolerance));
-  schema::tunnel_keys().fill(r, t); // depth, k0, the truncation, margins, mesh and time step
   const TimeFunction velocity = read_tunnel_wave(r, t);
   read_tunnel_domain(r, t);
   read_tunnel_stages(r, t);

@@ -1,4 +1,5 @@
 #include "app/scene/tunnel_bolts.h"
+#include "app/schema/bound_sections.h"
 
 #include "common/format.h"
 
@@ -104,8 +105,10 @@ std::vector<RadialBolt> radial_bolts(const std::vector<Point>& polygon, const Po
 void write_tunnel_bolts(const scene_reading::MapReader& r, const dda::Opening& opening,
                         double chord_tolerance, YAML::Node& root)
 {
-  const double from = r.number("from_angle");
-  const double to = r.number("to_angle");
+  BoltPattern pattern;
+  schema::tunnel_bolt_pattern_keys().fill(r, pattern);
+  const double from = pattern.from_angle;
+  const double to = pattern.to_angle;
   if (!(to > from) || to > from + 360.0)
     throw r.error("to_angle", "expected from_angle < to_angle <= from_angle + 360 (got " +
                                   format_number(from) + " and " + format_number(to) + ")");
@@ -128,7 +131,7 @@ void write_tunnel_bolts(const scene_reading::MapReader& r, const dda::Opening& o
   YAML::Node bolts =
       given["bolts"] ? YAML::Clone(given["bolts"]) : YAML::Node(YAML::NodeType::Sequence);
   const std::vector<RadialBolt> lines =
-      radial_bolts(polygon, centre, from, to, count, r.number("length"));
+      radial_bolts(polygon, centre, from, to, count, pattern.length);
   for (std::size_t k = 0; k < lines.size(); ++k)
   {
     YAML::Node b = YAML::Clone(keys);

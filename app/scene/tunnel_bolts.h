@@ -11,6 +11,14 @@
 
 namespace ddafem
 {
+/// The pattern of `tunnel.bolts` (its count or spacing: pattern_count in tunnel_bolts.cc).
+struct BoltPattern
+{
+  double length = 0.0;      ///< of each bolt [m]
+  double from_angle = 30.0; ///< first bolt's direction, anticlockwise from +x [deg]
+  double to_angle = 150.0;  ///< last bolt's direction [deg]
+};
+
 /// One radial bolt's line.
 struct RadialBolt
 {

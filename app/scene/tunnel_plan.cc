@@ -453,7 +453,7 @@ TunnelPlan plan_tunnel(const TunnelDescription& t)
                 " s to cross them, the pulse and two periods after it" +
                 (t.window > 0.0 ? std::string(" (tunnel.window)") : std::string()));
   plan_time_steps(t, measures.vb1_limit, plan);
-  if (t.settle.value_or(true))
+  if (t.settle)
     plan.settle = plan_settle_stage(t, plan, why);
   else
     why.push_back("no settle stage (tunnel.settle.enabled false): the run ends with the window");

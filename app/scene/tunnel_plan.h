@@ -84,8 +84,7 @@ struct TunnelDescription
   double static_tolerance = 1e-5;
   long long static_max_steps = 5000;
   dda::ReleaseAction static_release = dda::ReleaseAction::fall; ///< stages[i].release, static stage
-  /// A settle stage after the wave (tunnel.settle.enabled); unset: for blocks-only truncations
-  std::optional<bool> settle;
+  bool settle = true;                ///< a settle stage after the wave (tunnel.settle.enabled)
   double settle_rest_speed = 1e-3;   ///< [m/s]
   double settle_rest_duration = 0.0; ///< [s]; 0: chosen
   double settle_max_duration = 0.0;  ///< [s]; 0: chosen

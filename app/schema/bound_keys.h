@@ -8,6 +8,7 @@
 #include "app/scene/map_reader.h"
 #include "app/schema/schema_key_builder.h"
 #include "common/enum_names.h"
+#include "dda/types.h"
 
 #include <array>
 #include <cstddef>
@@ -34,16 +35,17 @@ public:
   template <typename Field>
   KeyBuilder& field(std::string name, Field Target::*member)
   {
-    builders.emplace_back(name, value_type<Field>());
-    KeyBuilder& builder = builders.back();
-    const Field initial = Target{}.*member;
-    if constexpr (std::is_enum_v<Field>)
-      builder.choices(names_of<Field>()).default_yaml(name_of(initial));
-    else
-      builder.default_yaml(default_text(initial));
-    fillers.push_back([name, member](const scene_reading::MapReader& r, Target& target)
-                      { target.*member = read<Field>(r, name); });
-    return builder;
+    return bind(std::move(name), Target{}.*member,
+                [member](Target& target) -> Field& { return target.*member; });
+  }
+
+  /// Declares the key `name` that fills `(target.*part).*member`, a field of a part of the
+  /// struct (e.g. the rock mass's sliver criterion), as field() does.
+  template <typename Part, typename Field>
+  KeyBuilder& field(std::string name, Part Target::*part, Field Part::*member)
+  {
+    return bind(std::move(name), Target{}.*part.*member,
+                [part, member](Target& target) -> Field& { return (target.*part).*member; });
   }
 
   /// A key the section's reader reads itself (a nested section, a name to look up): listed in
@@ -79,6 +81,22 @@ private:
   std::deque<KeyBuilder> builders;
   std::vector<std::function<void(const scene_reading::MapReader&, Target&)>> fillers;
 
+  /// The key `name` of the type of `initial`, its default, and its filler writing into the
+  /// field `access` returns.
+  template <typename Field, typename Access>
+  KeyBuilder& bind(std::string name, const Field& initial, Access access)
+  {
+    builders.emplace_back(name, value_type<Field>());
+    KeyBuilder& builder = builders.back();
+    if constexpr (std::is_enum_v<Field>)
+      builder.choices(names_of<Field>()).default_yaml(name_of(initial));
+    else
+      builder.default_yaml(default_text(initial));
+    fillers.push_back([name, access](const scene_reading::MapReader& r, Target& target)
+                      { access(target) = read<Field>(r, name); });
+    return builder;
+  }
+
   /// A required key or one whose default is a note has no literal default.
   static Key declared(const KeyBuilder& builder)
   {
@@ -99,8 +117,12 @@ private:
       return ValueType::integer;
     else if constexpr (std::is_floating_point_v<Field>)
       return ValueType::number;
-    else if constexpr (std::is_same_v<Field, std::array<double, 2>>)
+    else if constexpr (std::is_same_v<Field, std::array<double, 2>> ||
+                       std::is_same_v<Field, dda::Vector2>)
       return ValueType::vector2;
+    else if constexpr (std::is_same_v<Field, std::array<double, 3>> ||
+                       std::is_same_v<Field, dda::Voigt>)
+      return ValueType::voigt;
     else
     {
       static_assert(std::is_same_v<Field, std::string>, "a field of a type keys cannot fill");
@@ -117,10 +139,15 @@ private:
       return std::to_string(value);
     else if constexpr (std::is_floating_point_v<Field>)
       return shortest_number_text(value);
-    else if constexpr (std::is_same_v<Field, std::array<double, 2>>)
-      return "[" + shortest_number_text(value[0]) + ", " + shortest_number_text(value[1]) + "]";
-    else
-      return value;
+    else if constexpr (std::is_same_v<Field, std::string>)
+      return value.empty() ? "''" : value; // YAML's empty string
+    else                                   // [x, y] or [sxx, syy, sxy]
+    {
+      std::string text = "[";
+      for (std::size_t i = 0; i < static_cast<std::size_t>(value.size()); ++i)
+        text += (i > 0 ? ", " : "") + shortest_number_text(value[i]);
+      return text + "]";
+    }
   }
 
   template <typename Field>
@@ -143,6 +170,15 @@ private:
     {
       const dda::Vector2 v = r.vector2(name);
       return Field{{v.x(), v.y()}};
+    }
+    else if constexpr (std::is_same_v<Field, dda::Vector2>)
+      return r.vector2(name);
+    else if constexpr (std::is_same_v<Field, dda::Voigt>)
+      return r.voigt(name);
+    else if constexpr (std::is_same_v<Field, std::array<double, 3>>)
+    {
+      const dda::Voigt v = r.voigt(name);
+      return Field{{v[0], v[1], v[2]}};
     }
     else
       return r.string(name);

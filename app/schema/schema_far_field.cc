@@ -32,7 +32,7 @@ BoundKeys<fem::FarFieldDescription> far_field_keys()
   k.field("points_per_wavelength", &S::points_per_wavelength)
       .greater_than(0)
       .meaning("nodes per shortest S wavelength");
-  k.add(key("degree", T::integer).default_yaml("2").at_least(1).meaning("FE_Q degree: 1 or 2"));
+  k.field("degree", &S::degree).at_least(1).meaning("FE_Q degree: 1 or 2");
   k.add(key("hole", T::section)
             .section("far_field.hole")
             .default_note("none")
@@ -85,46 +85,48 @@ Section far_field_section()
       far_field_keys().keys()};
 }
 
+BoundKeys<coupling::InterfaceDescription> interface_keys()
+{
+  using S = coupling::InterfaceDescription;
+  using T = ValueType;
+  BoundKeys<S> k;
+  k.field("part", &S::part).required().meaning("the far field's part the blocks fill or adjoin");
+  k.field("normal_stiffness", &S::normal_stiffness)
+      .unit("N/m")
+      .default_note("that of `joint_material`, else of `joints.default`")
+      .greater_than(0)
+      .meaning("normal spring per tied edge end (a bonded joint's p): an edge's ties share 2 p "
+               "by their quadrature weights");
+  k.field("shear_ratio", &S::shear_ratio)
+      .default_note("that of `joint_material`, else of `joints.default`, else 0.4")
+      .greater_than(0)
+      .meaning("shear spring / normal spring");
+  k.add(key("joint_material", T::string)
+            .default_note("none: ties of unlimited strength (a linear interface)")
+            .meaning("a joint material whose friction angle, cohesion and tensile strength the "
+                     "ties follow (Mohr-Coulomb per tie, open / slide / lock in the open-close "
+                     "iteration): blocks can slip on or separate from the far field"));
+  k.field("points_per_face", &S::points_per_face)
+      .at_least(1)
+      .meaning("Gauss points per piece of a block edge between far-field face ends (3 "
+               "integrates the ties exactly against degree-2 faces)");
+  k.field("tolerance", &S::tolerance)
+      .unit("m")
+      .at_least(0)
+      .meaning("largest distance of a tied block edge from the part; 0: 1e-6 of the blocks' "
+               "extent");
+  return k;
+}
+
 Section interface_section()
 {
-  using T = ValueType;
-  return {
-      "interface",
-      "Blocks tied to the far field (coupling/README.md). The block edges on the far field's "
-      "part are tied at Gauss points (composite over the pieces between far-field face ends) "
-      "by normal and shear springs, like a bonded joint; the far field is condensed onto the "
-      "ties so that blocks and far field advance in one implicit system per step with "
-      "`time.dt` (`time.control` must be fixed). The blocks must cover the part exactly.",
-      {key("part", T::choice)
-           .required()
-           .choices(names_of<fem::BoundaryPart>())
-           .meaning("the far field's part the blocks fill or adjoin"),
-       key("normal_stiffness", T::number)
-           .unit("N/m")
-           .default_note("that of `joint_material`, else of `joints.default`")
-           .greater_than(0)
-           .meaning("normal spring per tied edge end (a bonded joint's p): an edge's ties share "
-                    "2 p by their quadrature weights"),
-       key("shear_ratio", T::number)
-           .default_note("that of `joint_material`, else of `joints.default`, else 0.4")
-           .greater_than(0)
-           .meaning("shear spring / normal spring"),
-       key("joint_material", T::string)
-           .default_note("none: ties of unlimited strength (a linear interface)")
-           .meaning("a joint material whose friction angle, cohesion and tensile strength the "
-                    "ties follow (Mohr-Coulomb per tie, open / slide / lock in the open-close "
-                    "iteration): blocks can slip on or separate from the far field"),
-       key("points_per_face", T::integer)
-           .default_yaml("3")
-           .at_least(1)
-           .meaning("Gauss points per piece of a block edge between far-field face ends (3 "
-                    "integrates the ties exactly against degree-2 faces)"),
-       key("tolerance", T::number)
-           .unit("m")
-           .default_yaml("0")
-           .at_least(0)
-           .meaning("largest distance of a tied block edge from the part; 0: 1e-6 of the "
-                    "blocks' extent")}};
+  return {"interface",
+          "Blocks tied to the far field (coupling/README.md). The block edges on the far field's "
+          "part are tied at Gauss points (composite over the pieces between far-field face ends) "
+          "by normal and shear springs, like a bonded joint; the far field is condensed onto the "
+          "ties so that blocks and far field advance in one implicit system per step with "
+          "`time.dt` (`time.control` must be fixed). The blocks must cover the part exactly.",
+          interface_keys().keys()};
 }
 
 BoundKeys<fem::BoundaryCondition> far_field_boundary_keys()
@@ -240,9 +242,27 @@ Section far_field_hole_section()
       far_field_hole_keys().keys()};
 }
 
+BoundKeys<fem::StaticStage> far_field_static_stage_keys()
+{
+  using S = fem::StaticStage;
+  BoundKeys<S> k;
+  k.field("gravity", &S::gravity)
+      .unit("m/s^2")
+      .default_note("the scene's `gravity`")
+      .meaning("body acceleration of the far field, e.g. [0, -9.81]");
+  add_in_situ_keys(k, &S::stress, &S::stress_gradient);
+  k.field("reference_y", &S::reference_y)
+      .unit("m")
+      .default_note("the top of the far field")
+      .meaning("height where the in-situ stress is `stress`");
+  k.field("support", &S::support)
+      .meaning("how `lysmer` and `input` parts are held in the static stage: fixed, or roller "
+               "(normal displacement only; the hole is held fixed)");
+  return k;
+}
+
 Section far_field_static_stage_section()
 {
-  using T = ValueType;
   return {
       "far_field.static_stage",
       "A static stage ahead of the dynamic one: K u_s = f_gravity - integral(B^T sigma0) with "
@@ -250,20 +270,7 @@ Section far_field_static_stage_section()
       "- reference_y) the in-situ stress. The reactions are then kept as constant forces and "
       "the dashpots act: the dynamic stage starts from u_s at rest. Monitors and snapshots "
       "report displacements relative to u_s and the total stress sigma0 + D B u.",
-      {key("gravity", T::vector2)
-           .unit("m/s^2")
-           .default_note("the scene's `gravity`")
-           .meaning("body acceleration of the far field, e.g. [0, -9.81]"),
-       in_situ_stress_key(), in_situ_gradient_key(),
-       key("reference_y", T::number)
-           .unit("m")
-           .default_note("the top of the far field")
-           .meaning("height where the in-situ stress is `stress`"),
-       key("support", T::choice)
-           .default_yaml("fixed")
-           .choices(names_of<fem::StaticSupport>())
-           .meaning("how `lysmer` and `input` parts are held in the static stage: fixed, or "
-                    "roller (normal displacement only; the hole is held fixed)")}};
+      far_field_static_stage_keys().keys()};
 }
 
 Section far_field_rayleigh_section()

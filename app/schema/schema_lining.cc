@@ -49,27 +49,32 @@ const char* const law_text =
     "good (docs/support.md).";
 } // namespace
 
+BoundKeys<dda::LiningDescription> lining_path_keys()
+{
+  using S = dda::LiningDescription;
+  using T = ValueType;
+  BoundKeys<S> k;
+  k.add(key("name", T::string).default_note("lining<i>").meaning("unique name of its outputs"));
+  k.add(key("points", T::point_list)
+            .unit("m")
+            .default_note("none: give `opening`")
+            .meaning("the polyline, at least two points; every node on or inside a block"));
+  k.field("closed", &S::closed).meaning("the last point of `points` joins the first (a ring)");
+  k.add(key("opening", T::integer)
+            .default_note("none: give `points`")
+            .at_least(0)
+            .meaning("instead of `points`: around the boundary of rock_mass.openings[opening] as "
+                     "excavated, closed"));
+  k.add(key("installed_after", T::string)
+            .default_note("from the start")
+            .meaning("the name of the stage after which it is installed: it carries what "
+                     "happens from the next stage on"));
+  return k;
+}
+
 Section linings_section()
 {
-  using T = ValueType;
-  std::vector<Key> keys = {
-      key("name", T::string).default_note("lining<i>").meaning("unique name of its outputs"),
-      key("points", T::point_list)
-          .unit("m")
-          .default_note("none: give `opening`")
-          .meaning("the polyline, at least two points; every node on or inside a block"),
-      key("closed", T::boolean)
-          .default_yaml("false")
-          .meaning("the last point of `points` joins the first (a ring)"),
-      key("opening", T::integer)
-          .default_note("none: give `points`")
-          .at_least(0)
-          .meaning("instead of `points`: around the boundary of rock_mass.openings[opening] as "
-                   "excavated, closed"),
-      key("installed_after", T::string)
-          .default_note("from the start")
-          .meaning("the name of the stage after which it is installed: it carries what "
-                   "happens from the next stage on")};
+  std::vector<Key> keys = lining_path_keys().keys();
   for (Key& k : lining_section_keys().keys())
     keys.push_back(std::move(k));
   return {"linings[i]",

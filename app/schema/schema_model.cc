@@ -22,26 +22,6 @@ std::vector<std::string> stage_mode_names()
 }
 } // namespace
 
-/// `stress` of an in-situ stress sigma0(y) = stress + stress_gradient (y - reference_y)
-/// (`in_situ_stress`, `far_field.static_stage`).
-Key in_situ_stress_key()
-{
-  return key("stress", ValueType::voigt)
-      .unit("Pa")
-      .default_yaml("[0, 0, 0]")
-      .meaning("in-situ stress [sxx, syy, sxy] at reference_y, tension positive");
-}
-
-/// `stress_gradient` of an in-situ stress.
-Key in_situ_gradient_key()
-{
-  return key("stress_gradient", ValueType::voigt)
-      .unit("Pa/m")
-      .default_yaml("[0, 0, 0]")
-      .meaning("d/dy of the in-situ stress, e.g. [K0 rho g, rho g, 0] for lithostatic stress "
-               "with reference_y at the surface");
-}
-
 /// `joint_material` of a joint set or an explicit joint of `rock_mass` (`along`: what it cuts).
 Key joint_material_key(const std::string& along)
 {
@@ -63,145 +43,156 @@ Key time_function_type(const TimeFunctionType type)
       .meaning("selects this kind of time function");
 }
 
+namespace
+{
 /// The top level's keys that describe the rock: name, analysis, materials, joints, blocks and their
 /// generators, the far field.
-std::vector<Key> top_level_model_keys()
+void add_top_level_model_keys(BoundKeys<Scene>& k)
 {
   using T = ValueType;
-  return {key("name", T::string)
-              .default_note("file name without extension")
-              .meaning("scene name shown in summaries and result files"),
-          key("description", T::string).default_yaml("''").meaning("free text"),
-          key("analysis", T::section)
-              .section("analysis")
-              .default_note("plane stress, updated geometry")
-              .meaning("2D idealisation of the blocks and geometry update"),
-          key("materials", T::section_map)
-              .section("materials.<name>")
-              .required()
-              .meaning("block materials by name"),
-          key("joint_materials", T::section_map)
-              .section("joint_materials.<name>")
-              .default_note("none")
-              .meaning("joint (contact) materials by name"),
-          key("joints", T::section)
-              .section("joints")
-              .default_note("none")
-              .meaning("which joint material acts between blocks of which materials"),
-          key("blocks", T::section_list)
-              .section("blocks[i]")
-              .default_note("required unless `far_field` or `rock_mass` is given")
-              .meaning("the blocks: polygons or grids of rectangles"),
-          key("rock_mass", T::section)
-              .section("rock_mass")
-              .default_note("none")
-              .meaning("blocks generated from a region cut by joint sets, with openings excavated "
-                       "(after the `blocks`)"),
-          key("tunnel", T::section)
-              .section("tunnel")
-              .default_note("none")
-              .meaning("a tunnel in jointed rock under a seismic wave: generates rock_mass, "
-                       "far_field, interface or boundaries, in_situ_stress, stages, monitors and "
-                       "time (see `tunnel`)"),
-          key("far_field", T::section)
-              .section("far_field")
-              .default_note("none")
-              .meaning("a deal.II continuum; without blocks the scene is FE only, with blocks it "
-                       "surrounds them (see `interface`)"),
-          key("interface", T::section)
-              .section("interface")
-              .default_note("required with both blocks (`blocks` or `rock_mass`) and `far_field`")
-              .meaning("ties between the blocks and the far-field part they fill")};
+  k.add(key("name", T::string)
+            .default_note("file name without extension")
+            .meaning("scene name shown in summaries and result files"));
+  k.field("description", &Scene::description).meaning("free text");
+  k.add(key("analysis", T::section)
+            .section("analysis")
+            .default_note("plane stress, updated geometry")
+            .meaning("2D idealisation of the blocks and geometry update"));
+  k.add(key("materials", T::section_map)
+            .section("materials.<name>")
+            .required()
+            .meaning("block materials by name"));
+  k.add(key("joint_materials", T::section_map)
+            .section("joint_materials.<name>")
+            .default_note("none")
+            .meaning("joint (contact) materials by name"));
+  k.add(key("joints", T::section)
+            .section("joints")
+            .default_note("none")
+            .meaning("which joint material acts between blocks of which materials"));
+  k.add(key("blocks", T::section_list)
+            .section("blocks[i]")
+            .default_note("required unless `far_field` or `rock_mass` is given")
+            .meaning("the blocks: polygons or grids of rectangles"));
+  k.add(key("rock_mass", T::section)
+            .section("rock_mass")
+            .default_note("none")
+            .meaning("blocks generated from a region cut by joint sets, with openings excavated "
+                     "(after the `blocks`)"));
+  k.add(key("tunnel", T::section)
+            .section("tunnel")
+            .default_note("none")
+            .meaning("a tunnel in jointed rock under a seismic wave: generates rock_mass, "
+                     "far_field, interface or boundaries, in_situ_stress, stages, monitors and "
+                     "time (see `tunnel`)"));
+  k.add(key("far_field", T::section)
+            .section("far_field")
+            .default_note("none")
+            .meaning("a deal.II continuum; without blocks the scene is FE only, with blocks it "
+                     "surrounds them (see `interface`)"));
+  k.add(key("interface", T::section)
+            .section("interface")
+            .default_note("required with both blocks (`blocks` or `rock_mass`) and `far_field`")
+            .meaning("ties between the blocks and the far-field part they fill"));
 }
 
 /// The top level's keys of loads and the run: loads, supports, gravity, in-situ stress, monitors,
 /// boundaries, time, contacts, stages, solver, output.
-std::vector<Key> top_level_run_keys()
+void add_top_level_run_keys(BoundKeys<Scene>& k)
 {
   using T = ValueType;
-  return {key("point_loads", T::section_list)
-              .section("point_loads[i]")
-              .default_note("none")
-              .meaning("forces at material points"),
-          key("fixed_points", T::section_list)
-              .section("fixed_points[i]")
-              .default_note("none")
-              .meaning("material points tied to their initial position (plus a prescribed motion)"),
-          key("bolts", T::section_list)
-              .section("bolts[i]")
-              .default_note("none")
-              .meaning("rock bolts: end-anchored between two blocks, or grouted through the "
-                       "blocks they cross"),
-          key("linings", T::section_list)
-              .section("linings[i]")
-              .default_note("none")
-              .meaning("shotcrete or concrete linings on the blocks' surface (frame elements)"),
-          key("gravity", T::vector2)
-              .unit("m/s^2")
-              .default_yaml("[0, 0]")
-              .meaning("body acceleration, e.g. [0, -9.81]"),
-          key("in_situ_stress", T::section)
-              .section("in_situ_stress")
-              .default_note("none")
-              .meaning("the rock mass's initial stress: blocks start with it, and bonded joints, "
-                       "ties to the far field and the static supports of viscous boundaries carry "
-                       "its traction"),
-          key("monitors", T::section_list)
-              .section("monitors[i]")
-              .default_note("none")
-              .meaning("points whose displacement, velocity and stress histories are recorded"),
-          key("boundaries", T::section_list)
-              .section("boundaries[i]")
-              .default_note("none")
-              .meaning("absorbing (viscous) or free boundaries on outer block edges"),
-          key("time", T::section)
-              .section("time")
-              .default_note("required unless `tunnel` is given")
-              .meaning("time step and duration"),
-          key("contacts", T::section)
-              .section("contacts")
-              .default_note("see `contacts`")
-              .meaning("contact detection and the open-close iteration"),
-          key("stages", T::section_list)
-              .section("stages[i]")
-              .default_note("one dynamic stage up to time.end_time")
-              .meaning("stages run in sequence, e.g. static equilibrium under gravity, then the "
-                       "dynamic load"),
-          key("solver", T::section)
-              .section("solver")
-              .default_note("block_ldlt")
-              .meaning("linear solver of each step"),
-          key("output", T::section)
-              .section("output")
-              .default_note("see `output`")
-              .meaning("where and how often results are written")};
+  k.add(key("point_loads", T::section_list)
+            .section("point_loads[i]")
+            .default_note("none")
+            .meaning("forces at material points"));
+  k.add(key("fixed_points", T::section_list)
+            .section("fixed_points[i]")
+            .default_note("none")
+            .meaning("material points tied to their initial position (plus a prescribed motion)"));
+  k.add(key("bolts", T::section_list)
+            .section("bolts[i]")
+            .default_note("none")
+            .meaning("rock bolts: end-anchored between two blocks, or grouted through the "
+                     "blocks they cross"));
+  k.add(key("linings", T::section_list)
+            .section("linings[i]")
+            .default_note("none")
+            .meaning("shotcrete or concrete linings on the blocks' surface (frame elements)"));
+  k.field("gravity", &Scene::model, &dda::ModelDescription::gravity)
+      .unit("m/s^2")
+      .meaning("body acceleration, e.g. [0, -9.81]");
+  k.add(key("in_situ_stress", T::section)
+            .section("in_situ_stress")
+            .default_note("none")
+            .meaning("the rock mass's initial stress: blocks start with it, and bonded joints, "
+                     "ties to the far field and the static supports of viscous boundaries carry "
+                     "its traction"));
+  k.add(key("monitors", T::section_list)
+            .section("monitors[i]")
+            .default_note("none")
+            .meaning("points whose displacement, velocity and stress histories are recorded"));
+  k.add(key("boundaries", T::section_list)
+            .section("boundaries[i]")
+            .default_note("none")
+            .meaning("absorbing (viscous) or free boundaries on outer block edges"));
+  k.add(key("time", T::section)
+            .section("time")
+            .default_note("required unless `tunnel` is given")
+            .meaning("time step and duration"));
+  k.add(key("contacts", T::section)
+            .section("contacts")
+            .default_note("see `contacts`")
+            .meaning("contact detection and the open-close iteration"));
+  k.add(key("stages", T::section_list)
+            .section("stages[i]")
+            .default_note("one dynamic stage up to time.end_time")
+            .meaning("stages run in sequence, e.g. static equilibrium under gravity, then the "
+                     "dynamic load"));
+  k.add(key("solver", T::section)
+            .section("solver")
+            .default_note("block_ldlt")
+            .meaning("linear solver of each step"));
+  k.add(key("output", T::section)
+            .section("output")
+            .default_note("see `output`")
+            .meaning("where and how often results are written"));
+}
+
+} // namespace
+
+BoundKeys<Scene> top_level_keys()
+{
+  BoundKeys<Scene> k;
+  add_top_level_model_keys(k);
+  add_top_level_run_keys(k);
+  return k;
 }
 
 Section top_level_section()
 {
-  std::vector<Key> keys = top_level_model_keys();
-  for (Key& k : top_level_run_keys())
-    keys.push_back(std::move(k));
-  return {SceneSchema::top_level, "A scene is one YAML map with these sections.", std::move(keys)};
+  return {SceneSchema::top_level, "A scene is one YAML map with these sections.",
+          top_level_keys().keys()};
+}
+
+BoundKeys<dda::ModelDescription> analysis_keys()
+{
+  using S = dda::ModelDescription;
+  BoundKeys<S> k;
+  k.field("plane", &S::plane_mode)
+      .meaning("plane stress (thin slab, one-block-high bar) or plane strain (long section)");
+  k.field("geometry", &S::geometry)
+      .meaning("updated: Shi's DDA, every step is linearised about the current block geometry; "
+               "small_displacement: linear analysis about the initial geometry (matrix assembled "
+               "and factorized once; for waves of small amplitude)");
+  return k;
 }
 
 Section analysis_section()
 {
-  using T = ValueType;
   return {"analysis",
           "How the 2D model idealises the third dimension, and whether the step matrix follows the "
           "moving geometry.",
-          {key("plane", T::choice)
-               .choices(names_of<PlaneMode>())
-               .default_yaml("stress")
-               .meaning("plane stress (thin slab, one-block-high bar) or plane strain (long "
-                        "section)"),
-           key("geometry", T::choice)
-               .choices(names_of<dda::GeometryMode>())
-               .default_yaml("updated")
-               .meaning("updated: Shi's DDA, every step is linearised about the current block "
-                        "geometry; small_displacement: linear analysis about the initial geometry "
-                        "(matrix assembled and factorized once; for waves of small amplitude)")}};
+          analysis_keys().keys()};
 }
 
 BoundKeys<dda::Material> material_keys()
@@ -302,31 +293,37 @@ Section joints_pairs_section()
            key("joint", T::string).required().meaning("the joint material name")}};
 }
 
+BoundKeys<dda::BlockDescription> block_keys()
+{
+  using S = dda::BlockDescription;
+  using T = ValueType;
+  BoundKeys<S> k;
+  k.add(key("material", T::string).required().meaning("name of the block's material"));
+  k.add(key("vertices", T::point_list)
+            .unit("m")
+            .default_note("(give vertices or grid)")
+            .meaning("corners of a simple polygon, at least 3"));
+  k.add(key("grid", T::section)
+            .section("blocks[i].grid")
+            .default_note("(give vertices or grid)")
+            .meaning("a grid of nx * ny rectangles, numbered row by row, x fastest"));
+  k.field("initial_velocity", &S::initial_velocity)
+      .unit("m/s")
+      .meaning("translational velocity at t = 0");
+  k.field("initial_stress", &S::initial_stress)
+      .unit("Pa")
+      .meaning("stress [sxx, syy, sxy] at t = 0, tension positive");
+  return k;
+}
+
 Section blocks_section()
 {
-  using T = ValueType;
   return {
       "blocks[i]",
       "One block (`vertices`) or a grid of rectangular blocks (`grid`): give exactly one of the "
       "two. Vertices may be given clockwise or anticlockwise, and the first vertex may be "
       "repeated at the end. Blocks may touch but not overlap.",
-      {key("material", T::string).required().meaning("name of the block's material"),
-       key("vertices", T::point_list)
-           .unit("m")
-           .default_note("(give vertices or grid)")
-           .meaning("corners of a simple polygon, at least 3"),
-       key("grid", T::section)
-           .section("blocks[i].grid")
-           .default_note("(give vertices or grid)")
-           .meaning("a grid of nx * ny rectangles, numbered row by row, x fastest"),
-       key("initial_velocity", T::vector2)
-           .unit("m/s")
-           .default_yaml("[0, 0]")
-           .meaning("translational velocity at t = 0"),
-       key("initial_stress", T::voigt)
-           .unit("Pa")
-           .default_yaml("[0, 0, 0]")
-           .meaning("stress [sxx, syy, sxy] at t = 0, tension positive")}};
+      block_keys().keys()};
 }
 
 Section blocks_grid_section()
@@ -346,48 +343,69 @@ Section blocks_grid_section()
                .meaning("[nx, ny] rectangles in x and y, at most 10^6 in all")}};
 }
 
+BoundKeys<dda::PointLoad> point_load_keys()
+{
+  using S = dda::PointLoad;
+  using T = ValueType;
+  BoundKeys<S> k;
+  k.field("point", &S::point).unit("m").required().meaning("where the force acts");
+  k.field("force", &S::force).unit("N").required().meaning("[fx, fy]");
+  k.add(key("time_function", T::time_function)
+            .default_yaml("{type: constant, value: 1}")
+            .meaning("dimensionless factor f(t)"));
+  return k;
+}
+
 Section point_loads_section()
 {
-  using T = ValueType;
   return {"point_loads[i]",
           "A force F(t) = force * f(t) at a material point; the point must lie inside or on the "
           "boundary of a block.",
-          {key("point", T::vector2).unit("m").required().meaning("where the force acts"),
-           key("force", T::vector2).unit("N").required().meaning("[fx, fy]"),
-           key("time_function", T::time_function)
-               .default_yaml("{type: constant, value: 1}")
-               .meaning("dimensionless factor f(t)")}};
+          point_load_keys().keys()};
+}
+
+BoundKeys<dda::FixedPoint> fixed_point_keys()
+{
+  using S = dda::FixedPoint;
+  using T = ValueType;
+  BoundKeys<S> k;
+  k.field("point", &S::point).unit("m").required().meaning("the tied material point");
+  k.field("stiffness", &S::stiffness)
+      .unit("N/m")
+      .at_least(0)
+      .meaning("penalty spring; 0 selects the engine's default");
+  k.add(key("displacement_x", T::time_function)
+            .unit("m")
+            .default_yaml("{type: constant, value: 0}")
+            .meaning("prescribed displacement ux(t)"));
+  k.add(key("displacement_y", T::time_function)
+            .unit("m")
+            .default_yaml("{type: constant, value: 0}")
+            .meaning("prescribed displacement uy(t)"));
+  return k;
 }
 
 Section fixed_points_section()
 {
-  using T = ValueType;
   return {"fixed_points[i]",
           "A material point tied by a stiff spring to its initial position plus a prescribed "
           "displacement; the point must lie inside or on the boundary of a block.",
-          {key("point", T::vector2).unit("m").required().meaning("the tied material point"),
-           key("stiffness", T::number)
-               .unit("N/m")
-               .default_yaml("0")
-               .at_least(0)
-               .meaning("penalty spring; 0 selects the engine's default"),
-           key("displacement_x", T::time_function)
-               .unit("m")
-               .default_yaml("{type: constant, value: 0}")
-               .meaning("prescribed displacement ux(t)"),
-           key("displacement_y", T::time_function)
-               .unit("m")
-               .default_yaml("{type: constant, value: 0}")
-               .meaning("prescribed displacement uy(t)")}};
+          fixed_point_keys().keys()};
+}
+
+BoundKeys<dda::Monitor> monitor_keys()
+{
+  using S = dda::Monitor;
+  BoundKeys<S> k;
+  k.field("name", &S::name).required().meaning("unique name of the history");
+  k.field("point", &S::point).unit("m").required().meaning("the monitored material point");
+  return k;
 }
 
 Section monitors_section()
 {
-  using T = ValueType;
-  return {"monitors[i]",
-          "A measurement point; it must lie inside or on the boundary of a block.",
-          {key("name", T::string).required().meaning("unique name of the history"),
-           key("point", T::vector2).unit("m").required().meaning("the monitored material point")}};
+  return {"monitors[i]", "A measurement point; it must lie inside or on the boundary of a block.",
+          monitor_keys().keys()};
 }
 
 BoundKeys<dda::BoundaryDescription> boundary_keys()
@@ -447,9 +465,19 @@ Section boundaries_section()
       boundary_keys().keys()};
 }
 
+BoundKeys<dda::InSituStress> in_situ_stress_keys()
+{
+  using S = dda::InSituStress;
+  BoundKeys<S> k;
+  add_in_situ_keys(k, &S::stress, &S::gradient);
+  k.field("reference_y", &S::reference_y)
+      .unit("m")
+      .meaning("height where the in-situ stress is `stress`");
+  return k;
+}
+
 Section in_situ_stress_section()
 {
-  using T = ValueType;
   return {"in_situ_stress",
           "sigma0(y) = stress + stress_gradient (y - reference_y), tension positive. Every block "
           "without an explicit `initial_stress` starts with sigma0 at its centroid; every bonded "
@@ -459,11 +487,7 @@ Section in_situ_stress_section()
           "and reference_y at the surface it balances gravity. Bonded joints and ties keep this "
           "preload; a viscous boundary's support hands it on as a constant edge load when the "
           "first dynamic stage starts.",
-          {in_situ_stress_key(), in_situ_gradient_key(),
-           key("reference_y", T::number)
-               .unit("m")
-               .default_yaml("0")
-               .meaning("height where the in-situ stress is `stress`")}};
+          in_situ_stress_keys().keys()};
 }
 
 Section boundaries_input_section()

@@ -40,17 +40,14 @@ BoundKeys<dda::RockMassDescription> rock_mass_keys()
             .default_note("0.01 x (mean spacing of the sets)^2")
             .at_least(0)
             .meaning("blocks with a smaller area are slivers"));
-  k.add(key("min_inscribed_radius", T::number)
-            .unit("m")
-            .default_yaml("0")
-            .at_least(0)
-            .meaning("blocks with a smaller 2 area / perimeter (the inscribed radius of a "
-                     "triangle, half the width of a long strip) are slivers"));
-  k.add(key("slivers", T::choice)
-            .choices(names_of<dda::SliverAction>())
-            .default_yaml("merge")
-            .meaning("merge: join each sliver to the neighbouring block it shares the longest "
-                     "boundary with; report: keep them, `check` lists them"));
+  k.field("min_inscribed_radius", &S::slivers, &dda::SliverSettings::min_inscribed_radius)
+      .unit("m")
+      .at_least(0)
+      .meaning("blocks with a smaller 2 area / perimeter (the inscribed radius of a triangle, "
+               "half the width of a long strip) are slivers");
+  k.field("slivers", &S::slivers, &dda::SliverSettings::action)
+      .meaning("merge: join each sliver to the neighbouring block it shares the longest boundary "
+               "with; report: keep them, `check` lists them");
   return k;
 }
 

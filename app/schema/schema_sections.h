@@ -8,11 +8,6 @@
 
 namespace ddafem::schema
 {
-/// `stress` of an in-situ stress sigma0(y) = stress + stress_gradient (y - reference_y)
-/// (`in_situ_stress`, `far_field.static_stage`).
-Key in_situ_stress_key();
-/// `stress_gradient` of an in-situ stress.
-Key in_situ_gradient_key();
 /// `joint_material` of a joint set or an explicit joint of `rock_mass` (`along`: what it cuts).
 Key joint_material_key(const std::string& along);
 /// The `type` key of one time-function variant.

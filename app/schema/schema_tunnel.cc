@@ -99,15 +99,14 @@ BoundKeys<TunnelDescription> tunnel_keys()
             .section("tunnel.bolts")
             .default_note("none")
             .meaning("a pattern of radial rock bolts from the opening's surface"));
-  k.add(key("seed", T::integer)
-            .default_yaml("0")
-            .at_least(0)
-            .meaning("seed of the joint sets' random perturbations"));
-  k.add(key("chord_tolerance", T::number)
-            .unit("m")
-            .default_yaml("0.02")
-            .greater_than(0)
-            .meaning("largest distance between the opening's arcs and its chords"));
+  k.field("seed", &S::rock_mass, &dda::RockMassDescription::seed)
+      .at_least(0)
+      .meaning("seed of the joint sets' random perturbations");
+  k.field("chord_tolerance", &S::rock_mass, &dda::RockMassDescription::chord_tolerance)
+      .unit("m")
+      .default_yaml("0.02") // coarser than a rock_mass's: the opening's scale
+      .greater_than(0)
+      .meaning("largest distance between the opening's arcs and its chords");
   k.field("depth", &S::depth)
       .unit("m")
       .required()
@@ -151,11 +150,8 @@ Section tunnel_section()
 BoundKeys<TunnelDescription> tunnel_settle_keys()
 {
   using S = TunnelDescription;
-  using T = ValueType;
   BoundKeys<S> k;
-  k.add(key("enabled", T::boolean)
-            .default_yaml("true")
-            .meaning("false: the run ends with the wave's window"));
+  k.field("enabled", &S::settle).meaning("false: the run ends with the wave's window");
   k.field("rest_speed", &S::settle_rest_speed)
       .unit("m/s")
       .greater_than(0)

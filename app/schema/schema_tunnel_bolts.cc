@@ -1,40 +1,46 @@
 // The scene schema: `tunnel.bolts`, a pattern of radial bolts from the opening's surface
 // (app/scene/tunnel_bolts.h, docs/support.md). Each generated bolt has the keys of `bolts[i]` but
 // its name and ends.
+#include "app/schema/bound_sections.h"
 #include "app/schema/schema_sections.h"
 
 #include <algorithm>
 
 namespace ddafem::schema
 {
+BoundKeys<BoltPattern> tunnel_bolt_pattern_keys()
+{
+  using S = BoltPattern;
+  using T = ValueType;
+  BoundKeys<S> k;
+  k.field("length", &S::length)
+      .unit("m")
+      .required()
+      .greater_than(0)
+      .meaning("of each bolt, from its head on the opening's surface into the rock");
+  k.add(key("count", T::integer)
+            .default_note("(give count or spacing)")
+            .greater_than(0)
+            .meaning("number of bolts, equally spaced in angle from from_angle to to_angle"));
+  k.add(key("spacing", T::number)
+            .unit("m")
+            .default_note("(give count or spacing)")
+            .greater_than(0)
+            .meaning("along the opening's perimeter: count = round(perimeter between the "
+                     "angles / spacing) + 1"));
+  k.field("from_angle", &S::from_angle)
+      .unit("deg")
+      .meaning("first bolt's direction, anticlockwise from +x about the opening's centre (90: "
+               "the crown)");
+  k.field("to_angle", &S::to_angle)
+      .unit("deg")
+      .meaning("last bolt's direction (from_angle < to_angle <= from_angle + 360)");
+  return k;
+}
+
 Section tunnel_bolts_section()
 {
-  using T = ValueType;
-  std::vector<Key> keys = {
-      key("length", T::number)
-          .unit("m")
-          .required()
-          .greater_than(0)
-          .meaning("of each bolt, from its head on the opening's surface into the rock"),
-      key("count", T::integer)
-          .default_note("(give count or spacing)")
-          .greater_than(0)
-          .meaning("number of bolts, equally spaced in angle from from_angle to to_angle"),
-      key("spacing", T::number)
-          .unit("m")
-          .default_note("(give count or spacing)")
-          .greater_than(0)
-          .meaning("along the opening's perimeter: count = round(perimeter between the angles / "
-                   "spacing) + 1"),
-      key("from_angle", T::number)
-          .unit("deg")
-          .default_yaml("30")
-          .meaning("first bolt's direction, anticlockwise from +x about the opening's centre "
-                   "(90: the crown)"),
-      key("to_angle", T::number)
-          .unit("deg")
-          .default_yaml("150")
-          .meaning("last bolt's direction (from_angle < to_angle <= from_angle + 360)")};
+  std::vector<Key> keys = tunnel_bolt_pattern_keys().keys();
   for (const Key& k : bolts_section().keys)
     if (k.name != "name" && k.name != "head" && k.name != "anchor")
       keys.push_back(k);

@@ -122,6 +122,61 @@ TEST(BoundKeys, RefusesWhatTheKeyDoesNotAllow)
   EXPECT_THROW(filled("{needed: 1, control: sometimes}"), InputError);
 }
 
+/// A struct with Eigen vectors and a part of its own (as the rock mass's sliver settings).
+struct Part
+{
+  double width = 0.25;
+};
+struct Nested
+{
+  dda::Vector2 velocity = dda::Vector2(0.0, -1.5);
+  dda::Voigt stress = dda::Voigt(1.0, 2.0, 0.0);
+  std::array<double, 3> gradient{{0.0, 9.81, 0.0}};
+  Part part;
+};
+
+Nested filled_nested(const std::string& text)
+{
+  using S = Nested;
+  BoundKeys<S> k;
+  k.field("velocity", &S::velocity).unit("m/s").meaning("a velocity");
+  k.field("stress", &S::stress).unit("Pa").meaning("a stress");
+  k.field("gradient", &S::gradient).unit("Pa/m").meaning("a gradient");
+  k.field("width", &S::part, &Part::width).unit("m").meaning("a part's width");
+  const std::vector<Key> keys = k.keys();
+  EXPECT_EQ(keys[0].type, ValueType::vector2);
+  EXPECT_EQ(keys[0].default_yaml, "[0, -1.5]");
+  EXPECT_EQ(keys[1].type, ValueType::voigt);
+  EXPECT_EQ(keys[1].default_yaml, "[1, 2, 0]");
+  EXPECT_EQ(keys[2].type, ValueType::voigt);
+  EXPECT_EQ(keys[2].default_yaml, "[0, 9.81, 0]");
+  EXPECT_EQ(keys[3].type, ValueType::number);
+  EXPECT_EQ(keys[3].default_yaml, "0.25"); // the part's initialiser
+  const schema::SceneSchema scene_schema;
+  const scene_reading::Locator locator("made_up.yaml");
+  const scene_reading::Context context{scene_schema, locator, ".", {}};
+  const Section section{"made_up", "A made-up section.", keys};
+  const YAML::Node node = YAML::Load(text);
+  Nested n;
+  n.part.width = 5.0;
+  k.fill(scene_reading::MapReader(node, section, "made_up", context), n);
+  return n;
+}
+
+TEST(BoundKeys, FillsVectorsStressesAndAPartsField)
+{
+  const Nested given = filled_nested("{velocity: [1, 2], stress: [3, 4, 5], gradient: [0, 1, 0], "
+                                     "width: 0.5}");
+  EXPECT_EQ(given.velocity, dda::Vector2(1.0, 2.0));
+  EXPECT_EQ(given.stress, dda::Voigt(3.0, 4.0, 5.0));
+  EXPECT_EQ(given.gradient[1], 1.0);
+  EXPECT_EQ(given.part.width, 0.5);
+  const Nested defaults = filled_nested("{}");
+  EXPECT_EQ(defaults.velocity, dda::Vector2(0.0, -1.5));
+  EXPECT_EQ(defaults.part.width, 0.25); // the default overwrites what the part held
+  EXPECT_THROW(filled_nested("{stress: [1, 2]}"), InputError);
+}
+
 TEST(BoundKeys, ShortestNumberTextReadsBack)
 {
   for (const double v :
