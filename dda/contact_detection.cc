@@ -46,7 +46,7 @@ std::vector<std::pair<std::size_t, std::size_t>> System::find_contact_candidates
   std::vector<BoundingBox> boxes;
   boxes.reserve(blocks.size());
   for (const Block& b : blocks)
-    boxes.push_back(bounding_box(b.vertices, 0.5 * contact_search_distance));
+    boxes.push_back(bounding_box(b.vertices, 0.5 * contact_set.distances.search_distance));
   return overlapping_pairs(boxes);
 }
 
@@ -55,8 +55,8 @@ void System::update_contacts(const std::vector<std::pair<std::size_t, std::size_
   mark_jointed_vertices();
   set_contact_structure(find_trial_contacts(pairs));
   contact_set.detected.predecessors.clear();
-  contact_set.detected.epoch = geometry_epoch;
-  contact_set.inherit(parallel, w0);
+  contact_set.detected.epoch = contact_set.geometry_epoch;
+  contact_set.inherit(parallel, contact_set.distances.w0);
 }
 
 void System::refresh_joint_lists()
@@ -71,7 +71,7 @@ void System::refresh_joint_lists()
   {
     const Joint& j = joints[k];
     joint_lists.joined.emplace_back(j.block_a, j.block_b);
-    if (convex[j.block_a] && convex[j.block_b])
+    if (contact_set.convex[j.block_a] && contact_set.convex[j.block_b])
       joint_lists.bonded_pairs.emplace_back(j.block_a, j.block_b);
     const auto add = [&](std::size_t block, std::size_t edge, std::size_t other)
     {
@@ -117,7 +117,7 @@ void System::mark_jointed_vertices()
   }
   // A vertex within tol of the joint's stretch along it is tied (the candidates are sorted).
   jointed_vertices.clear();
-  const double tol = 1e-6 * w0;
+  const double tol = 1e-6 * contact_set.distances.w0;
   for (const JointLists::Candidate& c : joint_lists.candidates)
   {
     const JointFrame& f = joint_frames[c.joint];
@@ -171,7 +171,8 @@ System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t
                       {
                         for (std::size_t k = begin; k < end; ++k)
                           if (needs_features[k])
-                            compute_polygon_features(blocks[k].vertices, angle_tolerance,
+                            compute_polygon_features(blocks[k].vertices,
+                                                     contact_set.distances.angle_tolerance,
                                                      block_features[k]);
                       });
   constexpr std::size_t grain = 256;
@@ -228,7 +229,8 @@ System::find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t
 
 void System::add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& chunk) const
 {
-  find_vertex_edge_pairs(block_features[a], block_features[b], contact_search_distance, chunk.work);
+  find_vertex_edge_pairs(block_features[a], block_features[b],
+                         contact_set.distances.search_distance, chunk.work);
   for (const VertexEdgePair& f : chunk.work.pairs)
   {
     Contact c;
@@ -254,7 +256,8 @@ void System::add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& c
     c.gap = f.distance;
     c.joint_material = joint_material_at_edge(model, c.edge_block, c.edge, c.vertex_block);
     c.length = carried_length(blocks[c.vertex_block].vertices, c.vertex,
-                              block_features[c.edge_block].edges[c.edge], sin_angle_tolerance);
+                              block_features[c.edge_block].edges[c.edge],
+                              contact_set.distances.sin_angle_tolerance);
     chunk.found.push_back(c);
   }
 }

@@ -35,9 +35,7 @@ System::System(const ModelDescription& model_)
   const std::vector<std::string> names = make_blocks();
   const double size = model_size(blocks);
   find_bonded_joints(names, size);
-  check_contact_materials();
-  mark_convex_blocks();
-  set_contact_distances(size);
+  contact_set.set_up(model, blocks, size, !small_displacement());
   rhs.setZero(static_cast<Eigen::Index>(n_dofs()));
   solution.setZero(static_cast<Eigen::Index>(n_dofs()));
   set_default_fixed_stiffness();
@@ -91,8 +89,7 @@ void System::find_bonded_joints(const std::vector<std::string>& names, double si
   for (const Joint& j : found)
     if (model.joint_materials[j.joint_material].bonded)
       joints.push_back(j);
-  contacts_enabled = !small_displacement();
-  if (!contacts_enabled)
+  if (small_displacement())
     for (const Joint& j : found)
       if (!model.joint_materials[j.joint_material].bonded)
         throw InputError("joint material '" + model.joint_materials[j.joint_material].name +
@@ -100,56 +97,6 @@ void System::find_bonded_joints(const std::vector<std::string>& names, double si
                          ") is frictional (`bonded: false`), but `analysis.geometry: "
                          "small_displacement` cannot follow contacts: expected `geometry: "
                          "updated` or a bonded joint material");
-}
-
-void System::check_contact_materials() const
-{
-  // Any two blocks may come into contact: every pair of materials needs a joint material.
-  if (!contacts_enabled || blocks.size() <= 1)
-    return;
-  std::vector<bool> used(model.materials.size(), false);
-  for (const Block& b : blocks)
-    used[b.material] = true;
-  for (std::size_t m1 = 0; m1 < used.size(); ++m1)
-    for (std::size_t m2 = m1; m2 < used.size(); ++m2)
-      if (used[m1] && used[m2] && joint_material_for(model, m1, m2) >= model.joint_materials.size())
-        throw InputError("blocks of materials '" + model.materials[m1].name + "' and '" +
-                         model.materials[m2].name +
-                         "' may come into contact but no joint material applies to them: "
-                         "expected `joints: {default: NAME}` or a `joints.pairs` entry");
-}
-
-void System::mark_convex_blocks()
-{
-  for (const Block& b : blocks)
-  {
-    bool is_convex = true;
-    const std::size_t n = b.vertices.size();
-    for (std::size_t k = 0; k < n; ++k)
-      is_convex = is_convex && interior_angle(b.vertices, k) < M_PI;
-    convex.push_back(is_convex);
-  }
-}
-
-void System::set_contact_distances(double size)
-{
-  // Shi's w0 and the contact distances derived from it. Shi's bound g2 w0 alone would let a
-  // long model of small blocks (a bar) move vertices farther than a block in one step; the
-  // bound is also kept below a tenth of the shortest edge, so that the search distance
-  // (2.5 times the bound) stays below a quarter of it and only neighbours are candidates.
-  w0 = 0.5 * size;
-  double shortest_edge = size;
-  for (const Block& b : blocks)
-    for (std::size_t k = 0; k < b.vertices.size(); ++k)
-      shortest_edge =
-          std::min(shortest_edge, (b.vertices[(k + 1) % b.vertices.size()] - b.vertices[k]).norm());
-  const ContactSettings& cs = model.contacts;
-  step_displacement_limit = std::min(cs.max_displacement_ratio * w0, 0.1 * shortest_edge);
-  contact_search_distance =
-      cs.search_distance > 0.0 ? cs.search_distance : 2.5 * step_displacement_limit;
-  penetration_limit = cs.max_penetration > 0.0 ? cs.max_penetration : step_displacement_limit;
-  angle_tolerance = cs.angle_tolerance_deg * M_PI / 180.0;
-  sin_angle_tolerance = std::sin(angle_tolerance);
 }
 
 void System::set_default_fixed_stiffness()
@@ -297,7 +244,7 @@ void System::tie(TiedBody& body, const std::vector<MaterialPoint>& points)
     tie_origins.push_back(p.position);
   tie_matrices.resize(points.size());
   set_matrix_structure(coupling_pairs);
-  ++geometry_epoch;
+  ++contact_set.geometry_epoch;
 }
 
 void System::hold_block(std::size_t i)
@@ -314,7 +261,7 @@ void System::remove_block(std::size_t i)
   b.acceleration.setZero();
   removed[i] = true;
   matrix_dt = 0.0;
-  ++geometry_epoch;
+  ++contact_set.geometry_epoch;
   ++joint_revision;
   joints.erase(std::remove_if(joints.begin(), joints.end(),
                               [&](const Joint& j) { return j.block_a == i || j.block_b == i; }),
@@ -337,7 +284,7 @@ void System::begin_stage(StageMode new_mode)
   const bool after_static = mode == StageMode::static_equilibrium;
   mode = new_mode;
   matrix_dt = 0.0; // the boundary terms change with the stage: assemble the matrix anew
-  ++geometry_epoch;
+  ++contact_set.geometry_epoch;
   held.assign(blocks.size(), false);
   for (const std::unique_ptr<ElementKind>& k : element_kinds)
     k->begin_stage(stages_begun, current_time);

@@ -276,10 +276,11 @@ public:
   const std::vector<Contact>& get_contacts() const { return contact_set.accepted; }
   ContactCounts contact_counts() const;
   /// Half the model's size w0 [m] (Shi), the reference of the step displacement bound.
-  double half_model_size() const { return w0; }
-  double max_step_displacement() const { return step_displacement_limit; } ///< g2 w0 [m]
-  double search_distance() const { return contact_search_distance; }       ///< d0 [m]
-  double max_penetration() const { return penetration_limit; }             ///< [m]
+  double half_model_size() const { return contact_set.distances.w0; }
+  /// g2 w0 [m]
+  double max_step_displacement() const { return contact_set.distances.max_step_displacement; }
+  double search_distance() const { return contact_set.distances.search_distance; } ///< d0 [m]
+  double max_penetration() const { return contact_set.distances.max_penetration; } ///< [m]
   const ModelDescription& get_model() const { return model; }
   const PhaseTimings& get_timings() const { return timings; }
   const StepSolver& get_solver() const { return solver; }
@@ -356,13 +357,6 @@ private:
   /// The bonded joints where blocks share an edge (`size`: model_size [m], for tolerances);
   /// disables contacts in a small-displacement analysis, where a frictional joint throws.
   void find_bonded_joints(const std::vector<std::string>& names, double size);
-  /// Throws InputError if two blocks that may touch have materials no joint material applies to.
-  void check_contact_materials() const;
-  /// Sets `convex` per block (at t = 0).
-  void mark_convex_blocks();
-  /// w0, the step displacement bound g2 w0, the search distance d0, the penetration limit and
-  /// the angle tolerance, from the model's size [m] and its ContactSettings.
-  void set_contact_distances(double size);
   /// The fixed points' default penalty [N/m]: 10 x the stiffest joint or block (E x 1 m).
   void set_default_fixed_stiffness();
   /// Point loads, fixed points and monitors onto their blocks (attach), then the element kinds
@@ -508,7 +502,7 @@ private:
   /// middle (kept by the first half): with the true a_n the composite would be first order.
   Vector6 composite_acceleration(std::size_t i, const Matrix6& m, const KinematicState& end);
   /// Phases 1 and 2 of a step: find_contact_candidates among the blocks not removed, then
-  /// update_contacts; a retry at the same geometry_epoch reuses `detected`.
+  /// update_contacts; a retry at the same contact_set.geometry_epoch reuses `detected`.
   void detect_contacts();
   /// Phase 3: the step's matrix and right-hand side; true if the matrix was assembled anew
   /// (a small-displacement analysis keeps it while dt is unchanged).
@@ -520,7 +514,7 @@ private:
   /// Phase 4: the solution, with the open-close iteration if there are contacts or ties.
   StepStatus solve_step(const StepLabel& when, bool new_matrix);
   /// Step control on the solution: sets the status's largest vertex displacement and
-  /// penetration, and its outcome if one exceeds its limit (g2 w0; penetration_limit, after
+  /// penetration, and its outcome if one exceeds its limit (g2 w0; max_penetration, after
   /// raising the penalties of the contacts too deep).
   void check_motion_limits(StepStatus& status, const StepLabel& when);
   /// Phase 5: the tied body, blocks and contacts take the solution; time advances. The tied
@@ -626,9 +620,6 @@ private:
   std::vector<std::pair<std::size_t, std::size_t>> narrow_pairs;
   std::vector<char> needs_features;
   std::vector<PolygonFeatures> block_features;
-  /// Counts the changes of what contact detection depends on (the blocks' geometry, removed
-  /// blocks, joints, stage, ties, the accepted contacts): detection is redone only when it moved.
-  std::uint64_t geometry_epoch = 0;
   std::size_t broken_joint_count = 0;
   /// Where a bonded joint ties a vertex to the other block: (vertex block, vertex, other block).
   std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> jointed_vertices;
@@ -663,15 +654,7 @@ private:
     double length = 0.0;
   };
   std::vector<JointFrame> joint_frames;
-  std::vector<bool> convex;             ///< whether each block is convex (at t = 0)
-  double w0 = 0.0;                      ///< half the model size [m]
-  double step_displacement_limit = 0.0; ///< g2 w0 [m]
-  double contact_search_distance = 0.0; ///< d0 [m]
-  double penetration_limit = 0.0;       ///< [m]
-  double angle_tolerance = 0.0;         ///< [rad]
-  double sin_angle_tolerance = 0.0;     ///< its sine [-]
-  double reversal_tolerance = 0.0;      ///< localize_slip_reversals [m]; 0: none
-  bool contacts_enabled = true;         ///< false in a small-displacement analysis
+  double reversal_tolerance = 0.0; ///< localize_slip_reversals [m]; 0: none
   StageMode mode = StageMode::dynamic;
   std::vector<bool> held;             ///< per block: held until the next begin_stage
   std::vector<bool> removed;          ///< per block: inert for the rest of the run

@@ -35,7 +35,7 @@ void System::transfer_state(Archive& a)
                     [&a](Support& s) { transfer_all(a, s.point, s.stiffness, s.load, s.anchor); });
   transfer_all(a, support_normal_stiffness, tie_points, tie_origins, tie_matrices);
   transfer_contacts(a);
-  transfer_all(a, reversal_tolerance, contacts_enabled, mode, held, removed, balances,
+  transfer_all(a, reversal_tolerance, contact_set.enabled, mode, held, removed, balances,
                motion_starts);
   transfer_each(a, friction_jumps,
                 [&a](StateBeforeJump& s) { transfer_all(a, s.block, s.acceleration, s.force); });
@@ -64,8 +64,8 @@ void System::transfer_contacts(Archive& a)
   transfer_each(a, frames,
                 [&a](ContactFrame& f)
                 { transfer_all(a, f.t_vertex, f.t_edge, f.normal, f.tangent); });
-  transfer_all(a, geometry_epoch, contact_set.detected.epoch, contact_set.detected.contacts,
-               contact_set.detected.predecessors);
+  transfer_all(a, contact_set.geometry_epoch, contact_set.detected.epoch,
+               contact_set.detected.contacts, contact_set.detected.predecessors);
   transfer_all(a, contact_set.next_id, contact_set.raised_penalties);
 }
 

@@ -209,7 +209,7 @@ void System::update_trial_state(std::size_t k, unsigned iteration, double neglig
   // together). Its change is taken but does not hold the iteration back (n[1]; the others
   // n[0]). From the third iteration on, so does one that carries almost nothing before and
   // after (contacts flipping between slide and lock under a kN where the rock carries MN).
-  if (state_changed(c.trial, next) && std::abs(c.end_gap) > 2e-12 * w0)
+  if (state_changed(c.trial, next) && std::abs(c.end_gap) > 2e-12 * contact_set.distances.w0)
     ++n[change_holds_iteration(iteration, c.trial, next, negligible) ? 0 : 1];
   c.trial = next;
 }
@@ -219,7 +219,7 @@ bool System::raise_penalties()
   const double cap = model.contacts.max_penalty_factor;
   bool raised = false;
   for (const Contact& c : contact_set.trial)
-    if (c.trial.state != ContactState::open && -c.end_gap > penetration_limit &&
+    if (c.trial.state != ContactState::open && -c.end_gap > contact_set.distances.max_penetration &&
         c.penalty_factor < cap)
     {
       contact_set.raised_penalties[c.key()] = std::min(cap, 10.0 * c.penalty_factor);

@@ -90,17 +90,17 @@ StepStatus System::attempt_step(double dt, const StepPart part)
 void System::detect_contacts()
 {
   auto start = Clock::now();
-  if (contact_set.detected.epoch == geometry_epoch)
+  if (contact_set.detection_current())
   {
     // A retry from the same accepted state: the same contacts, frames and structure; only
     // their states are inherited again (penalties may have been raised).
-    contact_set.inherit(parallel, w0);
+    contact_set.inherit(parallel, contact_set.distances.w0);
     timings.narrow_phase += seconds_since(start);
     return;
   }
   std::vector<std::pair<std::size_t, std::size_t>> pairs =
-      contacts_enabled ? find_contact_candidates()
-                       : std::vector<std::pair<std::size_t, std::size_t>>{};
+      contact_set.enabled ? find_contact_candidates()
+                          : std::vector<std::pair<std::size_t, std::size_t>>{};
   pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
                              [&](const auto& p) { return removed[p.first] || removed[p.second]; }),
               pairs.end());
@@ -176,11 +176,11 @@ StepStatus System::solve_step(const StepLabel& when, bool new_matrix)
 void System::check_motion_limits(StepStatus& status, const StepLabel& when)
 {
   status.max_displacement = largest_vertex_displacement(solution);
-  if (status.max_displacement > step_displacement_limit)
+  if (status.max_displacement > contact_set.distances.max_step_displacement)
   {
     std::ostringstream m;
     m << "a vertex moves " << status.max_displacement << " m in one step, more than the "
-      << step_displacement_limit << " m allowed (g2 w0) " << when.text();
+      << contact_set.distances.max_step_displacement << " m allowed (g2 w0) " << when.text();
     status.outcome = StepOutcome::displacement_too_large;
     status.message = m.str();
     return;
@@ -192,14 +192,14 @@ void System::check_motion_limits(StepStatus& status, const StepLabel& when)
       status.max_penetration = -c.end_gap;
       deepest = &c;
     }
-  if (status.max_penetration > penetration_limit)
+  if (status.max_penetration > contact_set.distances.max_penetration)
   {
     std::ostringstream m;
     m << "a contact (vertex " << deepest->vertex << " of block " << deepest->vertex_block
       << " on edge " << deepest->edge << " of block " << deepest->edge_block << ", gap "
       << deepest->gap << " m at the step's start) penetrates " << status.max_penetration
-      << " m, deeper than the " << penetration_limit << " m allowed " << when.text()
-      << " (a stiffer joint normal_stiffness or a smaller dt reduces it)";
+      << " m, deeper than the " << contact_set.distances.max_penetration << " m allowed "
+      << when.text() << " (a stiffer joint normal_stiffness or a smaller dt reduces it)";
     status.penalty_raised = raise_penalties();
     status.outcome = StepOutcome::penetration_too_large;
     status.message = m.str();
@@ -236,7 +236,7 @@ StepResult System::accept_step(double dt)
   }
   contact_set.accepted.swap(contact_set.trial);
   contact_set.raised_penalties.clear();
-  ++geometry_epoch;
+  ++contact_set.geometry_epoch;
   if (mode == StageMode::static_equilibrium)
     set_at_rest();
   else

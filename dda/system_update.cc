@@ -161,7 +161,7 @@ std::string System::break_joints()
     joints.resize(n_intact);
     ++joint_revision;
   }
-  ++geometry_epoch;
+  ++contact_set.geometry_epoch;
   return failure;
 }
 

@@ -1,10 +1,74 @@
 // The contacts' persistence from step to step (dda/contact/contact_set.h).
 #include "dda/contact/contact_set.h"
 
+#include "common/input_error.h"
+#include "dda/joints.h"
+
 #include <algorithm>
+#include <cmath>
 
 namespace ddafem::dda
 {
+namespace
+{
+/// Throws InputError if two blocks that may touch have materials no joint material applies to.
+void check_contact_materials(const ModelDescription& model, const std::vector<Block>& blocks)
+{
+  // Any two blocks may come into contact: every pair of materials needs a joint material.
+  std::vector<bool> used(model.materials.size(), false);
+  for (const Block& b : blocks)
+    used[b.material] = true;
+  for (std::size_t m1 = 0; m1 < used.size(); ++m1)
+    for (std::size_t m2 = m1; m2 < used.size(); ++m2)
+      if (used[m1] && used[m2] && joint_material_for(model, m1, m2) >= model.joint_materials.size())
+        throw InputError("blocks of materials '" + model.materials[m1].name + "' and '" +
+                         model.materials[m2].name +
+                         "' may come into contact but no joint material applies to them: "
+                         "expected `joints: {default: NAME}` or a `joints.pairs` entry");
+}
+
+/// w0, the step displacement bound g2 w0, the search distance d0, the penetration limit and
+/// the angle tolerance, from the model's size [m] and its ContactSettings.
+ContactDistances contact_distances(const std::vector<Block>& blocks, double size,
+                                   const ContactSettings& cs)
+{
+  // Shi's w0 and the contact distances derived from it. Shi's bound g2 w0 alone would let a
+  // long model of small blocks (a bar) move vertices farther than a block in one step; the
+  // bound is also kept below a tenth of the shortest edge, so that the search distance
+  // (2.5 times the bound) stays below a quarter of it and only neighbours are candidates.
+  ContactDistances d;
+  d.w0 = 0.5 * size;
+  double shortest_edge = size;
+  for (const Block& b : blocks)
+    for (std::size_t k = 0; k < b.vertices.size(); ++k)
+      shortest_edge =
+          std::min(shortest_edge, (b.vertices[(k + 1) % b.vertices.size()] - b.vertices[k]).norm());
+  d.max_step_displacement = std::min(cs.max_displacement_ratio * d.w0, 0.1 * shortest_edge);
+  d.search_distance = cs.search_distance > 0.0 ? cs.search_distance : 2.5 * d.max_step_displacement;
+  d.max_penetration = cs.max_penetration > 0.0 ? cs.max_penetration : d.max_step_displacement;
+  d.angle_tolerance = cs.angle_tolerance_deg * M_PI / 180.0;
+  d.sin_angle_tolerance = std::sin(d.angle_tolerance);
+  return d;
+}
+} // namespace
+
+void ContactSet::set_up(const ModelDescription& model, const std::vector<Block>& blocks,
+                        double size, bool contacts_enabled)
+{
+  enabled = contacts_enabled;
+  if (enabled && blocks.size() > 1)
+    check_contact_materials(model, blocks);
+  for (const Block& b : blocks)
+  {
+    bool is_convex = true;
+    const std::size_t n = b.vertices.size();
+    for (std::size_t k = 0; k < n; ++k)
+      is_convex = is_convex && interior_angle(b.vertices, k) < M_PI;
+    convex.push_back(is_convex);
+  }
+  distances = contact_distances(blocks, size, model.contacts);
+}
+
 void ContactSet::inherit(const Parallel& parallel, double w0)
 {
   // The trial contacts start as detected; each finds its predecessor on the threads (copied

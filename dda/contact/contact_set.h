@@ -1,12 +1,15 @@
-// The blocks' contacts and their persistence (issue 55): the contacts of the last accepted step,
-// the trial contacts of the step being tried, each matched to its predecessor so that it keeps
-// its id, state, forces and slip history from step to step, and the penalties a failed step
-// raised for its retry. Detection (the System's narrow phase) fills `detected`; `inherit` makes
-// the trial contacts of it; the System's accept_step makes them the accepted ones.
+// The blocks' contacts and their persistence (issue 55): the contact distances and which blocks
+// are convex (set up once), the contacts of the last accepted step, the trial contacts of the
+// step being tried, each matched to its predecessor so that it keeps its id, state, forces and
+// slip history from step to step, and the penalties a failed step raised for its retry.
+// Detection (the System's narrow phase) fills `detected` when the geometry changed; `inherit`
+// makes the trial contacts of it; the System's accept_step makes them the accepted ones.
 #pragma once
 
 #include "common/parallel.h"
+#include "dda/block.h"
 #include "dda/contact/contact.h"
+#include "dda/model_description.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -17,6 +20,17 @@
 
 namespace ddafem::dda
 {
+/// Shi's w0 and the contact distances that follow from it and the ContactSettings.
+struct ContactDistances
+{
+  double w0 = 0.0;                    ///< half the model size [m]
+  double max_step_displacement = 0.0; ///< g2 w0, at most a tenth of the shortest edge [m]
+  double search_distance = 0.0;       ///< d0 [m]
+  double max_penetration = 0.0;       ///< [m]
+  double angle_tolerance = 0.0;       ///< [rad]
+  double sin_angle_tolerance = 0.0;   ///< its sine [-]
+};
+
 struct ContactSet
 {
   /// The narrow phase's result at `epoch` (trial contacts before `inherit`, with their
@@ -31,12 +45,26 @@ struct ContactSet
     std::vector<std::size_t> predecessors;
   };
 
+  bool enabled = true; ///< false in a small-displacement analysis: blocks meet by joints only
+  ContactDistances distances;
+  std::vector<bool> convex; ///< whether each block is convex (at t = 0)
+  /// Counts the changes of what contact detection depends on (the blocks' geometry, removed
+  /// blocks, joints, stage, ties, the accepted contacts): detection is redone only when it moved.
+  std::uint64_t geometry_epoch = 0;
   std::vector<Contact> accepted; ///< of the last accepted step, in key order
   std::vector<Contact> trial;    ///< of the step being tried
   Detected detected;
   std::size_t next_id = 0; ///< the id of the next new contact
   /// Penalty factors raised by a failed step, by contact key, for the retry
   std::map<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>, double> raised_penalties;
+
+  /// Sets `enabled`, the distances from the model's size [m] and its ContactSettings, and
+  /// `convex` per block; throws InputError if two blocks that may touch have materials no joint
+  /// material applies to.
+  void set_up(const ModelDescription& model, const std::vector<Block>& blocks, double size,
+              bool contacts_enabled);
+  /// Whether `detected` is of the current geometry (a retried step reuses it).
+  bool detection_current() const { return detected.epoch == geometry_epoch; }
 
   /// trial: detected.contacts with the id, state, forces and slip history of the accepted
   /// contacts that persist; a new contact starts locked if its blocks touch (gap within
