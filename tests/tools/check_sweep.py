@@ -4,7 +4,8 @@ swept over the incident wave's amplitude from 0.1 to 0.8 m/s, two runs at a time
 smallest amplitude at which a keyblock's residual displacement relative to the rock exceeds
 1 mm, to within 50 %. Checks that the search ended bracketed and narrow enough, that every case's
 verdict is what its own summary.json says, that the outcome is monotonic, that sweep.md states
-the bracket, that the runs stopped as no longer needed lie outside it, and that bad input is refused with exit code 2 before any run.
+the bracket, that each run stopped as no longer needed lay outside the bracket of the runs judged
+before it or the search had concluded by then, and that bad input is refused with exit code 2 before any run.
 
     check_sweep.py DDAFEM SOURCE_DIR WORK_DIR
 """
@@ -33,9 +34,20 @@ def main():
     assert result["conclusion"] == "bracketed", result["conclusion"]
     assert 0.1 <= low < high <= 0.8 and high - low <= 0.5 * high, (low, high)
     assert result["non_monotonic"] == [], result["non_monotonic"]
+    def ended(c):
+        return c["started_s"] + c["wall_s"]
+
     for case in result["cases"]:
-        if case["cancelled"]:  # stopped once it could no longer narrow the bracket
-            assert not (low < case["value"] <= high), case
+        if case["cancelled"]:  # stopped once it could no longer narrow the bracket:
+            # by the runs judged before it was stopped, its value lay outside their bracket
+            # or that bracket was already narrow enough (the search had concluded).
+            before = [c for c in result["cases"]
+                      if not c["cancelled"] and ended(c) < ended(case)]
+            a = max([c["value"] for c in before if not c["exceeded"]], default=None)
+            b = min([c["value"] for c in before if c["exceeded"]], default=None)
+            assert a is not None and b is not None, (case, before)
+            inside = a < case["value"] < b
+            assert not inside or b - a <= 0.5 * b * (1 + 1e-12), (case, a, b)
             continue
         summary = json.load(open(os.path.join(out, case["directory"], "summary.json")))
         relative = max([b["residual_relative_m"] for b in summary["keyblocks"]["blocks"]
