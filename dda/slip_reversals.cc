@@ -41,7 +41,7 @@ System::ReversalScan System::scan_slip_reversals(double dt) const
     if ((c.forces.state != ContactState::slide && !stuck_after_slide) ||
         c.trial.state == ContactState::open || std::abs(c.forces.shear_force) <= negligible)
       continue;
-    const ContactFrame& f = frames[k];
+    const ContactFrame& f = contact_set.frames[k];
     const Block& v = blocks[c.vertex_block];
     const Block& e = blocks[c.edge_block];
     // The end velocity from the state the step's Newmark updates start from (Bathe's second
@@ -107,7 +107,7 @@ void System::restart_at_friction_jumps(const std::vector<std::size_t>& turning)
   for (const std::size_t k : turning)
   {
     const Contact& c = contact_set.trial[k];
-    const ContactFrame& f = frames[k];
+    const ContactFrame& f = contact_set.frames[k];
     // S acts on the vertex block as -S t and on the edge block as +S t.
     const Vector2 jump = (c.trial.shear_force - c.forces.shear_force) * f.tangent;
     add(c.vertex_block, -f.t_vertex.transpose() * jump);

@@ -1,7 +1,7 @@
 // The DDA model in time: blocks, joints, loads and the implicit step. Implemented one phase per
 // file: system.cc (construction, stages, ties, observers), system_step.cc (the step and its
-// control), contact_detection.cc, system_assembly.cc, system_open_close.cc, slip_reversals.cc,
-// step_scheme.cc, system_update.cc, system_energy.cc.
+// control), system_assembly.cc, system_open_close.cc, slip_reversals.cc, step_scheme.cc,
+// system_update.cc, system_energy.cc; the contacts are a ContactSet (dda/contact/).
 #pragma once
 
 #include "common/checkpoint_fwd.h"
@@ -168,12 +168,6 @@ struct PhaseTimings
   std::size_t n_open_close_iterations = 0; ///< over all attempts
 };
 
-/// Number of contacts in each state.
-struct ContactCounts
-{
-  std::size_t open = 0, slide = 0, lock = 0;
-};
-
 /// History record of a monitor.
 struct MonitorSample
 {
@@ -274,7 +268,7 @@ public:
   }
   /// The contacts of the last accepted step, ordered by (vertex block, vertex, edge block, edge).
   const std::vector<Contact>& get_contacts() const { return contact_set.accepted; }
-  ContactCounts contact_counts() const;
+  ContactCounts contact_counts() const { return contact_set.counts(); }
   /// Half the model's size w0 [m] (Shi), the reference of the step displacement bound.
   double half_model_size() const { return contact_set.distances.w0; }
   /// g2 w0 [m]
@@ -340,14 +334,6 @@ private:
     Point target(double t) const;
   };
 
-  /// Geometry of a contact over the step: T of the vertex and of its projection on the edge,
-  /// the edge's outward unit normal and unit tangent, in the configuration at the step start.
-  struct ContactFrame
-  {
-    Matrix26 t_vertex, t_edge;
-    Vector2 normal, tangent;
-  };
-
   // Construction, in order.
   /// The integrator's coefficients, C and C^-1 per material and tan(phi) per joint material.
   void set_material_constants();
@@ -378,33 +364,6 @@ private:
   void measure_balance(StepStatus& status);
   /// The penalty springs of held and removed blocks on the matrix's diagonal.
   void add_hold_terms();
-  /// Phase 1: block pairs whose boxes, inflated by d0, overlap.
-  std::vector<std::pair<std::size_t, std::size_t>> find_contact_candidates() const;
-  /// Phase 2: the vertex-edge contacts of the pairs, matched to the previous step's to keep
-  /// id, state and forces; sets contact_set.trial and the matrix structure.
-  void update_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
-  /// The vertices tied by an intact joint to another block, (block, vertex, other block)
-  /// sorted, into `jointed_vertices`: they make no contact with that block.
-  void mark_jointed_vertices();
-  bool jointed(std::size_t block, std::size_t vertex, std::size_t other) const;
-  /// Whether vertex va of block a and vertex vb of block b are both tied by intact joints to a
-  /// common third block (which keeps the two corners apart).
-  bool held_by_common_block(std::size_t a, std::size_t va, std::size_t b, std::size_t vb) const;
-  /// The narrow phase: the vertex-edge contacts of the pairs, sorted by key, into
-  /// contact_set.detected.contacts (without state; ContactSet::inherit makes them the trial
-  /// contacts).
-  /// Returns the pairs with contacts, sorted (the matrix couples them).
-  std::vector<std::pair<std::size_t, std::size_t>>
-  find_trial_contacts(const std::vector<std::pair<std::size_t, std::size_t>>& pairs);
-  struct NarrowPhaseChunk;
-  /// The contacts of candidate pair (a, b), a < b, not held by an intact joint, appended to
-  /// `chunk.found` (in key order); block_features holds both blocks' features.
-  void add_pair_contacts(std::size_t a, std::size_t b, NarrowPhaseChunk& chunk) const;
-  /// The matrix structure (joined blocks and blocks in contact) and the contacts' frames at
-  /// the step's start.
-  void set_contact_structure(std::vector<std::pair<std::size_t, std::size_t>> touching);
-  /// Trial contact k's coupling (after set_matrix_structure) and frame.
-  void set_contact_frame(std::size_t k);
   ContactLaw contact_law(const Contact& c) const;
   /// Phase 4: solves with the contacts in their trial states until no state changes.
   /// `new_matrix`: the matrix was assembled for this step (else base_matrix holds it).
@@ -501,8 +460,10 @@ private:
   /// own a_n, M^-1 ((1 - alpha_f) r_n + alpha_f r_{n-1/2}) with r_{n-1/2} the force at the pair's
   /// middle (kept by the first half): with the true a_n the composite would be first order.
   Vector6 composite_acceleration(std::size_t i, const Matrix6& m, const KinematicState& end);
-  /// Phases 1 and 2 of a step: find_contact_candidates among the blocks not removed, then
-  /// update_contacts; a retry at the same contact_set.geometry_epoch reuses `detected`.
+  /// Phases 1 and 2 of a step: the contact set's candidates among the blocks not removed, its
+  /// narrow phase, the matrix structure (joined blocks and blocks in contact), the contacts'
+  /// frames, and the trial contacts matched to the accepted ones to keep id, state and forces;
+  /// a retry at the same contact_set.geometry_epoch reuses `detected`.
   void detect_contacts();
   /// Phase 3: the step's matrix and right-hand side; true if the matrix was assembled anew
   /// (a small-displacement analysis keeps it while dt is unchanged).
@@ -605,55 +566,18 @@ private:
   std::vector<std::size_t> tie_blocks; ///< blocks with tie points, sorted
   TieTerms tie_pairs;     ///< T^T H T of the tied body, pair by pair of its runs of points
   ContactSet contact_set; ///< accepted and trial contacts, and their persistence
-  std::vector<ContactFrame> frames; ///< of contact_set.trial
-  /// find_trial_contacts' scratch per chunk of candidate pairs, kept from step to step (a cache
-  /// line each: chunks run on different threads).
-  struct alignas(64) NarrowPhaseChunk
-  {
-    std::vector<Contact> found;
-    NarrowPhaseWorkspace work;
-  };
-  std::vector<NarrowPhaseChunk> narrow_chunks;
-  /// find_trial_contacts' scratch: the candidate pairs that need the narrow phase (not held by
-  /// an intact joint), and the features of their blocks in the current configuration (a block
-  /// is in about six pairs: its vertex shapes, legs and edges are computed once for all).
-  std::vector<std::pair<std::size_t, std::size_t>> narrow_pairs;
-  std::vector<char> needs_features;
-  std::vector<PolygonFeatures> block_features;
   std::size_t broken_joint_count = 0;
-  /// Where a bonded joint ties a vertex to the other block: (vertex block, vertex, other block).
-  std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> jointed_vertices;
   /// Counts the changes of the intact joints (a joint broke, a block was removed).
   std::uint64_t joint_revision = 0;
-  /// What contact detection needs of the intact joints, sorted once per joint_revision
-  /// (refresh_joint_lists) instead of in every step.
+  /// (block_a, block_b) of every intact joint and the blocks of every element between two
+  /// blocks (lower first), sorted: the matrix couples them. Rebuilt once per joint_revision.
   struct JointLists
   {
     std::uint64_t revision = std::numeric_limits<std::uint64_t>::max();
-    /// Pairs of convex blocks joined by an intact joint (no contacts between them).
-    std::vector<std::pair<std::size_t, std::size_t>> bonded_pairs;
-    /// (block_a, block_b) of every intact joint, and the blocks of every bolt (lower first):
-    /// the matrix couples them.
     std::vector<std::pair<std::size_t, std::size_t>> joined;
-    /// The end vertices of each joint's edge on either block, which mark_jointed_vertices
-    /// tests, sorted by (block, vertex, other block): its list comes out sorted.
-    struct Candidate
-    {
-      std::size_t block = 0, vertex = 0, other = 0;
-      std::size_t joint = 0; ///< index into `joints`
-    };
-    std::vector<Candidate> candidates;
   } joint_lists;
   /// Rebuilds joint_lists if the joints changed since.
   void refresh_joint_lists();
-  /// mark_jointed_vertices' scratch: each joint's start on a [m], unit tangent, length [m].
-  struct JointFrame
-  {
-    Point start = Point::Zero();
-    Vector2 tangent = Vector2::Zero();
-    double length = 0.0;
-  };
-  std::vector<JointFrame> joint_frames;
   double reversal_tolerance = 0.0; ///< localize_slip_reversals [m]; 0: none
   StageMode mode = StageMode::dynamic;
   std::vector<bool> held;             ///< per block: held until the next begin_stage

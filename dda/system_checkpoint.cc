@@ -21,7 +21,7 @@ void System::transfer_state(Archive& a)
                       transfer_all(a, b.vertices, b.moments, b.velocity, b.acceleration, b.force);
                       transfer_all(a, b.stress, b.strain);
                     });
-  transfer_all(a, joints, broken_joint_count, joint_revision, jointed_vertices);
+  transfer_all(a, joints, broken_joint_count, joint_revision, contact_set.jointed_vertices);
   transfer_in_place(a, loads, "loads", [&a](AttachedLoad& l) { transfer_all(a, l.point); });
   transfer_in_place(a, fixed_points, "fixed points",
                     [&a](AttachedFixedPoint& p) { transfer_all(a, p.point); });
@@ -55,13 +55,14 @@ void System::transfer_state(Archive& a)
   transfer_all(a, initial_energy, largest_energy_input, timings);
   // The joints' sorted lists are rebuilt at the next detection.
   joint_lists.revision = std::numeric_limits<std::uint64_t>::max();
+  contact_set.forget_joint_lists();
 }
 
 template <class Archive>
 void System::transfer_contacts(Archive& a)
 {
   transfer_all(a, contact_set.accepted, contact_set.trial);
-  transfer_each(a, frames,
+  transfer_each(a, contact_set.frames,
                 [&a](ContactFrame& f)
                 { transfer_all(a, f.t_vertex, f.t_edge, f.normal, f.tangent); });
   transfer_all(a, contact_set.geometry_epoch, contact_set.detected.epoch,

@@ -12,7 +12,7 @@ namespace ddafem::dda
 void System::contact_spring(std::size_t k, Eigen::Matrix2d& k2, Vector2& force_on_vertex) const
 {
   const Contact& c = contact_set.trial[k];
-  const ContactFrame& f = frames[k];
+  const ContactFrame& f = contact_set.frames[k];
   const ContactLaw law = contact_law(c);
   k2 = law.normal_stiffness * (f.normal * f.normal.transpose());
   // Lock: the shear spring on the step's slip, starting from the previous shear force;
@@ -40,7 +40,7 @@ void System::add_contact_terms()
     contact_terms.states[k] = c.trial.state;
     if (c.trial.state == ContactState::open)
       continue;
-    const ContactFrame& f = frames[k];
+    const ContactFrame& f = contact_set.frames[k];
     contact_spring(k, k2, force);
     add_pair_spring(matrix, rhs, c.coupling, c.vertex_block, f.t_vertex, c.edge_block, f.t_edge, k2,
                     force);
@@ -84,8 +84,8 @@ void System::update_contact_terms(const BlockSparseMatrix& start)
       if (contact_set.trial[k].trial.state == ContactState::open)
         continue;
       contact_spring(k, k2, force);
-      const Matrix26& t =
-          contact_set.trial[k].vertex_block == i ? frames[k].t_vertex : frames[k].t_edge;
+      const Matrix26& t = contact_set.trial[k].vertex_block == i ? contact_set.frames[k].t_vertex
+                                                                 : contact_set.frames[k].t_edge;
       const Matrix26 k_t = k2 * t;
       matrix.diagonal(i).noalias() += t.transpose() * k_t;
     }
@@ -100,7 +100,7 @@ void System::update_contact_terms(const BlockSparseMatrix& start)
       if (c.trial.state == ContactState::open)
         continue;
       contact_spring(k, k2, force);
-      const ContactFrame& f = frames[k];
+      const ContactFrame& f = contact_set.frames[k];
       if (c.vertex_block < c.edge_block)
       {
         const Matrix26 k_t = k2 * f.t_edge;
@@ -119,8 +119,9 @@ void System::update_contact_terms(const BlockSparseMatrix& start)
     if (c.trial.state == ContactState::open)
       continue;
     contact_spring(k, k2, force);
-    rhs.segment<6>(6 * c.vertex_block).noalias() += frames[k].t_vertex.transpose() * force;
-    rhs.segment<6>(6 * c.edge_block).noalias() -= frames[k].t_edge.transpose() * force;
+    rhs.segment<6>(6 * c.vertex_block).noalias() +=
+        contact_set.frames[k].t_vertex.transpose() * force;
+    rhs.segment<6>(6 * c.edge_block).noalias() -= contact_set.frames[k].t_edge.transpose() * force;
   }
 }
 

@@ -73,7 +73,7 @@ double System::viscous_shear(std::size_t k) const
   const double beta = dashpot_factor(jm.damping);
   if (beta == 0.0)
     return 0.0;
-  const ContactFrame& f = frames[k];
+  const ContactFrame& f = contact_set.frames[k];
   const Vector2 velocity =
       f.t_vertex * (dashpots.velocity_factor * solution.segment<6>(6 * c.vertex_block) +
                     dashpots.offsets[c.vertex_block]) -
@@ -121,7 +121,7 @@ void System::add_work_of_damping(const Eigen::VectorXd& d)
   for (std::size_t k = 0; k < contact_set.trial.size(); ++k)
   {
     const Contact& c = contact_set.trial[k];
-    const ContactFrame& f = frames[k];
+    const ContactFrame& f = contact_set.frames[k];
     const Eigen::Matrix2d cd = contact_dashpot(c, f);
     if (cd.isZero(0.0))
       continue;

@@ -1,5 +1,5 @@
 // The model's energies: kinetic, strain and spring energy, and the balance with the works done
-// on it.
+// on it; the contacts' and joints' snapshot.
 #include "dda/system.h"
 
 #include "dda/submatrices.h"
@@ -56,4 +56,26 @@ EnergyBalance System::energy() const
   return e;
 }
 
+std::vector<ContactSnapshot> System::contact_snapshot() const
+{
+  std::vector<ContactSnapshot> out;
+  out.reserve(contact_set.accepted.size() + 2 * joints.size());
+  contact_set.add_snapshots(blocks, out);
+  for (const Joint& j : joints)
+    for (const JointPoint& p : j.points)
+    {
+      ContactSnapshot s;
+      s.id = j.id;
+      s.block_a = j.block_a;
+      s.block_b = j.block_b;
+      s.state = ContactPointState::bonded;
+      s.position = p.on_a.position;
+      s.normal = j.normal(small_displacement());
+      s.normal_force = -p.normal_force;
+      s.shear_force = p.shear_force;
+      s.gap = s.normal.dot(p.on_b.position - p.on_a.position);
+      out.push_back(s);
+    }
+  return out;
+}
 } // namespace ddafem::dda

@@ -187,7 +187,7 @@ void System::update_trial_state(std::size_t k, unsigned iteration, double neglig
                                 bool localising, std::array<std::size_t, 2>& n)
 {
   Contact& c = contact_set.trial[k];
-  const ContactFrame& f = frames[k];
+  const ContactFrame& f = contact_set.frames[k];
   const Vector2 relative = f.t_vertex * solution.segment<6>(6 * c.vertex_block) -
                            f.t_edge * solution.segment<6>(6 * c.edge_block);
   c.end_gap = c.gap + f.normal.dot(relative);

@@ -94,19 +94,28 @@ void System::detect_contacts()
   {
     // A retry from the same accepted state: the same contacts, frames and structure; only
     // their states are inherited again (penalties may have been raised).
-    contact_set.inherit(parallel, contact_set.distances.w0);
+    contact_set.inherit(parallel);
     timings.narrow_phase += seconds_since(start);
     return;
   }
-  std::vector<std::pair<std::size_t, std::size_t>> pairs =
-      contact_set.enabled ? find_contact_candidates()
-                          : std::vector<std::pair<std::size_t, std::size_t>>{};
+  ContactSet::BlockPairs pairs =
+      contact_set.enabled ? contact_set.candidates(blocks) : ContactSet::BlockPairs{};
   pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
                              [&](const auto& p) { return removed[p.first] || removed[p.second]; }),
               pairs.end());
   timings.broad_phase += seconds_since(start);
   start = Clock::now();
-  update_contacts(pairs);
+  refresh_joint_lists();
+  const ContactSet::BlockPairs touching = contact_set.detect(
+      {model, blocks, joints, joint_revision, mode == StageMode::static_equilibrium}, pairs,
+      parallel);
+  // The matrix couples joined blocks and blocks in contact (both lists sorted: merged).
+  const ContactSet::BlockPairs& joined = joint_lists.joined;
+  ContactSet::BlockPairs couplings(joined.size() + touching.size());
+  std::merge(joined.begin(), joined.end(), touching.begin(), touching.end(), couplings.begin());
+  set_matrix_structure(std::move(couplings));
+  contact_set.set_frames(blocks, *this, parallel);
+  contact_set.inherit(parallel);
   timings.narrow_phase += seconds_since(start);
 }
 

@@ -191,18 +191,17 @@ std::vector<std::string> cells_of(const std::string& line)
 }
 
 /// A table: a time column and a value column, or (with `dt`) samples in row order.
-RawRecord read_table(const MapReader& r, const std::filesystem::path& path)
+RawRecord read_table(const MapReader& r, const std::filesystem::path& path,
+                     const schema::TableColumns& columns)
 {
   const std::string shown = path.lexically_normal().string();
   const bool fixed_dt = r.has("dt");
   if (fixed_dt && (r.has("time_column") || r.has("value_column")))
     throw r.error("dt", "with a fixed dt every number of a row is a sample: expected no "
                         "time_column or value_column");
-  schema::RecordProcessing processing;
-  schema::record_keys().fill(r, processing);
-  const auto time_column = static_cast<std::size_t>(processing.columns.time_column);
-  const auto value_column = static_cast<std::size_t>(processing.columns.value_column);
-  const long long skip_rows = processing.columns.skip_rows;
+  const auto time_column = static_cast<std::size_t>(columns.time_column);
+  const auto value_column = static_cast<std::size_t>(columns.value_column);
+  const long long skip_rows = columns.skip_rows;
   RawRecord raw;
   std::vector<double> times;
   std::ifstream in(path);
@@ -254,7 +253,7 @@ RawRecord read_table(const MapReader& r, const std::filesystem::path& path)
 }
 
 /// The record's samples as the file gives them, and its unit.
-RawRecord read_raw(const MapReader& r)
+RawRecord read_raw(const MapReader& r, const schema::TableColumns& columns)
 {
   const std::filesystem::path path = scene_file(r, "file", "record file");
   // At least 2 characters a sample; each sample becomes a handful of doubles (the samples, the
@@ -277,7 +276,7 @@ RawRecord read_raw(const MapReader& r)
   if (format == RecordFormat::table && !r.has("units"))
     throw r.error("units", "a table does not say what it measures: expected `units` (" +
                                join(names_of<RecordUnit>(), ", ") + ")");
-  RawRecord raw = format == RecordFormat::peer ? read_peer(r, path) : read_table(r, path);
+  RawRecord raw = format == RecordFormat::peer ? read_peer(r, path) : read_table(r, path, columns);
   if (raw.unit_known && r.has("units") && r.choice_of<RecordUnit>("units") != raw.unit)
     throw r.error("units", std::string("the file's header says its samples are in ") +
                                name_of(raw.unit) + ": expected that, or no `units`");
@@ -326,7 +325,9 @@ double scale_of(const MapReader& r, const MotionSummary& unscaled)
 
 TimeFunction read_record(const MapReader& r, TimeFunctionUse use)
 {
-  const RawRecord raw = read_raw(r);
+  schema::RecordProcessing processing;
+  schema::record_keys().fill(r, processing);
+  const RawRecord raw = read_raw(r, processing.columns);
   const auto [first, last] = window_of(r, raw);
   std::vector<double> si(raw.samples.begin() + static_cast<std::ptrdiff_t>(first),
                          raw.samples.begin() + static_cast<std::ptrdiff_t>(last) + 1);
@@ -340,8 +341,6 @@ TimeFunction read_record(const MapReader& r, TimeFunctionUse use)
   info.dt = raw.dt;
   info.window_from = raw.dt * static_cast<double>(first);
   info.window_to = raw.dt * static_cast<double>(last);
-  schema::RecordProcessing processing;
-  schema::record_keys().fill(r, processing);
   info.start = processing.start;
   const double window = info.window_to - info.window_from;
   const double taper = r.has("taper") ? r.number("taper") : std::min(0.5, 0.05 * window);

@@ -69,7 +69,7 @@ void ContactSet::set_up(const ModelDescription& model, const std::vector<Block>&
   distances = contact_distances(blocks, size, model.contacts);
 }
 
-void ContactSet::inherit(const Parallel& parallel, double w0)
+void ContactSet::inherit(const Parallel& parallel)
 {
   // The trial contacts start as detected; each finds its predecessor on the threads (copied
   // there too: the contact is at hand when it inherits); the new ones take ids afterwards, in
@@ -101,7 +101,7 @@ void ContactSet::inherit(const Parallel& parallel, double w0)
                             predecessors[k] = find_predecessor(trial[k], at, none);
                           }
                           const std::size_t p = predecessors[k];
-                          inherit_state(trial[k], p == none ? nullptr : &accepted[p], none, w0);
+                          inherit_state(trial[k], p == none ? nullptr : &accepted[p], none);
                         }
                       });
   for (Contact& c : trial)
@@ -130,8 +130,7 @@ std::size_t ContactSet::find_predecessor(const Contact& c, std::vector<Contact>:
   return previous;
 }
 
-void ContactSet::inherit_state(Contact& c, const Contact* previous, std::size_t no_id,
-                               double w0) const
+void ContactSet::inherit_state(Contact& c, const Contact* previous, std::size_t no_id) const
 {
   // Keep id, state and forces of contacts that persist.
   if (previous)
@@ -150,7 +149,7 @@ void ContactSet::inherit_state(Contact& c, const Contact* previous, std::size_t 
     // courses would need n iterations, and Shi's 6 then cut dt without end). Those in
     // tension open in the first iteration.
     c.id = no_id;
-    c.forces.state = c.gap <= 2e-9 * w0 ? ContactState::lock : ContactState::open;
+    c.forces.state = c.gap <= 2e-9 * distances.w0 ? ContactState::lock : ContactState::open;
   }
   if (!raised_penalties.empty())
     if (const auto raised = raised_penalties.find(c.key()); raised != raised_penalties.end())
@@ -158,4 +157,46 @@ void ContactSet::inherit_state(Contact& c, const Contact* previous, std::size_t 
   c.trial = c.forces;
 }
 
+ContactCounts ContactSet::counts() const
+{
+  ContactCounts n;
+  for (const Contact& c : accepted)
+    switch (c.forces.state)
+    {
+    case ContactState::open:
+      ++n.open;
+      break;
+    case ContactState::slide:
+      ++n.slide;
+      break;
+    case ContactState::lock:
+      ++n.lock;
+      break;
+    }
+  return n;
+}
+
+void ContactSet::add_snapshots(const std::vector<Block>& blocks,
+                               std::vector<ContactSnapshot>& out) const
+{
+  for (const Contact& c : accepted)
+  {
+    const std::vector<Point>& ev = blocks[c.edge_block].vertices;
+    const Vector2 t = (ev[(c.edge + 1) % ev.size()] - ev[c.edge]).normalized();
+    ContactSnapshot s;
+    s.id = c.id;
+    s.block_a = c.vertex_block;
+    s.block_b = c.edge_block;
+    s.state = c.forces.state == ContactState::open    ? ContactPointState::open
+              : c.forces.state == ContactState::slide ? ContactPointState::slide
+                                                      : ContactPointState::lock;
+    s.position = blocks[c.vertex_block].vertices[c.vertex];
+    s.normal = Vector2(t.y(), -t.x());
+    s.normal_force = c.forces.normal_force;
+    s.shear_force = c.forces.shear_force;
+    s.gap = c.end_gap;
+    s.slip = c.total_slip;
+    out.push_back(s);
+  }
+}
 } // namespace ddafem::dda

@@ -2,20 +2,27 @@
 // are convex (set up once), the contacts of the last accepted step, the trial contacts of the
 // step being tried, each matched to its predecessor so that it keeps its id, state, forces and
 // slip history from step to step, and the penalties a failed step raised for its retry.
-// Detection (the System's narrow phase) fills `detected` when the geometry changed; `inherit`
-// makes the trial contacts of it; the System's accept_step makes them the accepted ones.
+// Detection (the broad phase `candidates`, the narrow phase `detect` with the vertices that intact
+// joints tie, and the frames) fills `detected` when the geometry changed; `inherit` makes the
+// trial contacts of it; the System's accept_step makes them the accepted ones.
 #pragma once
 
 #include "common/parallel.h"
 #include "dda/block.h"
 #include "dda/contact/contact.h"
+#include "dda/contact/narrow_phase.h"
+#include "dda/element.h"
+#include "dda/joints.h"
 #include "dda/model_description.h"
+#include "dda/snapshot.h"
+#include "dda/types.h"
 
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <map>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace ddafem::dda
@@ -31,8 +38,33 @@ struct ContactDistances
   double sin_angle_tolerance = 0.0;   ///< its sine [-]
 };
 
+/// Number of contacts in each state.
+struct ContactCounts
+{
+  std::size_t open = 0, slide = 0, lock = 0;
+};
+
+/// Geometry of a contact over the step: T of the vertex and of its projection on the edge, the
+/// edge's outward unit normal and unit tangent, in the configuration at the step start.
+struct ContactFrame
+{
+  Matrix26 t_vertex, t_edge;
+  Vector2 normal, tangent;
+};
+
 struct ContactSet
 {
+  using BlockPairs = std::vector<std::pair<std::size_t, std::size_t>>;
+  /// What the narrow phase reads of the System.
+  struct DetectionInput
+  {
+    const ModelDescription& model;
+    const std::vector<Block>& blocks;
+    const std::vector<Joint>& joints;   ///< the intact bonded joints
+    std::uint64_t joint_revision = 0;   ///< counts the changes of `joints`
+    bool initial_configuration = false; ///< a static stage: joints tie vertices as at t = 0
+  };
+
   /// The narrow phase's result at `epoch` (trial contacts before `inherit`, with their
   /// couplings; the System's contact frames and matrix structure go with it): a retried step
   /// (cut dt, slip reversal, raised penalties) starts from the same accepted state and reuses it.
@@ -57,6 +89,9 @@ struct ContactSet
   std::size_t next_id = 0; ///< the id of the next new contact
   /// Penalty factors raised by a failed step, by contact key, for the retry
   std::map<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>, double> raised_penalties;
+  std::vector<ContactFrame> frames; ///< of `trial` (and detected.contacts)
+  /// Where a bonded joint ties a vertex to the other block: (vertex block, vertex, other block).
+  std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> jointed_vertices;
 
   /// Sets `enabled`, the distances from the model's size [m] and its ContactSettings, and
   /// `convex` per block; throws InputError if two blocks that may touch have materials no joint
@@ -66,21 +101,98 @@ struct ContactSet
   /// Whether `detected` is of the current geometry (a retried step reuses it).
   bool detection_current() const { return detected.epoch == geometry_epoch; }
 
+  /// Phase 1: block pairs whose boxes, inflated by d0, overlap.
+  BlockPairs candidates(const std::vector<Block>& blocks) const;
+  /// Phase 2, the narrow phase: the vertex-edge contacts of the candidate pairs, sorted by key,
+  /// into detected.contacts (without state, at the current geometry_epoch; `inherit` makes them
+  /// the trial contacts). Vertices tied by an intact joint to the other block make none.
+  /// Returns the pairs with contacts, sorted (the matrix couples them).
+  BlockPairs detect(const DetectionInput& in, const BlockPairs& pairs, const Parallel& parallel);
+  /// Each detected contact's coupling in `host`'s matrix structure (set after `detect`) and its
+  /// frame at the step start.
+  void set_frames(const std::vector<Block>& blocks, const ElementHost& host,
+                  const Parallel& parallel);
+  /// The accepted contacts in each state.
+  ContactCounts counts() const;
+  /// The accepted contacts as snapshot points (at the vertex, the edge's outward normal, in
+  /// the blocks' current configuration), appended to `out`.
+  void add_snapshots(const std::vector<Block>& blocks, std::vector<ContactSnapshot>& out) const;
+  /// Forgets the sorted lists of the joints (a checkpoint was read): the next detection
+  /// rebuilds them.
+  void forget_joint_lists() { exclusions.revision = std::numeric_limits<std::uint64_t>::max(); }
+
   /// trial: detected.contacts with the id, state, forces and slip history of the accepted
   /// contacts that persist; a new contact starts locked if its blocks touch (gap within
-  /// 2e-9 w0, `w0` half the model's size [m]), else open. The predecessors are searched for
+  /// 2e-9 w0, Shi's w0 of `distances` [m]), else open. The predecessors are searched for
   /// once per detection (kept in `detected`); a retry only copies the contacts and their states
   /// again. Ids do not depend on the number of threads of `parallel`.
-  void inherit(const Parallel& parallel, double w0);
+  void inherit(const Parallel& parallel);
 
 private:
+  /// What detection needs of the intact joints, sorted once per joint revision instead of in
+  /// every step.
+  struct JointExclusions
+  {
+    std::uint64_t revision = std::numeric_limits<std::uint64_t>::max();
+    /// Pairs of convex blocks joined by an intact joint (no contacts between them).
+    BlockPairs bonded_pairs;
+    /// The end vertices of each joint's edge on either block, which mark_jointed_vertices
+    /// tests, sorted by (block, vertex, other block): its list comes out sorted.
+    struct Candidate
+    {
+      std::size_t block = 0, vertex = 0, other = 0;
+      std::size_t joint = 0; ///< index into the joints
+    };
+    std::vector<Candidate> candidates;
+  };
+  /// Each joint's start on a [m], unit tangent, length [m] (mark_jointed_vertices' scratch).
+  struct JointFrame
+  {
+    Point start = Point::Zero();
+    Vector2 tangent = Vector2::Zero();
+    double length = 0.0;
+  };
+  /// The narrow phase's scratch per chunk of candidate pairs, kept from step to step (a cache
+  /// line each: chunks run on different threads).
+  struct alignas(64) NarrowPhaseChunk
+  {
+    std::vector<Contact> found;
+    NarrowPhaseWorkspace work;
+  };
+
+  JointExclusions exclusions;
+  std::vector<JointFrame> joint_frames;
+  std::vector<NarrowPhaseChunk> narrow_chunks;
+  /// The candidate pairs that need the narrow phase (not held by an intact joint), and the
+  /// features of their blocks in the current configuration (a block is in about six pairs: its
+  /// vertex shapes, legs and edges are computed once for all).
+  BlockPairs narrow_pairs;
+  std::vector<char> needs_features;
+  std::vector<PolygonFeatures> block_features;
+
+  /// Rebuilds `exclusions` if the joints changed since.
+  void refresh_exclusions(const DetectionInput& in);
+  /// The vertices tied by an intact joint to another block, (block, vertex, other block)
+  /// sorted, into `jointed_vertices`: they make no contact with that block.
+  void mark_jointed_vertices(const DetectionInput& in);
+  bool jointed(std::size_t block, std::size_t vertex, std::size_t other) const;
+  /// Whether vertex va of block a and vertex vb of block b are both tied by intact joints to a
+  /// common third block (which keeps the two corners apart).
+  bool held_by_common_block(std::size_t a, std::size_t va, std::size_t b, std::size_t vb) const;
+  /// detect's narrow phase proper, after the jointed vertices are marked.
+  BlockPairs find_trial_contacts(const DetectionInput& in, const BlockPairs& pairs,
+                                 const Parallel& parallel);
+  /// The contacts of candidate pair (a, b), a < b, not held by an intact joint, appended to
+  /// `chunk.found` (in key order); block_features holds both blocks' features.
+  void add_pair_contacts(const DetectionInput& in, std::size_t a, std::size_t b,
+                         NarrowPhaseChunk& chunk) const;
   /// Index in `accepted` of c's predecessor, or `none`; `at` is the first accepted contact
   /// whose key is not below c's.
   std::size_t find_predecessor(const Contact& c, std::vector<Contact>::const_iterator at,
                                std::size_t none) const;
   /// c's state from the accepted contact `previous` (or a new contact's first state and id
   /// `no_id` if `previous` is null), with a raised penalty.
-  void inherit_state(Contact& c, const Contact* previous, std::size_t no_id, double w0) const;
+  void inherit_state(Contact& c, const Contact* previous, std::size_t no_id) const;
 };
 
 } // namespace ddafem::dda
