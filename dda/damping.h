@@ -44,6 +44,12 @@ struct StepDashpots
   std::vector<Vector6> start;   ///< per block: the velocity at the step's start (for the work)
 };
 
+/// A material's stiffness-proportional factor beta [s] in this step: 0 when no dashpot acts.
+inline double dashpot_factor(const StepDashpots& dashpots, const RockDamping& damping)
+{
+  return dashpots.velocity_factor > 0.0 ? damping.stiffness_factor() : 0.0;
+}
+
 /// Exact response of the damped oscillator m x'' + c x' + k x = 0 from x(0) = x0, x'(0) = 0:
 /// x(t) = x0 exp(-zeta w t) (cos(wd t) + zeta / sqrt(1 - zeta^2) sin(wd t)), w = sqrt(k / m),
 /// wd = w sqrt(1 - zeta^2), zeta = c / (2 sqrt(k m)) < 1. Units of x0; t [s], w [rad/s].

@@ -16,19 +16,11 @@ namespace
 {
 /// Reversals earlier in the step than this fraction are taken within it [-].
 constexpr double min_reversal_fraction = 0.05;
-/// Slides shorter than this many steps are contacts chattering under a wave, not a block
-/// sliding on a joint [-].
-constexpr double min_slide_steps = 10.0;
 } // namespace
-
-bool System::slides_long_enough(const Contact& c, double dt) const
-{
-  return c.slide_duration >= min_slide_steps * dt;
-}
 
 System::ReversalScan System::scan_slip_reversals(double dt) const
 {
-  const double negligible = negligible_contact_force();
+  const double negligible = contact_set.negligible_force();
   ReversalScan scan;
   for (std::size_t k = 0; k < contact_set.trial.size(); ++k)
   {

@@ -364,49 +364,17 @@ private:
   void measure_balance(StepStatus& status);
   /// The penalty springs of held and removed blocks on the matrix's diagonal.
   void add_hold_terms();
-  ContactLaw contact_law(const Contact& c) const;
   /// Phase 4: solves with the contacts in their trial states until no state changes.
   /// `new_matrix`: the matrix was assembled for this step (else base_matrix holds it).
   StepStatus solve_with_open_close(const StepLabel& when, bool new_matrix);
-  /// Trial contact k's springs K2 [N/m] and force on its vertex [N] (minus on its edge).
-  void contact_spring(std::size_t k, Eigen::Matrix2d& k2, Vector2& force_on_vertex) const;
   /// The rock's dashpots (dda/system_damping.cc): the step's share of them (none in static
-  /// stages), a material's beta [s] in this step, a trial contact's dashpot C [N s/m] and its
-  /// terms in k2 and the force on the vertex, and the work of all of them on the step's d.
+  /// stages), and the work of all of them on the step's d (the contacts' from the ContactSet).
   void prepare_dashpots(double dt);
-  double dashpot_factor(const RockDamping& damping) const;
-  Eigen::Matrix2d contact_dashpot(const Contact& c, const ContactFrame& f) const;
-  void add_contact_dashpot(const Contact& c, const ContactFrame& f, Eigen::Matrix2d& k2,
-                           Vector2& force_on_vertex) const;
   void add_work_of_damping(const Eigen::VectorXd& d);
-  double viscous_shear(std::size_t k) const; ///< of trial contact k [N] (evaluate_contact)
-  /// Adds every closed trial contact's terms to the matrix and right-hand side (an attempt's
-  /// first open-close iteration, or after the tie terms changed).
-  void add_contact_terms();
-  /// A later iteration: `matrix` holds `start` plus the terms of the states last added; the
-  /// blocks of contacts that changed state are summed again from `start`, and the contacts'
-  /// forces are added to `rhs` (which holds the start's).
-  void update_contact_terms(const BlockSparseMatrix& start);
-  /// Per block and per coupling the trial contacts on it, once per attempt.
-  void index_contact_terms();
   /// The tied body's H and g on the blocks of the tie points (T at the step start).
   void add_tie_terms();
   /// The tie points' displacement increments T d (2m) of a solution.
   Eigen::VectorXd tie_increments(const Eigen::VectorXd& d) const;
-  /// Sets each trial from the solution; returns the number of state changes that hold the
-  /// iteration back (from `iteration` 3 on, not those of contacts carrying almost nothing,
-  /// which are counted in `n_ignored`).
-  std::size_t update_trial_states(unsigned iteration, std::size_t& n_ignored);
-  /// Contact k's trial (update_trial_states, on the threads); a change that holds the iteration
-  /// back counts in n[0], one that does not in n[1].
-  void update_trial_state(std::size_t k, unsigned iteration, double negligible, bool localising,
-                          std::array<std::size_t, 2>& n);
-  /// The force below which a trial contact carries almost nothing [N]:
-  /// ContactSettings::flip_force_ratio of the largest normal force of the trials.
-  double negligible_contact_force() const;
-  /// Raises the penalty of the contacts that penetrate deeper than allowed; false if every one
-  /// is at ContactSettings::max_penalty_factor already.
-  bool raise_penalties();
   double largest_vertex_displacement(const Eigen::VectorXd& d) const;
   /// Slip reversals among the trial contacts that slid at the step's start and carry force.
   struct ReversalScan
@@ -420,12 +388,6 @@ private:
     std::vector<std::size_t> friction_turns;
   };
   ReversalScan scan_slip_reversals(double dt) const;
-  /// Whether the slide a contact is in has lasted at least 10 steps of dt, so that the
-  /// friction restart and the open-close lock rule apply to it. Under a wave, contacts of a
-  /// rock mass at rest slide for a few steps at a time (15 to 120 us at dt 3e-5 s in the
-  /// horseshoe) with speed jumps of 0.1 m/s: restarting or locking those fed energy into it
-  /// (docs/design.md, Integrators); a block sliding on a shaken joint slides for 0.1 s.
-  bool slides_long_enough(const Contact& c, double dt) const;
   /// Friction that turns around in a step jumps by Delta S = S_end - S_start [N] along the
   /// contact's tangent. Generalized-alpha's (1 - alpha_f) r_{n+1} + alpha_f r_n would apply the
   /// jump only in part and leave the velocity alpha_f dt Delta r / m behind for as long as the
@@ -620,16 +582,6 @@ private:
   BlockSparseMatrix base_matrix; ///< the step's matrix without contacts (when there are some)
   Eigen::VectorXd base_rhs;
   BlockSparseMatrix tied_matrix; ///< base_matrix with a tied body's terms (open-close iteration)
-  /// The contact terms in `matrix`: each trial contact's state when they were added, and the
-  /// contacts by block and by coupling (ascending) to sum a block again.
-  struct ContactTermsIndex
-  {
-    std::vector<ContactState> states;
-    bool indexed = false;
-    std::vector<std::size_t> block_start, block_contacts;       ///< CSR by block
-    std::vector<std::size_t> coupling_start, coupling_contacts; ///< CSR by coupling
-    std::vector<std::size_t> changed_blocks, changed_couplings; ///< scratch
-  } contact_terms;
   Eigen::VectorXd tied_rhs;
   double matrix_dt = 0.0;          ///< dt the matrix was assembled for (small-displacement reuse)
   double matrix_mass_factor = 0.0; ///< and its factor of M [1/s^2]

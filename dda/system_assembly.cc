@@ -1,6 +1,6 @@
 // Phase 3 of the step: the matrix and right-hand side of blocks, loads, fixed points,
 // boundaries and joints, in the configuration the step is linearised about (the contacts' terms
-// of phase 4 are in system_contact_terms.cc).
+// of phase 4 are in dda/contact/contact_terms.cc).
 #include "dda/system.h"
 
 #include "dda/submatrices.h"
@@ -38,7 +38,7 @@ void System::add_block_terms(double dt, bool with_matrix)
     const double density = block_density(b);
     const Matrix6& m = step_masses[i] = mass_matrix(g, density);
     // The dashpot beta K_e on the strain rates (dda/damping.h).
-    const double beta = dashpot_factor(model.materials[b.material].damping);
+    const double beta = dashpot_factor(dashpots, model.materials[b.material].damping);
     auto f = rhs.segment<6>(6 * i);
     if (with_matrix || beta > 0.0)
     {
@@ -118,7 +118,7 @@ void System::add_joint_terms(bool with_matrix)
     const JointMaterial& jm = model.joint_materials[j.joint_material];
     const Eigen::Matrix2d springs = joint_spring_matrix(jm, n, tangent);
     // With a dashpot beta K_s on the relative velocity (dda/damping.h): (1 + c_v beta) K_s.
-    const double beta = dashpot_factor(jm.damping);
+    const double beta = dashpot_factor(dashpots, jm.damping);
     const Eigen::Matrix2d ks =
         beta > 0.0 ? Eigen::Matrix2d((1.0 + dashpots.velocity_factor * beta) * springs) : springs;
     for (const JointPoint& p : j.points)

@@ -44,9 +44,10 @@ void System::transfer_state(Archive& a)
                 [&a](FirstHalf& h)
                 { transfer_all(a, h.start_velocity, h.displacement, h.mid_force); });
   transfer_all(a, coupling_pairs, coupling_rows, matrix, base_matrix, base_rhs, tied_matrix);
-  transfer_all(a, contact_terms.states, contact_terms.indexed, contact_terms.block_start);
-  transfer_all(a, contact_terms.block_contacts, contact_terms.coupling_start);
-  transfer_all(a, contact_terms.coupling_contacts, tied_rhs, matrix_dt, matrix_mass_factor,
+  transfer_all(a, contact_set.terms.states, contact_set.terms.indexed,
+               contact_set.terms.block_start);
+  transfer_all(a, contact_set.terms.block_contacts, contact_set.terms.coupling_start);
+  transfer_all(a, contact_set.terms.coupling_contacts, tied_rhs, matrix_dt, matrix_mass_factor,
                step_masses);
   transfer_all(a, joint_couplings_revision, rhs, solution);
   transfer_object(a, solver);

@@ -22,7 +22,7 @@ double System::stored_spring_energy() const
   for (const Contact& c : contact_set.accepted)
     if (c.forces.state != ContactState::open)
     {
-      const ContactLaw law = contact_law(c);
+      const ContactLaw law = contact_set.law(c);
       e += 0.5 * (c.forces.normal_force * c.forces.normal_force / law.normal_stiffness +
                   c.forces.shear_force * c.forces.shear_force / law.shear_stiffness);
     }

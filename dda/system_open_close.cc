@@ -10,19 +10,6 @@
 
 namespace ddafem::dda
 {
-ContactLaw System::contact_law(const Contact& c) const
-{
-  const JointMaterial& jm = model.joint_materials[c.joint_material];
-  ContactLaw law;
-  law.normal_stiffness = c.penalty_factor * jm.normal_stiffness;
-  law.shear_stiffness = jm.shear_ratio * law.normal_stiffness;
-  law.tan_friction = tan_friction[c.joint_material];
-  // A bonded joint material's contacts come from broken joints: residual friction only.
-  law.cohesive_force = jm.bonded ? 0.0 : jm.cohesion * c.length;
-  law.tensile_capacity = jm.bonded ? 0.0 : jm.tensile_strength * c.length;
-  return law;
-}
-
 StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
 {
   // The matrix without contact and tie terms: just assembled, or kept from the last assembly
@@ -51,18 +38,19 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
   bool ties_changed = false;
   StepStatus status;
   const unsigned max_iterations = std::max(1u, model.contacts.max_open_close_iterations);
+  StepSystem step{matrix, rhs};
   for (unsigned iteration = 1; iteration <= max_iterations; ++iteration)
   {
     if (iteration == 1 || ties_changed)
     {
       if (iteration > 1)
         add_ties_to_start(false);
-      add_contact_terms();
+      contact_set.add_terms(step, dashpots);
     }
     else
     {
       rhs = tied_body ? tied_rhs : base_rhs;
-      update_contact_terms(tied_body ? tied_matrix : base_matrix);
+      contact_set.update_terms(step, tied_body ? tied_matrix : base_matrix, dashpots);
     }
     status.solve = solver.solve(matrix, rhs, solution, MatrixChange::unknown, matrix_mass_factor);
     ++status.n_open_close_iterations;
@@ -73,12 +61,14 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
       status.message = status.solve.message + " " + when.text();
       return status;
     }
-    std::size_t n_changes = update_trial_states(iteration, status.n_flips_ignored);
+    std::size_t n_changes = contact_set.update_trial_states(
+        {solution, dashpots, matrix_dt, iteration, localising_slip_reversals()},
+        status.n_flips_ignored, parallel);
     const std::size_t ignored_before = status.n_flips_ignored;
     const std::size_t n_tie_changes =
         tied_body
             ? tied_body->update_trial_states(tie_increments(solution), iteration,
-                                             negligible_contact_force(), status.n_flips_ignored)
+                                             contact_set.negligible_force(), status.n_flips_ignored)
             : 0;
     ties_changed = n_tie_changes > 0 || status.n_flips_ignored > ignored_before;
     n_changes += n_tie_changes;
@@ -148,84 +138,6 @@ Eigen::VectorXd System::tie_increments(const Eigen::VectorXd& d) const
   for (std::size_t k = 0; k < tie_points.size(); ++k)
     delta.segment<2>(2 * k) = tie_matrices[k] * d.segment<6>(6 * tie_points[k].block);
   return delta;
-}
-
-double System::negligible_contact_force() const
-{
-  double largest_force = 0.0;
-  for (const Contact& c : contact_set.trial)
-    largest_force = std::max(largest_force, c.trial.normal_force);
-  return model.contacts.flip_force_ratio * largest_force;
-}
-
-std::size_t System::update_trial_states(unsigned iteration, std::size_t& n_ignored)
-{
-  // Each contact's trial on the threads (it depends on the contact alone); the changes are
-  // counted per chunk and added afterwards (integers: in any order the same).
-  const double negligible = negligible_contact_force();
-  const bool localising = localising_slip_reversals();
-  constexpr std::size_t grain = 1024;
-  std::vector<std::array<std::size_t, 2>> counts((contact_set.trial.size() + grain - 1) / grain,
-                                                 {0, 0});
-  parallel.for_chunks(contact_set.trial.size(), grain,
-                      [&](std::size_t begin, std::size_t end)
-                      {
-                        std::array<std::size_t, 2>& n = counts[begin / grain];
-                        for (std::size_t k = begin; k < end; ++k)
-                          update_trial_state(k, iteration, negligible, localising, n);
-                      });
-  std::size_t n_changes = 0;
-  for (const std::array<std::size_t, 2>& n : counts)
-  {
-    n_changes += n[0];
-    n_ignored += n[1];
-  }
-  return n_changes;
-}
-
-void System::update_trial_state(std::size_t k, unsigned iteration, double negligible,
-                                bool localising, std::array<std::size_t, 2>& n)
-{
-  Contact& c = contact_set.trial[k];
-  const ContactFrame& f = contact_set.frames[k];
-  const Vector2 relative = f.t_vertex * solution.segment<6>(6 * c.vertex_block) -
-                           f.t_edge * solution.segment<6>(6 * c.edge_block);
-  c.end_gap = c.gap + f.normal.dot(relative);
-  c.step_slip = f.tangent.dot(relative);
-  // A sticking contact's dashpot is in its shear demand; from the third iteration on it may
-  // hold a contact at the limit but no longer push it to slide, or the contact flips on the
-  // dashpot's last newton between a lock (dashpot on) and a slide (off) for ever.
-  const ContactForces law =
-      evaluate_contact(contact_law(c), c.forces, c.end_gap, c.step_slip, viscous_shear(k),
-                       iteration < 3 ? DashpotDemand::total : DashpotDemand::never_pushes);
-  // With slip reversals localised, sliding that reverses between trials is taken as lock
-  // (only on a slide of at least 10 steps: slides_long_enough).
-  const ContactForces next = localising && slides_long_enough(c, matrix_dt)
-                                 ? iteration_trial(iteration, c.trial, law)
-                                 : law;
-  // A contact that ends the step within rounding of zero gap (1e-12 of the model size; its
-  // forces are then p x that, e.g. 0.5 N) is decided by rounding noise: it carries nothing
-  // in either state and may flip between iterations (the head joints of bricks falling
-  // together). Its change is taken but does not hold the iteration back (n[1]; the others
-  // n[0]). From the third iteration on, so does one that carries almost nothing before and
-  // after (contacts flipping between slide and lock under a kN where the rock carries MN).
-  if (state_changed(c.trial, next) && std::abs(c.end_gap) > 2e-12 * contact_set.distances.w0)
-    ++n[change_holds_iteration(iteration, c.trial, next, negligible) ? 0 : 1];
-  c.trial = next;
-}
-
-bool System::raise_penalties()
-{
-  const double cap = model.contacts.max_penalty_factor;
-  bool raised = false;
-  for (const Contact& c : contact_set.trial)
-    if (c.trial.state != ContactState::open && -c.end_gap > contact_set.distances.max_penetration &&
-        c.penalty_factor < cap)
-    {
-      contact_set.raised_penalties[c.key()] = std::min(cap, 10.0 * c.penalty_factor);
-      raised = true;
-    }
-  return raised;
 }
 
 } // namespace ddafem::dda

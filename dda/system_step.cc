@@ -209,7 +209,7 @@ void System::check_motion_limits(StepStatus& status, const StepLabel& when)
       << deepest->gap << " m at the step's start) penetrates " << status.max_penetration
       << " m, deeper than the " << contact_set.distances.max_penetration << " m allowed "
       << when.text() << " (a stiffer joint normal_stiffness or a smaller dt reduces it)";
-    status.penalty_raised = raise_penalties();
+    status.penalty_raised = contact_set.raise_penalties();
     status.outcome = StepOutcome::penetration_too_large;
     status.message = m.str();
   }

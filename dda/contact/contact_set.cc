@@ -52,12 +52,15 @@ ContactDistances contact_distances(const std::vector<Block>& blocks, double size
 }
 } // namespace
 
-void ContactSet::set_up(const ModelDescription& model, const std::vector<Block>& blocks,
+void ContactSet::set_up(const ModelDescription& description, const std::vector<Block>& blocks,
                         double size, bool contacts_enabled)
 {
   enabled = contacts_enabled;
+  model = &description;
+  for (const JointMaterial& jm : description.joint_materials)
+    tan_friction.push_back(std::tan(jm.friction_angle * M_PI / 180.0));
   if (enabled && blocks.size() > 1)
-    check_contact_materials(model, blocks);
+    check_contact_materials(description, blocks);
   for (const Block& b : blocks)
   {
     bool is_convex = true;
@@ -66,7 +69,7 @@ void ContactSet::set_up(const ModelDescription& model, const std::vector<Block>&
       is_convex = is_convex && interior_angle(b.vertices, k) < M_PI;
     convex.push_back(is_convex);
   }
-  distances = contact_distances(blocks, size, model.contacts);
+  distances = contact_distances(blocks, size, description.contacts);
 }
 
 void ContactSet::inherit(const Parallel& parallel)

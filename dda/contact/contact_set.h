@@ -10,13 +10,17 @@
 #include "common/parallel.h"
 #include "dda/block.h"
 #include "dda/contact/contact.h"
+#include "dda/contact/contact_law.h"
 #include "dda/contact/narrow_phase.h"
+#include "dda/damping.h"
 #include "dda/element.h"
 #include "dda/joints.h"
+#include "dda/linear_solver.h"
 #include "dda/model_description.h"
 #include "dda/snapshot.h"
 #include "dda/types.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -64,6 +68,25 @@ struct ContactSet
     std::uint64_t joint_revision = 0;   ///< counts the changes of `joints`
     bool initial_configuration = false; ///< a static stage: joints tie vertices as at t = 0
   };
+  /// What the trial states read of the step being solved.
+  struct TrialInput
+  {
+    const Eigen::VectorXd& solution; ///< the blocks' unknowns d of this iteration (6 per block)
+    const StepDashpots& dashpots;
+    double dt = 0.0;         ///< of the matrix [s] (the slide duration's unit)
+    unsigned iteration = 0;  ///< of the open-close iteration, from 0
+    bool localising = false; ///< slip reversals are localised: long slides that reverse lock
+  };
+  /// The contact terms in the matrix: each trial contact's state when they were added, and the
+  /// contacts by block and by coupling (ascending) to sum a block again.
+  struct TermsIndex
+  {
+    std::vector<ContactState> states;
+    bool indexed = false;
+    std::vector<std::size_t> block_start, block_contacts;       ///< CSR by block
+    std::vector<std::size_t> coupling_start, coupling_contacts; ///< CSR by coupling
+    std::vector<std::size_t> changed_blocks, changed_couplings; ///< scratch
+  };
 
   /// The narrow phase's result at `epoch` (trial contacts before `inherit`, with their
   /// couplings; the System's contact frames and matrix structure go with it): a retried step
@@ -78,6 +101,8 @@ struct ContactSet
   };
 
   bool enabled = true; ///< false in a small-displacement analysis: blocks meet by joints only
+  const ModelDescription* model = nullptr; ///< its joint materials and contact settings
+  std::vector<double> tan_friction;        ///< tan(phi) per joint material
   ContactDistances distances;
   std::vector<bool> convex; ///< whether each block is convex (at t = 0)
   /// Counts the changes of what contact detection depends on (the blocks' geometry, removed
@@ -90,13 +115,15 @@ struct ContactSet
   /// Penalty factors raised by a failed step, by contact key, for the retry
   std::map<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>, double> raised_penalties;
   std::vector<ContactFrame> frames; ///< of `trial` (and detected.contacts)
+  TermsIndex terms;                 ///< of the trial contacts in the step's matrix
   /// Where a bonded joint ties a vertex to the other block: (vertex block, vertex, other block).
   std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> jointed_vertices;
 
-  /// Sets `enabled`, the distances from the model's size [m] and its ContactSettings, and
+  /// Sets `enabled`, `model` (which must outlive the set: the System's own copy), tan(phi) per
+  /// joint material, the distances from the model's size [m] and its ContactSettings, and
   /// `convex` per block; throws InputError if two blocks that may touch have materials no joint
   /// material applies to.
-  void set_up(const ModelDescription& model, const std::vector<Block>& blocks, double size,
+  void set_up(const ModelDescription& description, const std::vector<Block>& blocks, double size,
               bool contacts_enabled);
   /// Whether `detected` is of the current geometry (a retried step reuses it).
   bool detection_current() const { return detected.epoch == geometry_epoch; }
@@ -112,6 +139,31 @@ struct ContactSet
   /// frame at the step start.
   void set_frames(const std::vector<Block>& blocks, const ElementHost& host,
                   const Parallel& parallel);
+  /// Contact c's law: its joint material's springs (times its penalty factor), friction,
+  /// cohesion and tensile strength over its length (none for a broken bonded joint's).
+  ContactLaw law(const Contact& c) const;
+  /// Adds every closed trial contact's terms to the matrix and right-hand side (an attempt's
+  /// first open-close iteration, or after the tie terms changed).
+  void add_terms(StepSystem& step, const StepDashpots& dashpots);
+  /// A later iteration: `step.matrix` holds `start` plus the terms of the states last added; the
+  /// blocks of contacts that changed state are summed again from `start`, and the contacts'
+  /// forces are added to `step.rhs` (which holds the start's).
+  void update_terms(StepSystem& step, const BlockSparseMatrix& start, const StepDashpots& dashpots);
+  /// Sets each trial from the solution; returns the number of state changes that hold the
+  /// iteration back (from iteration 3 on, not those of contacts carrying almost nothing,
+  /// which are counted in `n_ignored`).
+  std::size_t update_trial_states(const TrialInput& in, std::size_t& n_ignored,
+                                  const Parallel& parallel);
+  /// The force below which a trial contact carries almost nothing [N]:
+  /// ContactSettings::flip_force_ratio of the largest normal force of the trials.
+  double negligible_force() const;
+  /// Raises the penalty of the contacts that penetrate deeper than allowed; false if every one
+  /// is at ContactSettings::max_penalty_factor already.
+  bool raise_penalties();
+  /// The trial contacts' dashpots' work on the step's d [J] (negative: absorbed), from `mean`,
+  /// each block's mean velocity over the step, added term by term to `work`.
+  void add_work_of_damping(double& work, const std::vector<Vector6>& mean, const Eigen::VectorXd& d,
+                           const StepDashpots& dashpots) const;
   /// The accepted contacts in each state.
   ContactCounts counts() const;
   /// The accepted contacts as snapshot points (at the vertex, the edge's outward normal, in
@@ -186,6 +238,24 @@ private:
   /// `chunk.found` (in key order); block_features holds both blocks' features.
   void add_pair_contacts(const DetectionInput& in, std::size_t a, std::size_t b,
                          NarrowPhaseChunk& chunk) const;
+  /// Trial contact k's springs K2 [N/m] and force on its vertex [N] (minus on its edge).
+  void spring(std::size_t k, const StepDashpots& dashpots, Eigen::Matrix2d& k2,
+              Vector2& force_on_vertex) const;
+  /// A trial contact's dashpot C [N s/m] over this step, and its terms in k2 and the force on
+  /// the vertex.
+  Eigen::Matrix2d dashpot(const Contact& c, const ContactFrame& f,
+                          const StepDashpots& dashpots) const;
+  void add_dashpot(const Contact& c, const ContactFrame& f, const StepDashpots& dashpots,
+                   Eigen::Matrix2d& k2, Vector2& force_on_vertex) const;
+  /// Of trial contact k [N] (evaluate_contact), at the end velocity of `solution`.
+  double viscous_shear(std::size_t k, const StepDashpots& dashpots,
+                       const Eigen::VectorXd& solution) const;
+  /// Per block and per coupling the trial contacts on it, once per attempt.
+  void index_terms(std::size_t n_blocks, std::size_t n_couplings);
+  /// Contact k's trial (update_trial_states, on the threads); a change that holds the iteration
+  /// back counts in n[0], one that does not in n[1].
+  void update_trial_state(std::size_t k, const TrialInput& in, double negligible,
+                          std::array<std::size_t, 2>& n);
   /// Index in `accepted` of c's predecessor, or `none`; `at` is the first accepted contact
   /// whose key is not below c's.
   std::size_t find_predecessor(const Contact& c, std::vector<Contact>::const_iterator at,
