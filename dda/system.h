@@ -206,7 +206,7 @@ public:
   /// sliding). A step in which such a contact's friction turns around is redone from the
   /// right-hand limit of the start state (restart_at_friction_jumps). 0 (the
   /// default) accepts every step as it is.
-  void localize_slip_reversals(double tolerance) { reversal_tolerance = tolerance; }
+  void localize_slip_reversals(double tolerance) { contact_set.reversal_tolerance = tolerance; }
 
   /// Ties m points, each on the boundary of its block, to `body`, which the System steps with
   /// itself from then on (see TiedBody). The body must outlive the System. Before the first
@@ -266,15 +266,10 @@ public:
         return *kind;
     throw std::logic_error("System::elements: no such element kind");
   }
-  /// The contacts of the last accepted step, ordered by (vertex block, vertex, edge block, edge).
-  const std::vector<Contact>& get_contacts() const { return contact_set.accepted; }
-  ContactCounts contact_counts() const { return contact_set.counts(); }
-  /// Half the model's size w0 [m] (Shi), the reference of the step displacement bound.
-  double half_model_size() const { return contact_set.distances.w0; }
-  /// g2 w0 [m]
-  double max_step_displacement() const { return contact_set.distances.max_step_displacement; }
-  double search_distance() const { return contact_set.distances.search_distance; } ///< d0 [m]
-  double max_penetration() const { return contact_set.distances.max_penetration; } ///< [m]
+  /// The contacts: those of the last accepted step (`accepted`, ordered by vertex block,
+  /// vertex, edge block, edge), their counts and distances (w0, g2 w0, d0, the penetration
+  /// limit).
+  const ContactSet& contacts() const { return contact_set; }
   const ModelDescription& get_model() const { return model; }
   const PhaseTimings& get_timings() const { return timings; }
   const StepSolver& get_solver() const { return solver; }
@@ -376,18 +371,6 @@ private:
   /// The tie points' displacement increments T d (2m) of a solution.
   Eigen::VectorXd tie_increments(const Eigen::VectorXd& d) const;
   double largest_vertex_displacement(const Eigen::VectorXd& d) const;
-  /// Slip reversals among the trial contacts that slid at the step's start and carry force.
-  struct ReversalScan
-  {
-    /// the earliest reversal (SlipReversal::at, a fraction of the step) whose slip error
-    /// (slip_error of its speed error) exceeds the reversal tolerance; 0 if there is none
-    double earliest = 0.0;
-    /// the trial contacts (indices) whose friction turned around from slide to slide in the
-    /// step with a generalized-alpha velocity lag, alpha_f |v1 - v0|, whose slip error exceeds
-    /// the reversal tolerance
-    std::vector<std::size_t> friction_turns;
-  };
-  ReversalScan scan_slip_reversals(double dt) const;
   /// Friction that turns around in a step jumps by Delta S = S_end - S_start [N] along the
   /// contact's tangent. Generalized-alpha's (1 - alpha_f) r_{n+1} + alpha_f r_n would apply the
   /// jump only in part and leave the velocity alpha_f dt Delta r / m behind for as long as the
@@ -449,7 +432,7 @@ private:
   /// Whether slip reversals are localised in this stage (a reversal tolerance, dynamic).
   bool localising_slip_reversals() const
   {
-    return reversal_tolerance > 0.0 && mode == StageMode::dynamic;
+    return contact_set.reversal_tolerance > 0.0 && mode == StageMode::dynamic;
   }
   void set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings);
   std::size_t coupling_of(std::size_t i, std::size_t j) const override;
@@ -540,7 +523,6 @@ private:
   } joint_lists;
   /// Rebuilds joint_lists if the joints changed since.
   void refresh_joint_lists();
-  double reversal_tolerance = 0.0; ///< localize_slip_reversals [m]; 0: none
   StageMode mode = StageMode::dynamic;
   std::vector<bool> held;             ///< per block: held until the next begin_stage
   std::vector<bool> removed;          ///< per block: inert for the rest of the run

@@ -35,8 +35,8 @@ void System::transfer_state(Archive& a)
                     [&a](Support& s) { transfer_all(a, s.point, s.stiffness, s.load, s.anchor); });
   transfer_all(a, support_normal_stiffness, tie_points, tie_origins, tie_matrices);
   transfer_contacts(a);
-  transfer_all(a, reversal_tolerance, contact_set.enabled, mode, held, removed, balances,
-               motion_starts);
+  transfer_all(a, contact_set.reversal_tolerance, contact_set.enabled, mode, held, removed,
+               balances, motion_starts);
   transfer_each(a, friction_jumps,
                 [&a](StateBeforeJump& s) { transfer_all(a, s.block, s.acceleration, s.force); });
   transfer_all(a, step_integration, second_half, open_half);

@@ -19,13 +19,7 @@ double System::stored_spring_energy() const
     k->add_energy(e);
   for (const AttachedFixedPoint& f : fixed_points)
     e += 0.5 * f.stiffness * (f.point.position - f.target(current_time)).squaredNorm();
-  for (const Contact& c : contact_set.accepted)
-    if (c.forces.state != ContactState::open)
-    {
-      const ContactLaw law = contact_set.law(c);
-      e += 0.5 * (c.forces.normal_force * c.forces.normal_force / law.normal_stiffness +
-                  c.forces.shear_force * c.forces.shear_force / law.shear_stiffness);
-    }
+  contact_set.add_energy(e);
   return e;
 }
 

@@ -54,7 +54,9 @@ StepStatus System::attempt_step(double dt, const StepPart part)
     return status;
   if (localising_slip_reversals())
   {
-    const ReversalScan scan = scan_slip_reversals(dt);
+    const ContactSet::ReversalScan scan = contact_set.scan_reversals(
+        {blocks, dt, step_integration, model.time.integrator == Integrator::bathe,
+         start_force_lag(), [&](std::size_t i) { return step_start(i, dt); }});
     if (scan.earliest > 0.0)
     {
       status.reversal_fraction = scan.earliest;
@@ -194,13 +196,7 @@ void System::check_motion_limits(StepStatus& status, const StepLabel& when)
     status.message = m.str();
     return;
   }
-  const Contact* deepest = nullptr;
-  for (const Contact& c : contact_set.trial)
-    if (c.trial.state != ContactState::open && -c.end_gap > status.max_penetration)
-    {
-      status.max_penetration = -c.end_gap;
-      deepest = &c;
-    }
+  const Contact* deepest = contact_set.deepest(status.max_penetration);
   if (status.max_penetration > contact_set.distances.max_penetration)
   {
     std::ostringstream m;
@@ -228,24 +224,7 @@ StepResult System::accept_step(double dt)
   start = Clock::now();
   record_half(dt, solution);
   update_blocks(dt, solution);
-  for (Contact& c : contact_set.trial)
-  {
-    if (c.trial.state == ContactState::slide)
-      c.total_slip += c.step_slip;
-    const bool slides_on = c.forces.state == ContactState::slide &&
-                           c.trial.state == ContactState::slide &&
-                           std::signbit(c.forces.shear_force) == std::signbit(c.trial.shear_force);
-    // A lock keeps the duration of the slide it ended (scan_slip_reversals: friction that
-    // turns around after a short stick); an opening forgets it.
-    c.slide_duration = c.trial.state == ContactState::open   ? 0.0
-                       : c.trial.state == ContactState::lock ? c.slide_duration
-                       : slides_on                           ? c.slide_duration + dt
-                                                             : dt;
-    c.forces = c.trial;
-  }
-  contact_set.accepted.swap(contact_set.trial);
-  contact_set.raised_penalties.clear();
-  ++contact_set.geometry_epoch;
+  contact_set.accept(dt);
   if (mode == StageMode::static_equilibrium)
     set_at_rest();
   else
@@ -301,12 +280,7 @@ void System::measure_balance(StepStatus& status)
       add(j.block_a, std::hypot(p.normal_force, p.shear_force));
       add(j.block_b, std::hypot(p.normal_force, p.shear_force));
     }
-  for (const Contact& c : contact_set.trial)
-    if (c.forces.state != ContactState::open)
-    {
-      add(c.vertex_block, std::hypot(c.forces.normal_force, c.forces.shear_force));
-      add(c.edge_block, std::hypot(c.forces.normal_force, c.forces.shear_force));
-    }
+  contact_set.add_loads(add);
   if (tied_body)
     for (std::size_t k = 0; k < tie_points.size(); ++k)
       add(tie_points[k].block, tied_body->force().segment<2>(2 * k).norm());

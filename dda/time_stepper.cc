@@ -42,7 +42,7 @@ double TimeStepper::grown_dt(const StepStatus& accepted)
   // A vertex's step displacement grows about as dt: doubling dt when the accepted step used
   // more than 0.45 of the limit only moves it past the limit and cuts back (a block falling
   // freely would climb and be cut every few steps); stay on the level while it would.
-  if (2.0 * accepted.max_displacement > 0.9 * system.max_step_displacement())
+  if (2.0 * accepted.max_displacement > 0.9 * system.contacts().distances.max_step_displacement)
     return dt;
   if (++level_successes < regrow_steps || dt >= dt_max)
     return dt;
@@ -61,7 +61,8 @@ double TimeStepper::reduced_dt(const StepStatus& status, double trial) const
 {
   if (status.outcome == StepOutcome::displacement_too_large && status.max_displacement > 0.0)
   {
-    const double ratio = status.max_displacement / system.max_step_displacement();
+    const double ratio =
+        status.max_displacement / system.contacts().distances.max_step_displacement;
     return on_ladder(trial * std::min(0.9, 1.0 / std::sqrt(ratio)));
   }
   return on_ladder(trial * cut_factor);

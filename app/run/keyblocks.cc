@@ -254,7 +254,7 @@ void KeyblockRecorder::update_joints(const dda::System& system)
     t.max_slip = std::max(t.max_slip, t.row_slip);
     t.max_opening = std::max(t.max_opening, t.row_opening);
   };
-  for (const dda::Contact& c : system.get_contacts())
+  for (const dda::Contact& c : system.contacts().accepted)
   {
     // A contact opens once it has been closed; before, its gap is only a distance.
     if (c.forces.state != dda::ContactState::open)
@@ -315,7 +315,7 @@ std::vector<bool> KeyblockRecorder::held_keyblocks(const dda::System& system) co
     if (slot[block] != npos)
       held[slot[block]] = true;
   };
-  for (const dda::Contact& c : system.get_contacts())
+  for (const dda::Contact& c : system.contacts().accepted)
     if (c.forces.state != dda::ContactState::open)
     {
       hold(c.vertex_block);

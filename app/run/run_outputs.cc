@@ -31,7 +31,7 @@ std::vector<double> history_row(const dda::System& system,
   row.insert(row.end(),
              {e.kinetic, e.strain, e.spring, e.work_of_loads, e.work_of_supports,
               e.work_of_boundaries, e.work_of_ties, e.work_of_damping, e.removed, e.dissipated});
-  const dda::ContactCounts n = system.contact_counts();
+  const dda::ContactCounts n = system.contacts().counts();
   row.insert(row.end(),
              {static_cast<double>(n.open), static_cast<double>(n.slide),
               static_cast<double>(n.lock), static_cast<double>(system.get_joints().size()), last.dt,

@@ -67,15 +67,16 @@ void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
   summary["model"] = {{"blocks", system.get_blocks().size()},
                       {"bonded_joints", system.get_joints().size()},
                       {"dofs", system.n_dofs()}};
-  const dda::ContactCounts counts = system.contact_counts();
+  const dda::ContactCounts counts = system.contacts().counts();
   const dda::PhaseTimings& t = system.get_timings();
-  summary["contacts"] = {{"open", counts.open},
-                         {"slide", counts.slide},
-                         {"lock", counts.lock},
-                         {"broken_joints", system.n_broken_joints()},
-                         {"open_close_iterations", t.n_open_close_iterations},
-                         {"search_distance_m", system.search_distance()},
-                         {"max_step_displacement_m", system.max_step_displacement()}};
+  summary["contacts"] = {
+      {"open", counts.open},
+      {"slide", counts.slide},
+      {"lock", counts.lock},
+      {"broken_joints", system.n_broken_joints()},
+      {"open_close_iterations", t.n_open_close_iterations},
+      {"search_distance_m", system.contacts().distances.search_distance},
+      {"max_step_displacement_m", system.contacts().distances.max_step_displacement}};
   summary["timings_s"] = {{"broad_phase", t.broad_phase}, {"narrow_phase", t.narrow_phase},
                           {"assemble", t.assemble},       {"solve", t.solve},
                           {"update", t.update},           {"output", outputs.seconds()},

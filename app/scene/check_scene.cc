@@ -133,11 +133,12 @@ void describe_stepping(const Scene& scene, const dda::System& system, std::ostre
       << name_of(model.time.integrator) << "\n";
   out << "  time control: " << name_of(model.time.control)
       << (model.time.control == dda::TimeControl::adaptive ? " (dt is the largest)" : "") << "\n";
-  out << "  contacts: w0 " << format_significant(system.half_model_size())
-      << " m, step displacement bound " << format_significant(system.max_step_displacement())
-      << " m, search distance " << format_significant(system.search_distance())
-      << " m, max penetration " << format_significant(system.max_penetration()) << " m, up to "
-      << model.contacts.max_open_close_iterations << " open-close iterations\n";
+  out << "  contacts: w0 " << format_significant(system.contacts().distances.w0)
+      << " m, step displacement bound "
+      << format_significant(system.contacts().distances.max_step_displacement)
+      << " m, search distance " << format_significant(system.contacts().distances.search_distance)
+      << " m, max penetration " << format_significant(system.contacts().distances.max_penetration)
+      << " m, up to " << model.contacts.max_open_close_iterations << " open-close iterations\n";
   for (const dda::Stage& st : model.stages)
     out << "  stage " << st.name << ": " << describe_stage(st) << "\n";
   const dda::TimeStepAdvice advice = dda::suggest_time_step(model);

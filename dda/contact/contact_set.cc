@@ -202,4 +202,60 @@ void ContactSet::add_snapshots(const std::vector<Block>& blocks,
     out.push_back(s);
   }
 }
+
+void ContactSet::accept(double dt)
+{
+  for (Contact& c : trial)
+  {
+    if (c.trial.state == ContactState::slide)
+      c.total_slip += c.step_slip;
+    const bool slides_on = c.forces.state == ContactState::slide &&
+                           c.trial.state == ContactState::slide &&
+                           std::signbit(c.forces.shear_force) == std::signbit(c.trial.shear_force);
+    // A lock keeps the duration of the slide it ended (scan_reversals: friction that
+    // turns around after a short stick); an opening forgets it.
+    c.slide_duration = c.trial.state == ContactState::open   ? 0.0
+                       : c.trial.state == ContactState::lock ? c.slide_duration
+                       : slides_on                           ? c.slide_duration + dt
+                                                             : dt;
+    c.forces = c.trial;
+  }
+  accepted.swap(trial);
+  raised_penalties.clear();
+  ++geometry_epoch;
+}
+
+const Contact* ContactSet::deepest(double& depth) const
+{
+  const Contact* found = nullptr;
+  for (const Contact& c : trial)
+    if (c.trial.state != ContactState::open && -c.end_gap > depth)
+    {
+      depth = -c.end_gap;
+      found = &c;
+    }
+  return found;
+}
+
+void ContactSet::add_loads(const std::function<void(std::size_t, double)>& add) const
+{
+  for (const Contact& c : trial)
+    if (c.forces.state != ContactState::open)
+    {
+      add(c.vertex_block, std::hypot(c.forces.normal_force, c.forces.shear_force));
+      add(c.edge_block, std::hypot(c.forces.normal_force, c.forces.shear_force));
+    }
+}
+
+void ContactSet::add_energy(double& e) const
+{
+  for (const Contact& c : accepted)
+    if (c.forces.state != ContactState::open)
+    {
+      const ContactLaw springs = law(c);
+      e += 0.5 * (c.forces.normal_force * c.forces.normal_force / springs.normal_stiffness +
+                  c.forces.shear_force * c.forces.shear_force / springs.shear_stiffness);
+    }
+}
+
 } // namespace ddafem::dda

@@ -14,6 +14,7 @@
 #include "dda/contact/narrow_phase.h"
 #include "dda/damping.h"
 #include "dda/element.h"
+#include "dda/integrator.h"
 #include "dda/joints.h"
 #include "dda/linear_solver.h"
 #include "dda/model_description.h"
@@ -23,6 +24,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -77,6 +79,29 @@ struct ContactSet
     unsigned iteration = 0;  ///< of the open-close iteration, from 0
     bool localising = false; ///< slip reversals are localised: long slides that reverse lock
   };
+  /// What the slip-reversal scan reads of the step being tried.
+  struct ReversalInput
+  {
+    const std::vector<Block>& blocks;
+    double dt = 0.0; ///< [s]
+    const IntegratorCoefficients& integration;
+    bool bathe = false;           ///< Bathe's scheme: only reversals of long slides count
+    double start_force_lag = 0.0; ///< alpha_f of the step (0 in Bathe's second half) [-]
+    /// Block i's velocity and acceleration the step's Newmark update starts from (Bathe's
+    /// second half: an equivalent state)
+    std::function<KinematicState(std::size_t)> step_start;
+  };
+  /// Slip reversals among the trial contacts that slid at the step's start and carry force.
+  struct ReversalScan
+  {
+    /// the earliest reversal (SlipReversal::at, a fraction of the step) whose slip error
+    /// (slip_error of its speed error) exceeds the reversal tolerance; 0 if there is none
+    double earliest = 0.0;
+    /// the trial contacts (indices) whose friction turned around from slide to slide in the
+    /// step with a generalized-alpha velocity lag, alpha_f |v1 - v0|, whose slip error exceeds
+    /// the reversal tolerance
+    std::vector<std::size_t> friction_turns;
+  };
   /// The contact terms in the matrix: each trial contact's state when they were added, and the
   /// contacts by block and by coupling (ascending) to sum a block again.
   struct TermsIndex
@@ -116,6 +141,7 @@ struct ContactSet
   std::map<std::tuple<std::size_t, std::size_t, std::size_t, std::size_t>, double> raised_penalties;
   std::vector<ContactFrame> frames; ///< of `trial` (and detected.contacts)
   TermsIndex terms;                 ///< of the trial contacts in the step's matrix
+  double reversal_tolerance = 0.0;  ///< slip error of a reversal that is localised [m]; 0: none
   /// Where a bonded joint ties a vertex to the other block: (vertex block, vertex, other block).
   std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> jointed_vertices;
 
@@ -164,6 +190,25 @@ struct ContactSet
   /// each block's mean velocity over the step, added term by term to `work`.
   void add_work_of_damping(double& work, const std::vector<Vector6>& mean, const Eigen::VectorXd& d,
                            const StepDashpots& dashpots) const;
+  /// The slip reversals of the step being tried (in a dynamic stage with reversal_tolerance
+  /// set).
+  ReversalScan scan_reversals(const ReversalInput& in) const;
+  /// Calls add(block, jump) with each friction jump's generalized force on a block [N, N m]
+  /// (S acts on the vertex block as -S t, on the edge block as +S t), the trial contacts
+  /// `turning` in order, each vertex block before its edge block.
+  void add_friction_jumps(const std::vector<std::size_t>& turning,
+                          const std::function<void(std::size_t, const Vector6&)>& add) const;
+  /// The trial contact that penetrates deepest beyond `depth` [m] (the first of equals), which
+  /// it then holds; null if none does.
+  const Contact* deepest(double& depth) const;
+  /// The accepted step: each trial contact's slip, slide duration and forces, which become the
+  /// accepted contacts; the raised penalties are spent and the geometry moved.
+  void accept(double dt);
+  /// Static stages' balance: calls add(block, |force| [N]) with each closed contact's force on
+  /// either block (the trial contacts' start forces).
+  void add_loads(const std::function<void(std::size_t, double)>& add) const;
+  /// The accepted closed contacts' spring energy [J], added term by term to `e`.
+  void add_energy(double& e) const;
   /// The accepted contacts in each state.
   ContactCounts counts() const;
   /// The accepted contacts as snapshot points (at the vertex, the edge's outward normal, in

@@ -111,8 +111,8 @@ TEST(Contacts, BlockSlidesDownAnInclineAtTheFrictionalAcceleration)
   const double slid = s.sample_monitor(0).displacement.x();
   std::cout << "incline 30 deg: slid " << slid << " m in 1 s, expected " << expected << " m\n";
   EXPECT_NEAR(slid, expected, 0.01 * expected);
-  ASSERT_FALSE(s.get_contacts().empty());
-  EXPECT_EQ(s.contact_counts().slide, 2u);
+  ASSERT_FALSE(s.contacts().accepted.empty());
+  EXPECT_EQ(s.contacts().counts().slide, 2u);
 }
 
 TEST(Contacts, BlockStaysOnAFlatterIncline)
@@ -129,7 +129,7 @@ TEST(Contacts, BlockStaysOnAFlatterIncline)
   const double drift = s.sample_monitor(0).displacement.x() - settled;
   std::cout << "incline 15 deg: drift " << drift << " m from 0.2 s to 1 s\n";
   EXPECT_LT(std::abs(drift), 1e-6 * block_size);
-  EXPECT_EQ(s.contact_counts().lock, 2u);
+  EXPECT_EQ(s.contacts().counts().lock, 2u);
 }
 
 // ---- a horizontal force on a block with friction and cohesion ---------------------------------
@@ -180,8 +180,8 @@ TEST(Contacts, PushedBlockHoldsBelowFrictionPlusCohesion)
   std::cout << "0.98 F_c: displacement " << moved << " m\n";
   EXPECT_GT(moved, 0.0);
   EXPECT_LT(moved, 1e-5);
-  EXPECT_EQ(s.contact_counts().lock, 2u);
-  for (const Contact& c : s.get_contacts())
+  EXPECT_EQ(s.contacts().counts().lock, 2u);
+  for (const Contact& c : s.contacts().accepted)
     EXPECT_TRUE(c.forces.intact) << "contact " << c.id << " lost its cohesion";
 }
 
@@ -207,8 +207,8 @@ void expect_pushed_block_slides(Integrator integrator)
   std::cout << name_of(integrator) << ", 1.02 F_c: acceleration " << measured << " m/s^2, expected "
             << expected << "\n";
   EXPECT_NEAR(measured, expected, 0.02 * expected);
-  EXPECT_EQ(s.contact_counts().slide, 2u);
-  for (const Contact& c : s.get_contacts())
+  EXPECT_EQ(s.contacts().counts().slide, 2u);
+  for (const Contact& c : s.contacts().accepted)
     EXPECT_FALSE(c.forces.intact) << "contact " << c.id << " kept its cohesion while sliding";
 }
 
@@ -262,12 +262,12 @@ TEST(Contacts, FreeFallThenImpactWithoutPenetrationOrEnergyGain)
     largest_gain = std::max(largest_gain, energy_gain(s));
   }
   std::cout << "free fall: worst error " << worst_fall_error << " m, deepest penetration "
-            << deepest << " m (limit " << s.max_penetration() << " m), largest energy gain "
-            << largest_gain << " J = " << largest_gain / mgh << " m g h, final kinetic "
-            << s.energy().kinetic << " J\n";
+            << deepest << " m (limit " << s.contacts().distances.max_penetration
+            << " m), largest energy gain " << largest_gain << " J = " << largest_gain / mgh
+            << " m g h, final kinetic " << s.energy().kinetic << " J\n";
   // Rounding: the fall of 0.2 m summed over 200 steps, relative 1e-15 each: 1e-12 m.
   EXPECT_LT(worst_fall_error, 1e-12);
-  EXPECT_LT(deepest, s.max_penetration());
+  EXPECT_LT(deepest, s.contacts().distances.max_penetration);
   // Without energy gain the landing speed sqrt(2 g h) compresses the two 1e10 N/m springs by at
   // most sqrt(2 g h) sqrt(m / 2p) = 7.2e-4 m (an elastic impact).
   EXPECT_LT(deepest, std::sqrt(2.0 * g * h) * std::sqrt(rho / 2e10));
@@ -276,7 +276,7 @@ TEST(Contacts, FreeFallThenImpactWithoutPenetrationOrEnergyGain)
   EXPECT_LT(largest_gain, 1e-9 * mgh);
   // It came to rest on the base: the impact energy (m g h = 5.2 kJ) is gone.
   EXPECT_LT(s.energy().kinetic, 1e-3 * mgh);
-  EXPECT_EQ(s.contact_counts().lock, 2u);
+  EXPECT_EQ(s.contacts().counts().lock, 2u);
 }
 
 TEST(Contacts, TwoBlockCollisionConservesMomentumAndSeparates)
@@ -324,7 +324,7 @@ TEST(Contacts, TwoBlockCollisionConservesMomentumAndSeparates)
     const double b_left = std::min(blocks[1].vertices[0].x(), blocks[1].vertices[3].x());
     deepest = std::max(deepest, a_right - b_left);
     largest_gain = std::max(largest_gain, energy_gain(s));
-    const ContactCounts n = s.contact_counts();
+    const ContactCounts n = s.contacts().counts();
     if (n.lock + n.slide > 0)
     {
       if (n_closed_steps == 0)
@@ -344,7 +344,7 @@ TEST(Contacts, TwoBlockCollisionConservesMomentumAndSeparates)
   const double through_impact = (after_impact - before_impact).norm() / p0.norm();
   std::cout << "collision: momentum error through the impact " << through_impact
             << ", over the run " << worst_momentum << ", deepest penetration " << deepest
-            << " m (limit " << s.max_penetration() << " m), largest energy gain "
+            << " m (limit " << s.contacts().distances.max_penetration << " m), largest energy gain "
             << largest_gain / e0 << " of the initial, restitution " << restitution << " (vA " << va
             << ", vB " << vb << " m/s), steps in contact " << n_closed_steps
             << ", final kinetic / initial " << s.energy().kinetic / e0 << ", final gap " << gap
@@ -356,7 +356,7 @@ TEST(Contacts, TwoBlockCollisionConservesMomentumAndSeparates)
   // elastic change of its area (rho x current area, 7.5e-6 here), fails it.
   EXPECT_LT(through_impact, 1e-9);
   EXPECT_LT(worst_momentum, 1e-9);
-  EXPECT_LT(deepest, s.max_penetration());
+  EXPECT_LT(deepest, s.contacts().distances.max_penetration);
   // Without energy gain the closing speed v compresses the two 1e10 N/m springs by at most
   // v sqrt(mu / 2p), mu = 2 m / 3 the reduced mass: 3.0e-4 m.
   EXPECT_LT(deepest, v * std::sqrt(2.0 * rho / 3.0 / 2e10));
@@ -369,7 +369,7 @@ TEST(Contacts, TwoBlockCollisionConservesMomentumAndSeparates)
   EXPECT_NEAR(va, (1.0 - 2.0 * restitution) * v / 3.0, 1e-6);
   EXPECT_NEAR(vb, (1.0 + restitution) * v / 3.0, 1e-6);
   EXPECT_GT(gap, 0.0);
-  EXPECT_EQ(s.contact_counts().lock + s.contact_counts().slide, 0u);
+  EXPECT_EQ(s.contacts().counts().lock + s.contacts().counts().slide, 0u);
 }
 
 // ---- a keyblock in a roof -----------------------------------------------------------------------
@@ -477,7 +477,7 @@ TEST(Keyblock, StaysAboveTheCriticalFrictionAngle)
   // The key (block 2) touches each abutment at two points, all locked. (The abutments slide on
   // their frictionless base: with no friction any slip is sliding.)
   std::size_t n_locked = 0, n_key = 0;
-  for (const Contact& c : s.get_contacts())
+  for (const Contact& c : s.contacts().accepted)
     if (c.vertex_block == 2 || c.edge_block == 2)
     {
       ++n_key;
@@ -574,13 +574,13 @@ History run_wall(std::size_t n_steps, SolverMethod method = SolverMethod::direct
       }
       h.values.insert(h.values.end(), b.velocity.data(), b.velocity.data() + 6);
     }
-    for (const Contact& c : s.get_contacts())
+    for (const Contact& c : s.contacts().accepted)
       h.values.insert(h.values.end(), {static_cast<double>(c.id), c.forces.normal_force,
                                        c.forces.shear_force, c.end_gap});
   }
-  h.n_contacts = s.get_contacts().size();
-  h.n_slide = s.contact_counts().slide;
-  h.n_open = s.contact_counts().open;
+  h.n_contacts = s.contacts().accepted.size();
+  h.n_slide = s.contacts().counts().slide;
+  h.n_open = s.contacts().counts().open;
   h.n_cuts = stepper.n_cuts();
   h.n_retries = s.get_timings().n_attempts - s.get_timings().n_steps;
   return h;
@@ -711,7 +711,7 @@ TEST(Contacts, OverhangingWallCollapsesWithoutStalling)
     ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
     ++n_steps;
   }
-  const ContactCounts n = s.contact_counts();
+  const ContactCounts n = s.contacts().counts();
   std::cout << "overhanging wall: t = " << s.time() << " s after " << n_steps << " steps ("
             << stepper.n_reversals() << " shortened at a slip reversal), " << stepper.n_cuts()
             << " cuts, " << s.get_timings().n_open_close_iterations << " iterations, contacts "
@@ -750,7 +750,7 @@ TEST(Contacts, BondedGridMakesNoCornerContacts)
   System s(m);
   run_to(s, m.time, 0.05);
   EXPECT_EQ(s.get_joints().size(), 24u);
-  EXPECT_TRUE(s.get_contacts().empty()) << s.get_contacts().size() << " contacts";
+  EXPECT_TRUE(s.contacts().accepted.empty()) << s.contacts().accepted.size() << " contacts";
   // One solve per half step: nothing for the open-close iteration to decide; 50 steps of the
   // default composite scheme (bathe) are 100 half steps.
   EXPECT_EQ(s.get_timings().n_open_close_iterations, 0u);

@@ -262,7 +262,7 @@ std::vector<double> final_state(const System& s)
     for (const Point& v : b.vertices)
       x.insert(x.end(), {v.x(), v.y()});
   }
-  for (const Contact& c : s.get_contacts())
+  for (const Contact& c : s.contacts().accepted)
     x.insert(x.end(), {static_cast<double>(c.id), c.forces.normal_force, c.forces.shear_force,
                        c.total_slip});
   return x;

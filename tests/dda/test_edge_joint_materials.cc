@@ -95,8 +95,8 @@ TEST(EdgeJointMaterials, ContactsAlongAFrictionalEdgeUseItsFriction)
       if (status.outcome != StepOutcome::success)
         break;
     }
-    EXPECT_FALSE(s.get_contacts().empty());
-    for (const Contact& c : s.get_contacts())
+    EXPECT_FALSE(s.contacts().accepted.empty());
+    for (const Contact& c : s.contacts().accepted)
       EXPECT_EQ(c.joint_material, bedding ? 1u : 0u);
     return s.sample_monitor(0).displacement.x();
   };

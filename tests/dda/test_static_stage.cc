@@ -123,7 +123,7 @@ TEST(StaticStage, RemovedBlockIsInertForTheRestOfTheRun)
   for (std::size_t k = 0; k < 100; ++k)
     ASSERT_EQ(s.advance(1e-3, step_parts::of_call(s, k)).outcome, StepOutcome::success);
   EXPECT_LT((s.get_blocks()[2].moments.centroid - c).norm(), 1e-9);
-  for (const Contact& contact : s.get_contacts())
+  for (const Contact& contact : s.contacts().accepted)
     EXPECT_TRUE(contact.vertex_block != 2 && contact.edge_block != 2);
 }
 

@@ -121,7 +121,7 @@ TEST(System, JointBreaksInTensionAndTheBlocksSeparate)
   const double t = s.time();
   // Free separation from the break (within the first steps): gap ~ 2 (F/m) t^2 / 2.
   EXPECT_NEAR(gap, 2e6 / 2650.0 * t * t, 0.05 * 2e6 / 2650.0 * t * t);
-  EXPECT_EQ(s.contact_counts().lock + s.contact_counts().slide, 0u);
+  EXPECT_EQ(s.contacts().counts().lock + s.contacts().counts().slide, 0u);
 }
 
 TEST(System, JointBrokenInShearLeavesContactsThatCarryTheBlock)
@@ -145,7 +145,7 @@ TEST(System, JointBrokenInShearLeavesContactsThatCarryTheBlock)
     ASSERT_EQ(status.outcome, StepOutcome::success) << "step " << k << ": " << status.message;
   }
   EXPECT_EQ(s.n_broken_joints(), 1u);
-  EXPECT_GT(s.contact_counts().slide, 0u);
+  EXPECT_GT(s.contacts().counts().slide, 0u);
   // It rests on the base: it sinks no more than the contacts' penalty allows (W / p ~ 1e-7 m).
   EXPECT_GT(s.get_blocks()[1].displacement().y(), -1e-4);
   // It slides at g tan(phi) from the start: x = a t^2 / 2 (within 5 %: the first step's break).

@@ -55,7 +55,7 @@ TEST(TimeStepper, CutsByTheCutFactorAndGrowsBackToTheLargestStep)
 {
   const ModelDescription m = thrown_block();
   System s(m);
-  ASSERT_DOUBLE_EQ(s.max_step_displacement(), 5e-4);
+  ASSERT_DOUBLE_EQ(s.contacts().distances.max_step_displacement, 5e-4);
   TimeStepper stepper(s, m.time);
   ASSERT_DOUBLE_EQ(stepper.next_dt(), dt_max);
 
@@ -101,7 +101,7 @@ TEST(TimeStepper, CutsByTheCutFactorAndGrowsBackToTheLargestStep)
       EXPECT_DOUBLE_EQ(stepper.last_dt(), tried);
     EXPECT_DOUBLE_EQ(stepper.next_dt(),
                      n_cuts > 0 ? stepper.last_dt() : std::min(dt_max, 1.2 * stepper.last_dt()));
-    EXPECT_LE(status.max_displacement, s.max_step_displacement());
+    EXPECT_LE(status.max_displacement, s.contacts().distances.max_step_displacement);
     if (stepper.last_dt() == dt_max)
       ++n_steps_at_max;
   }
@@ -196,7 +196,7 @@ TEST(TimeStepper, RaisesTheContactPenaltyOnDeepPenetration)
     const StepStatus status = stepper.step(0.05 - s.time());
     ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
     deepest = std::max(deepest, status.max_penetration);
-    for (const Contact& c : s.get_contacts())
+    for (const Contact& c : s.contacts().accepted)
       largest_factor = std::max(largest_factor, c.penalty_factor);
   }
   EXPECT_EQ(stepper.n_penalty_raises(), 2u);
@@ -236,7 +236,7 @@ TEST(TimeStepper, BatheTakesPairsOfHalfStepsAndKeepsAFirstHalfWhoseSecondFails)
     ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
     EXPECT_EQ(s.n_steps(), before + 2);
     EXPECT_DOUBLE_EQ(stepper.last_dt(), s.time() - start);
-    EXPECT_LE(status.max_displacement, s.max_step_displacement());
+    EXPECT_LE(status.max_displacement, s.contacts().distances.max_step_displacement);
   }
   EXPECT_NEAR(s.get_blocks()[0].velocity.y(), -v - g * s.time(), 1e-9);
 }
@@ -262,7 +262,7 @@ TEST(TimeStepper, TiedToABodyStepsOnTheLevelsOfTheLargestStep)
   {
     status = stepper.step();
     ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
-    EXPECT_LE(status.max_displacement, s.max_step_displacement());
+    EXPECT_LE(status.max_displacement, s.contacts().distances.max_step_displacement);
     // Up one level after 4 uncut steps at the one below (a cut step does not count).
     const bool cut = stepper.n_last_step_cuts() > 0;
     if (!cut && stepper.last_dt() > level)
@@ -271,7 +271,7 @@ TEST(TimeStepper, TiedToABodyStepsOnTheLevelsOfTheLargestStep)
       EXPECT_EQ(steps_at_level, 4u);
     }
     const std::size_t roomy =
-        2.0 * status.max_displacement <= 0.9 * s.max_step_displacement() ? 1 : 0;
+        2.0 * status.max_displacement <= 0.9 * s.contacts().distances.max_step_displacement ? 1 : 0;
     steps_at_level = cut ? 0 : stepper.last_dt() == level ? steps_at_level + roomy : roomy;
     level = stepper.last_dt();
   }

@@ -184,8 +184,8 @@ TEST(BlockStack, ReachesTheStaticStressOfItsWeight)
     EXPECT_NEAR(blocks[i + 1].stress[1], expected, 0.01 * std::abs(expected)) << "block " << i + 1;
   }
   // Every contact of the stack is closed and locked (4 pairs of corners).
-  EXPECT_EQ(system.contact_counts().lock, 6u);
-  EXPECT_EQ(system.contact_counts().slide, 0u);
+  EXPECT_EQ(system.contacts().counts().lock, 6u);
+  EXPECT_EQ(system.contacts().counts().slide, 0u);
 
   // The dynamic stage starts at rest from the equilibrium and stays there until the push.
   system.begin_stage(StageMode::dynamic);
