@@ -4,7 +4,7 @@
 // slip history from step to step, and the penalties a failed step raised for its retry.
 // Detection (the broad phase `candidates`, the narrow phase `detect` with the vertices that intact
 // joints tie, and the frames) fills `detected` when the geometry changed; `inherit` makes the
-// trial contacts of it; the System's accept_step makes them the accepted ones.
+// trial contacts of it; `accept` makes them the accepted ones.
 #pragma once
 
 #include "common/parallel.h"
@@ -76,7 +76,7 @@ struct ContactSet
     const Eigen::VectorXd& solution; ///< the blocks' unknowns d of this iteration (6 per block)
     const StepDashpots& dashpots;
     double dt = 0.0;         ///< of the matrix [s] (the slide duration's unit)
-    unsigned iteration = 0;  ///< of the open-close iteration, from 0
+    unsigned iteration = 0;  ///< of the open-close iteration, from 1
     bool localising = false; ///< slip reversals are localised: long slides that reverse lock
   };
   /// What the slip-reversal scan reads of the step being tried.
