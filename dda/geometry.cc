@@ -1,5 +1,7 @@
 #include "dda/geometry.h"
 
+#include "dda/exact_area.h"
+
 #include <CGAL/Boolean_set_operations_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_2.h>
@@ -105,12 +107,20 @@ bool is_simple_polygon(const std::vector<Point>& vertices)
 {
   if (vertices.size() < 3)
     return false;
-  for (std::size_t i = 0; i < vertices.size(); ++i)
-    for (std::size_t j = i + 1; j < vertices.size(); ++j)
-      if (vertices[i] == vertices[j])
-        return false;
+  for (const Point& v : vertices)
+    if (!v.allFinite())
+      return false;
+  // No vertex twice: sorted by (x, y), equal vertices are neighbours (n log n, an opening's
+  // circle may have tens of thousands).
+  std::vector<Point> sorted = vertices;
+  const auto by_xy = [](const Point& a, const Point& b)
+  { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); };
+  std::sort(sorted.begin(), sorted.end(), by_xy);
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+    return false;
   const CgalPolygon polygon = to_cgal(vertices);
-  return polygon.is_simple() && polygon.area() != 0;
+  return polygon.is_simple() &&
+         polygon_area(polygon.vertices_begin(), polygon.vertices_end(), Kernel()) != 0;
 }
 
 PointLocation locate_point(const std::vector<Point>& vertices, const Point& p, double tol)
@@ -148,9 +158,11 @@ double overlap_area(const std::vector<Point>& a, const std::vector<Point>& b)
   Kernel::FT area = 0;
   for (const CgalPolygonWithHoles& piece : pieces)
   {
-    area += piece.outer_boundary().area();
+    const CgalPolygon& outer = piece.outer_boundary();
+    area += polygon_area(outer.vertices_begin(), outer.vertices_end(), Kernel());
     for (auto hole = piece.holes_begin(); hole != piece.holes_end(); ++hole)
-      area += hole->area(); // holes are clockwise: negative area
+      area += polygon_area(hole->vertices_begin(), hole->vertices_end(),
+                           Kernel()); // holes are clockwise: negative area
   }
   return CGAL::to_double(area);
 }

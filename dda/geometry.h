@@ -28,7 +28,8 @@ std::vector<Point> anticlockwise(std::vector<Point> polygon);
 PolygonMoments polygon_moments(const std::vector<Point>& vertices);
 
 /// Whether the polygon is simple: at least 3 vertices, no repeated vertex, no two edges that
-/// intersect except adjacent edges at their common vertex, and non-zero area (uses CGAL).
+/// intersect except adjacent edges at their common vertex, non-zero area, finite coordinates
+/// (uses CGAL).
 bool is_simple_polygon(const std::vector<Point>& vertices);
 
 /// Where a point lies relative to a simple polygon, within tolerance `tol` [m] of the boundary.

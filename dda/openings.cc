@@ -1,4 +1,6 @@
 // The polygons of openings (rock_mass.h): circles and horseshoe roofs as inscribed chords.
+#include "common/format.h"
+#include "common/input_error.h"
 #include "dda/geometry.h"
 #include "dda/rock_mass.h"
 
@@ -10,13 +12,43 @@ namespace ddafem::dda
 namespace
 {
 /// Fewest chords for `angle` [rad] of arc of radius r such that each stays within `tolerance`
-/// of the arc: a chord over the angle a deviates by r (1 - cos(a / 2)).
-std::size_t n_chords(double angle, double r, double tolerance, std::size_t at_least)
+/// of the arc: a chord over the angle a deviates by r (1 - cos(a / 2)). A double: a tolerance
+/// far below the radius asks for more chords than an integer holds (infinitely many at 1e-17 r).
+double chords_needed(double angle, double r, double tolerance, double at_least)
 {
   const double max_angle = 2.0 * std::acos(std::max(-1.0, 1.0 - tolerance / r));
-  return std::max(at_least, static_cast<std::size_t>(std::ceil(angle / max_angle)));
+  return std::max(at_least, std::ceil(angle / max_angle));
+}
+
+/// chords_needed as a count; throws InputError beyond max_opening_sides (the readers refuse
+/// such a tolerance before, by memory: refuse_opening).
+std::size_t n_chords(double angle, double r, double tolerance, double at_least)
+{
+  const double n = chords_needed(angle, r, tolerance, at_least);
+  if (!(n <= max_opening_sides))
+    throw InputError("a chord tolerance of " + format_number(tolerance) + " m on a radius of " +
+                     format_number(r) + " m gives " + format_number(n) +
+                     " chords: expected a tolerance that gives at most " +
+                     format_number(max_opening_sides));
+  return static_cast<std::size_t>(n);
 }
 } // namespace
+
+double opening_side_count(const Opening& opening, double chord_tolerance)
+{
+  switch (opening.shape)
+  {
+  case Opening::Shape::circle:
+    return chords_needed(2.0 * M_PI, opening.radius, chord_tolerance, 8);
+  case Opening::Shape::horseshoe:
+    // floor, walls (if any) and the roof's chords
+    return (opening.wall_height > 0.0 ? 3.0 : 1.0) +
+           chords_needed(M_PI, 0.5 * opening.width, chord_tolerance, 4);
+  case Opening::Shape::polygon:
+    return static_cast<double>(opening.vertices.size());
+  }
+  return 0.0;
+}
 
 std::vector<Point> opening_polygon(const Opening& opening, double chord_tolerance)
 {

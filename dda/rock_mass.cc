@@ -5,10 +5,9 @@
 
 #include "common/format.h"
 #include "common/input_error.h"
+#include "dda/exact_area.h"
 #include "dda/geometry.h"
 #include "dda/rock_mass_arrangement.h"
-
-#include <CGAL/Polygon_2_algorithms.h>
 
 #include <algorithm>
 #include <cmath>
@@ -92,13 +91,6 @@ void check_description(const RockMassDescription& d)
 
 /// Rounds of tidy() and sliver merging at most (two or three are usual).
 constexpr std::size_t max_tidy_rounds = 16;
-
-/// The region's extent in x or y, the larger [m].
-double extent(const std::vector<Point>& region)
-{
-  const Box box = bounding_box(region);
-  return (box.upper - box.lower).maxCoeff();
-}
 
 /// A few hundred rounding errors of the region's coordinates [m]: a vertex this close to the
 /// line between its neighbours is straight (see without_collinear_vertices).
@@ -185,7 +177,7 @@ void collect_blocks(Arrangement& arrangement, const RockMassDescription& d,
   for (const Point& v : region)
     exact_region.push_back(exact_point(v));
   result.statistics.region_area =
-      CGAL::to_double(CGAL::polygon_area_2(exact_region.begin(), exact_region.end(), Kernel()));
+      CGAL::to_double(polygon_area(exact_region.begin(), exact_region.end(), Kernel()));
   result.statistics.excavated_area = CGAL::to_double(excavated);
 }
 
@@ -260,49 +252,6 @@ RockMassResult generate_blocks(const RockMassDescription& d)
   order_blocks(criteria, result);
   count_blocks(result);
   return result;
-}
-
-double estimate_block_count(const RockMassDescription& d)
-{
-  const double area = std::abs(signed_area(d.region));
-  const auto persistence = [](const JointSet& set)
-  { return set.persistent() ? 1.0 : set.trace_length / (set.trace_length + set.bridge); };
-  double blocks = 1.0;
-  for (std::size_t i = 0; i < d.joint_sets.size(); ++i)
-  {
-    const JointSet& a = d.joint_sets[i];
-    // Traces across the region's width normal to the set (at most its extent).
-    blocks += extent(d.region) / a.spacing;
-    for (std::size_t j = i + 1; j < d.joint_sets.size(); ++j)
-    {
-      const JointSet& b = d.joint_sets[j];
-      const double crossing = std::abs(std::sin((a.dip - b.dip) * M_PI / 180.0));
-      blocks += area * crossing * persistence(a) * persistence(b) / (a.spacing * b.spacing);
-    }
-  }
-  return blocks;
-}
-
-std::optional<RockMassTooLarge> refuse_beyond(const RockMassDescription& d,
-                                              std::size_t n_other_blocks,
-                                              const ResourceLimits& limits)
-{
-  const double n_blocks = estimate_block_count(d) + static_cast<double>(n_other_blocks);
-  if (limits.fits(MemoryModel::of_blocks(n_blocks)) || d.joint_sets.empty())
-    return std::nullopt;
-  const double n_fit = std::max(
-      MemoryModel::blocks_within(limits.memory) - static_cast<double>(n_other_blocks), 1.0);
-  RockMassTooLarge refusal;
-  std::size_t& k = refusal.joint_set;
-  for (std::size_t s = 1; s < d.joint_sets.size(); ++s)
-    if (d.joint_sets[s].spacing < d.joint_sets[k].spacing)
-      k = s;
-  refusal.message = "about " + format_number(std::round(n_blocks)) + " blocks would need " +
-                    limits.too_much(MemoryModel::of_blocks(n_blocks)) +
-                    ": expected a spacing of at least " +
-                    format_significant(d.joint_sets[k].spacing * std::sqrt(n_blocks / n_fit), 3) +
-                    " m (with the other sets' spacings scaled alike)";
-  return refusal;
 }
 
 } // namespace ddafem::dda

@@ -243,6 +243,13 @@ struct RockMassResult
 /// chords).
 std::vector<Point> opening_polygon(const Opening& opening, double chord_tolerance);
 
+/// The most sides opening_polygon makes (it throws InputError beyond): 1e8, some 450 GB of
+/// arrangement (MemoryModel::per_arrangement_edge), far beyond a machine.
+constexpr double max_opening_sides = 1e8;
+
+/// The number of vertices opening_polygon gives the opening, without making them.
+double opening_side_count(const Opening& opening, double chord_tolerance);
+
 /// The blocks of a rock mass (see the file comment). Throws InputError for a description that
 /// cannot be generated (non-positive spacing, a region or opening that is not a simple polygon,
 /// a block whose boundary touches itself, ...).
@@ -272,19 +279,48 @@ RockMassResult generate_blocks(const RockMassDescription& description);
 /// of the count generated for two persistent sets (tested).
 double estimate_block_count(const RockMassDescription& description);
 
+/// About how large the arrangement generate_blocks builds is: its memory (and time) grow with its
+/// edges, which traces of non-persistent sets and curved openings multiply without adding blocks
+/// (a set of 2 mm traces and bridges in a 40 m square puts 80,000 traces in it).
+struct ArrangementEstimate
+{
+  double listed = 0.0;        ///< the region's sides, polygon openings' sides, explicit joints
+  double curved_sides = 0.0;  ///< the sides of the circles and horseshoes (chord_tolerance)
+  std::vector<double> traces; ///< per joint set: lines across the region, and for a
+                              ///< non-persistent set A / (s (trace_length + bridge)) more
+  double crossings = 0.0;     ///< of traces of two sets, as in estimate_block_count
+  /// The edges: every side, joint and trace, and two per crossing (each splits two edges).
+  double edges() const;
+};
+ArrangementEstimate estimate_arrangement(const RockMassDescription& description);
+
 /// A rock mass estimated to need more memory than `limits` allow (with `n_other_blocks` beside
-/// it): which joint set to space out (the closest) and the message, "about N blocks would need
-/// ...: expected a spacing of at least S m (with the other sets' spacings scaled alike)", from
-/// blocks ~ 1 / spacing^2.
+/// it), and the key that drives the size: the blocks ("about N blocks would need ...: expected a
+/// spacing of at least S m (with the other sets' spacings scaled alike)", from blocks ~ 1 /
+/// spacing^2), or the arrangement's edges (the part of them that is largest: a set's traces ~ 1
+/// / (trace_length + bridge), the curved openings' sides ~ 1 / sqrt(chord_tolerance), the
+/// crossings ~ 1 / spacing^2, or the listed joints and vertices).
 struct RockMassTooLarge
 {
+  enum class Key
+  {
+    spacing,         ///< joint_sets[joint_set].spacing
+    trace_length,    ///< joint_sets[joint_set].trace_length (with its bridge)
+    chord_tolerance, ///< the rock mass's chord_tolerance
+    joints           ///< the explicit joints (or the polygons' vertices)
+  };
+  Key key = Key::spacing;
   std::size_t joint_set = 0;
   std::string message;
 };
-/// The refusal of a rock mass beyond `limits`, before it is generated; none if it fits (or has
-/// no joint sets to space out).
+/// The refusal of a rock mass beyond `limits`, before it is generated; none if it fits.
 std::optional<RockMassTooLarge> refuse_beyond(const RockMassDescription& description,
                                               std::size_t n_other_blocks,
                                               const ResourceLimits& limits);
+/// The refusal of one opening whose polygon alone is beyond `limits` (before it is made): "a
+/// circle of radius R m has about N sides within the chord tolerance of T m, an arrangement
+/// needing ...: expected a chord_tolerance of at least T' m"; none if it fits.
+std::optional<std::string> refuse_opening(const Opening& opening, double chord_tolerance,
+                                          const ResourceLimits& limits);
 
 } // namespace ddafem::dda

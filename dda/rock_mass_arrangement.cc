@@ -33,6 +33,12 @@ Box bounding_box(const std::vector<Point>& points)
   return box;
 }
 
+double extent(const std::vector<Point>& region)
+{
+  const Box box = bounding_box(region);
+  return (box.upper - box.lower).maxCoeff();
+}
+
 double length(Halfedge h)
 {
   return std::sqrt(

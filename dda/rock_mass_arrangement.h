@@ -8,6 +8,7 @@
 // - dda/rock_mass_tidy.cc: tidy (short edges collapsed, straight vertices removed);
 // - dda/rock_mass_slivers.cc: merge_pass (slivers merged into a neighbour);
 // - dda/rock_mass_blocks.cc: make_block (a block face as a RockMassBlock).
+// Before: dda/rock_mass_size.cc, the estimates that refuse a rock mass too large to generate.
 #pragma once
 
 #include "common/format.h"
@@ -85,6 +86,8 @@ struct Box
 
 /// The smallest box around the points (at least one).
 Box bounding_box(const std::vector<Point>& points);
+/// The region's extent in x or y, the larger [m].
+double extent(const std::vector<Point>& region);
 
 /// Length of an edge [m], in double.
 double length(Halfedge h);

@@ -4,7 +4,7 @@
 #include "common/input_error.h"
 #include "dda/rock_mass_arrangement.h"
 
-#include <CGAL/Polygon_2_algorithms.h>
+#include "dda/exact_area.h"
 
 #include <algorithm>
 #include <cmath>
@@ -156,7 +156,7 @@ RockMassBlock make_block(Face f, double straight_tolerance)
                                { return CGAL::compare_yx(a, b) == CGAL::SMALLER; }),
               points.end());
   block.edge_joints = edge_joints(boundary, points);
-  block.area = CGAL::to_double(CGAL::polygon_area_2(points.begin(), points.end(), Kernel()));
+  block.area = CGAL::to_double(polygon_area(points.begin(), points.end(), Kernel()));
   for (const ExactPoint& p : points)
     block.vertices.push_back(rounded(p));
   return block;

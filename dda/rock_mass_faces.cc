@@ -3,7 +3,7 @@
 // block around an island (dda/rock_mass_arrangement.h).
 #include "dda/rock_mass_arrangement.h"
 
-#include <CGAL/Polygon_2_algorithms.h>
+#include "dda/exact_area.h"
 
 #include <algorithm>
 #include <map>
@@ -64,7 +64,7 @@ Kernel::FT ccb_area(Ccb first)
   do
     points.push_back(h->source()->point());
   while (++h != first);
-  return CGAL::polygon_area_2(points.begin(), points.end(), Kernel());
+  return polygon_area(points.begin(), points.end(), Kernel());
 }
 
 /// Whether h (with f on its left) separates f from another face. Dangling joint traces
@@ -104,7 +104,7 @@ Kernel::FT loop_area(const std::vector<Halfedge>& loop)
   std::vector<ExactPoint> points;
   for (const Halfedge h : loop)
     points.push_back(h->source()->point());
-  return CGAL::polygon_area_2(points.begin(), points.end(), Kernel());
+  return polygon_area(points.begin(), points.end(), Kernel());
 }
 
 /// The point nearest to v where a vertical ray from v (up: dy = +1, down: dy = -1) meets an edge

@@ -94,6 +94,8 @@ dda::Opening read_opening(const MapReader& r, const std::vector<Point>& region,
     o.shape = dda::Opening::Shape::polygon;
     o.vertices = clean_polygon(r, "polygon", points_of(r.pair_list("polygon")));
   }
+  if (const auto refusal = dda::refuse_opening(o, chord_tolerance, r.ctx().limits))
+    throw r.error(shape, *refusal);
   const std::vector<Point> polygon = dda::opening_polygon(o, chord_tolerance);
   const double area = dda::signed_area(polygon);
   const double outside = area - dda::overlap_area(polygon, region);
@@ -143,7 +145,18 @@ RockMassReport read_rock_mass(const MapReader& r, const SceneNames& names,
     d.slivers.min_area = r.number("min_block_area");
 
   if (const auto refusal = dda::refuse_beyond(d, model.blocks.size(), r.ctx().limits))
-    throw r.section_list("joint_sets")[refusal->joint_set].error("spacing", refusal->message);
+    switch (refusal->key)
+    {
+    case dda::RockMassTooLarge::Key::spacing:
+    case dda::RockMassTooLarge::Key::trace_length:
+      throw r.section_list("joint_sets")[refusal->joint_set].error(
+          refusal->key == dda::RockMassTooLarge::Key::spacing ? "spacing" : "trace_length",
+          refusal->message);
+    case dda::RockMassTooLarge::Key::chord_tolerance:
+      throw r.error("chord_tolerance", refusal->message);
+    case dda::RockMassTooLarge::Key::joints:
+      throw r.ctx().locator.error(r.yaml(), r.key_path(), "", refusal->message);
+    }
   dda::RockMassResult result;
   try
   {

@@ -242,6 +242,33 @@ void require_far_field_fits(const TunnelDescription& t, const TunnelPlan& plan)
                    " Hz (or fewer tunnel.points_per_wavelength)");
 }
 
+/// The message of a near field beyond the limits, naming the tunnel's key and its value.
+std::string near_field_refusal(const dda::RockMassDescription& d,
+                               const dda::RockMassTooLarge& refusal)
+{
+  using Key = dda::RockMassTooLarge::Key;
+  const std::string set = "tunnel.joint_sets[" + std::to_string(refusal.joint_set) + "].";
+  std::string key;
+  switch (refusal.key)
+  {
+  case Key::spacing:
+    key = set + "spacing = " + format_significant(d.joint_sets[refusal.joint_set].spacing) + " m";
+    break;
+  case Key::trace_length:
+    key = set +
+          "trace_length = " + format_significant(d.joint_sets[refusal.joint_set].trace_length) +
+          " m";
+    break;
+  case Key::chord_tolerance:
+    key = "tunnel.chord_tolerance = " + format_significant(d.chord_tolerance) + " m";
+    break;
+  case Key::joints:
+    key = "tunnel.joints";
+    break;
+  }
+  return key + ", in the near field: " + refusal.message;
+}
+
 /// The near field's blocks, generated once to measure them: their number and size, the rock
 /// mass's modulus where the far field meets them and its wave speeds (plan.n_blocks,
 /// mean_block_size, rock_mass_modulus, vp, vs, wave_speed).
@@ -252,9 +279,7 @@ BlockMeasures plan_rock_mass(const TunnelDescription& t, TunnelPlan& plan)
   d.region = {plan.near_lower, Point(plan.near_upper.x(), plan.near_lower.y()), plan.near_upper,
               Point(plan.near_lower.x(), plan.near_upper.y())};
   if (const auto refusal = dda::refuse_beyond(d, 0, t.limits))
-    throw InputError("tunnel.joint_sets[" + std::to_string(refusal->joint_set) +
-                     "].spacing = " + format_significant(d.joint_sets[refusal->joint_set].spacing) +
-                     " m, in the near field: " + refusal->message);
+    throw InputError(near_field_refusal(d, *refusal));
   const dda::RockMassResult blocks = dda::generate_blocks(d);
   plan.n_blocks = blocks.blocks.size();
   plan.mean_block_size = std::sqrt(blocks.statistics.mean_area);

@@ -1,11 +1,15 @@
-// The block count of a rock mass estimated before it is generated (issue 20: a scene too large
-// for memory is refused before its arrangement is built).
+// The block count and the arrangement of a rock mass estimated before they are generated (issue
+// 20: a scene too large for memory is refused before its arrangement is built; short traces and
+// an opening's fine chords count as edges: CI's fuzzing found them uncounted).
+#include "common/input_error.h"
 #include "dda/rock_mass.h"
 #include "joint_sets.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
 
 namespace ddafem::dda
 {
@@ -64,6 +68,93 @@ TEST(RockMassEstimate, CloseSpacingIsCountedWithoutGeneratingIt)
   RockMassDescription d = square_of_40_m();
   d.joint_sets = {persistent_set(0, 0.01), persistent_set(90, 0.01)};
   EXPECT_NEAR(estimate_block_count(d), 1.6e7, 0.001 * 1.6e7);
+}
+
+JointSet short_traces(double dip, double spacing, double trace, double bridge)
+{
+  JointSet set = persistent_set(dip, spacing, 0.3);
+  set.trace_length = trace;
+  set.bridge = bridge;
+  return set;
+}
+
+TEST(RockMassEstimate, ShortTracesAreCountedAsTheyAreInserted)
+{
+  // Traces of 4 cm with 4 cm bridges every 5 m: 40^2 / (5 x 0.08) = 4000 traces, plus one more
+  // per line (8 lines), against the count inserted; they cut 8 % of the lines that cross them,
+  // so they add little to the blocks, but each is an edge of the arrangement.
+  RockMassDescription d = square_of_40_m();
+  d.joint_sets = {persistent_set(30, 4.0, 0.5), short_traces(120, 5.0, 0.04, 0.04)};
+  const ArrangementEstimate estimate = estimate_arrangement(d);
+  ASSERT_EQ(estimate.traces.size(), 2u);
+  const RockMassResult generated = generate_blocks(d);
+  const double traces = estimate.traces[0] + estimate.traces[1];
+  EXPECT_LT(relative_error(traces, generated.statistics.n_traces), 0.02)
+      << traces << " estimated, " << generated.statistics.n_traces << " inserted";
+  EXPECT_EQ(estimate.listed, 4.0); // the square's sides
+  EXPECT_GT(estimate.edges(), traces);
+}
+
+TEST(RockMassEstimate, ShortTracesBeyondTheLimitAreRefusedByTheirPeriod)
+{
+  // 2 mm traces and bridges: 80,000 traces, 360 MB of arrangement, but about 50 blocks. The
+  // refusal names the set's trace_length and a period that brings the whole within 50 MB:
+  // (50 MB - 30 MB) / 4.5 kB = 4444 edges, of which the other set's 10 lines and the
+  // crossings take some, so at least 0.004 x 80,000 / 4,300 = 0.074 m.
+  RockMassDescription d = square_of_40_m();
+  d.joint_sets = {persistent_set(30, 4.0, 0.5), short_traces(120, 5.0, 0.002, 0.002)};
+  EXPECT_LT(estimate_block_count(d), 100.0);
+  const auto refusal = refuse_beyond(d, 0, ResourceLimits{50e6, "50 MB"});
+  ASSERT_TRUE(refusal);
+  EXPECT_EQ(refusal->key, RockMassTooLarge::Key::trace_length);
+  EXPECT_EQ(refusal->joint_set, 1u);
+  EXPECT_NE(refusal->message.find("expected a trace_length + bridge of at least 0.07"),
+            std::string::npos)
+      << refusal->message;
+  // The period it asks for fits.
+  const double period = 0.075;
+  d.joint_sets[1] = short_traces(120, 5.0, 0.5 * period, 0.5 * period);
+  EXPECT_FALSE(refuse_beyond(d, 0, ResourceLimits{50e6, "50 MB"}));
+}
+
+TEST(RockMassEstimate, OpeningSidesAreCountedWithoutMakingThem)
+{
+  Opening circle;
+  circle.radius = 3.0;
+  Opening horseshoe;
+  horseshoe.shape = Opening::Shape::horseshoe;
+  horseshoe.width = 6.0;
+  for (const double wall : {0.0, 2.0})
+    for (const double tolerance : {0.02, 1e-4, 1e-6})
+    {
+      horseshoe.wall_height = wall;
+      EXPECT_EQ(opening_side_count(circle, tolerance),
+                static_cast<double>(opening_polygon(circle, tolerance).size()));
+      EXPECT_EQ(opening_side_count(horseshoe, tolerance),
+                static_cast<double>(opening_polygon(horseshoe, tolerance).size()));
+    }
+  // A tolerance far below rounding asks for infinitely many: counted, not made.
+  EXPECT_EQ(opening_side_count(circle, 1e-300), std::numeric_limits<double>::infinity());
+  EXPECT_THROW(opening_polygon(circle, 1e-300), InputError);
+}
+
+TEST(RockMassEstimate, AnOpeningBeyondTheLimitIsRefusedWithATolerenceThatFits)
+{
+  // 1e-8 m on a 3 m circle: 38,477 chords, 203 MB; 50 MB holds 4444 edges, which a tolerance of
+  // 3 (1 - cos(pi / 4444)) = 7.5e-7 m gives.
+  Opening circle;
+  circle.radius = 3.0;
+  const ResourceLimits limits{50e6, "50 MB"};
+  const auto refusal = refuse_opening(circle, 1e-8, limits);
+  ASSERT_TRUE(refusal);
+  EXPECT_NE(refusal->find("its arcs have 38477 sides"), std::string::npos) << *refusal;
+  EXPECT_NE(refusal->find("expected a chord_tolerance of at least 7.5"), std::string::npos)
+      << *refusal;
+  EXPECT_FALSE(refuse_opening(circle, 7.6e-7, limits));
+  EXPECT_TRUE(refuse_opening(circle, 1e-300, limits));
+  // Without a limit, only beyond the most sides an opening may have.
+  EXPECT_FALSE(refuse_opening(circle, 1e-12, ResourceLimits{}));
+  EXPECT_TRUE(refuse_opening(circle, 1e-300, ResourceLimits{}));
 }
 
 } // namespace
