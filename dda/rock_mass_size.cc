@@ -196,17 +196,16 @@ std::optional<std::string> refuse_opening(const Opening& opening, double chord_t
     return std::nullopt; // its vertices are listed in the scene: refuse_beyond counts them
   const double sides = opening_side_count(opening, chord_tolerance);
   const double bytes = MemoryModel::of_arrangement(sides);
-  const bool fits = limits.fits(bytes);
-  if (fits && sides <= max_opening_sides)
+  const bool too_many = !(sides <= max_opening_sides);
+  if (!too_many && limits.fits(bytes))
     return std::nullopt;
-  const double fit =
-      fits ? max_opening_sides
-           : std::min(std::max(MemoryModel::arrangement_edges_within(limits.memory), 8.0),
-                      max_opening_sides);
+  const double fit = too_many ? max_opening_sides
+                              : std::max(MemoryModel::arrangement_edges_within(limits.memory), 8.0);
   return "within a chord tolerance of " + format_number(chord_tolerance) + " m its arcs have " +
          format_number(std::round(sides)) + " sides, " +
-         (fits ? "more than the " + format_number(max_opening_sides) + " an opening may have"
-               : "which would need " + limits.too_much(bytes)) +
+         (too_many ? "more than the " + format_number(max_opening_sides) +
+                         " an opening may have (the blocks around it would take long to set up)"
+                   : "which would need " + limits.too_much(bytes)) +
          ": expected a chord_tolerance of at least " +
          format_significant(1.005 * tolerance_for(opening, fit), 3) + " m"; // rounded up
 }

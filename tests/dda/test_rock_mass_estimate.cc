@@ -140,20 +140,27 @@ TEST(RockMassEstimate, OpeningSidesAreCountedWithoutMakingThem)
 
 TEST(RockMassEstimate, AnOpeningBeyondTheLimitIsRefusedWithATolerenceThatFits)
 {
-  // 1e-8 m on a 3 m circle: 38,477 chords, 203 MB; 50 MB holds 4444 edges, which a tolerance of
-  // 3 (1 - cos(pi / 4444)) = 7.5e-7 m gives.
+  // 1e-6 m on a 3 m circle: 3848 chords, 47 MB; 40 MB holds (40 - 30) MB / 4.5 kB = 2222 edges,
+  // which a tolerance of 2 r sin^2(pi / (2 x 2222)) = 3.0e-6 m gives.
   Opening circle;
   circle.radius = 3.0;
-  const ResourceLimits limits{50e6, "50 MB"};
-  const auto refusal = refuse_opening(circle, 1e-8, limits);
+  const ResourceLimits limits{40e6, "40 MB"};
+  const auto refusal = refuse_opening(circle, 1e-6, limits);
   ASSERT_TRUE(refusal);
-  EXPECT_NE(refusal->find("its arcs have 38477 sides"), std::string::npos) << *refusal;
-  EXPECT_NE(refusal->find("expected a chord_tolerance of at least 7.5"), std::string::npos)
+  EXPECT_NE(refusal->find("its arcs have 3848 sides, which would need"), std::string::npos)
       << *refusal;
-  EXPECT_FALSE(refuse_opening(circle, 7.6e-7, limits));
-  EXPECT_TRUE(refuse_opening(circle, 1e-300, limits));
-  // Without a limit, only beyond the most sides an opening may have.
-  EXPECT_FALSE(refuse_opening(circle, 1e-12, ResourceLimits{}));
+  EXPECT_NE(refusal->find("expected a chord_tolerance of at least 3.01e-06 m"), std::string::npos)
+      << *refusal;
+  EXPECT_FALSE(refuse_opening(circle, 3.02e-6, limits));
+  // Without a limit, only beyond the most sides an opening may have (5000: 5.9e-7 m on 3 m).
+  EXPECT_FALSE(refuse_opening(circle, 1e-6, ResourceLimits{}));
+  const auto too_many = refuse_opening(circle, 1e-8, ResourceLimits{});
+  ASSERT_TRUE(too_many);
+  EXPECT_NE(too_many->find("its arcs have 38477 sides, more than the 5000 an opening may have"),
+            std::string::npos)
+      << *too_many;
+  EXPECT_NE(too_many->find("expected a chord_tolerance of at least 5.9"), std::string::npos)
+      << *too_many;
   EXPECT_TRUE(refuse_opening(circle, 1e-300, ResourceLimits{}));
 }
 

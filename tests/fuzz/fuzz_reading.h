@@ -10,13 +10,11 @@
 
 namespace ddafem::fuzz
 {
-/// Scenes are read against 50 MB: a scene beyond it (about 830 blocks, or an arrangement of
-/// about 4,400 edges: short traces, an opening's fine chords) is refused before its blocks are
-/// generated, so that one input takes well under the harness's 10 s. The slowest such scenes
-/// read in 0.2 s in the Release build, some ten times that with the sanitizers; at 200 MB a
-/// circle of 37,000 chords took 8 s in Release (blocks of that many vertices are compared in
-/// pairs) and timed out in CI.
-inline const ResourceLimits limits{50e6, "the fuzz harness's 50 MB"};
+/// Scenes are read against 200 MB: a scene beyond it (about 7,000 blocks, or a rock mass whose
+/// arrangement has about 37,000 edges) is refused before its blocks are generated, so that one
+/// input takes well under the harness's 10 s; a far field (150 MB and more) fits. An opening's
+/// chords are bounded apart (dda::max_opening_sides): CI timed out on a circle of 38,500.
+inline const ResourceLimits limits{200e6, "the fuzz harness's 200 MB"};
 
 /// Reads the scene `text` (as if from `file`) with `overrides`. An InputError is the reader's
 /// clear refusal and ends quietly; anything else (another exception, a crash, a sanitizer's
