@@ -21,7 +21,7 @@ double chords_needed(double angle, double r, double tolerance, double at_least)
 }
 
 /// chords_needed as a count; throws InputError beyond max_opening_sides (the readers refuse
-/// such a tolerance before, by memory: refuse_opening).
+/// such a tolerance before the polygon is made: refuse_opening).
 std::size_t n_chords(double angle, double r, double tolerance, double at_least)
 {
   const double n = chords_needed(angle, r, tolerance, at_least);

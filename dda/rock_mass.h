@@ -320,9 +320,10 @@ struct RockMassTooLarge
 std::optional<RockMassTooLarge> refuse_beyond(const RockMassDescription& description,
                                               std::size_t n_other_blocks,
                                               const ResourceLimits& limits);
-/// The refusal of one opening whose polygon alone is beyond `limits` (before it is made): "a
-/// circle of radius R m has about N sides within the chord tolerance of T m, an arrangement
-/// needing ...: expected a chord_tolerance of at least T' m"; none if it fits.
+/// The refusal of one circle or horseshoe whose polygon alone has more than max_opening_sides
+/// sides or is beyond `limits` (before it is made): "within a chord tolerance of T m its arcs
+/// have N sides, more than the 5000 an opening may have (...)" or "..., which would need ...",
+/// then ": expected a chord_tolerance of at least T' m"; none if it fits, or for a polygon.
 std::optional<std::string> refuse_opening(const Opening& opening, double chord_tolerance,
                                           const ResourceLimits& limits);
 

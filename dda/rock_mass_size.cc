@@ -95,7 +95,7 @@ RockMassTooLarge shrink_largest_part(const RockMassDescription& d, const Arrange
     refusal.key = RockMassTooLarge::Key::trace_length;
     refusal.joint_set = set;
     refusal.message = "about " + format_number(std::round(traces)) +
-                      " traces of this set: " + "expected a trace_length + bridge of at least " +
+                      " traces of this set: expected a trace_length + bridge of at least " +
                       format_significant((j.trace_length + j.bridge) / factor, 3) +
                       " m (with the persistence " + format_significant(persistence(j), 3) +
                       " kept)";
