@@ -24,7 +24,7 @@ SettleDetector::SettleDetector(const System& system, const SettleCriterion& crit
       quiet(system.get_blocks().size(), 0.0), has_fallen(system.get_blocks().size(), false),
       tied(system.get_blocks().size(), false)
 {
-  for (const MaterialPoint& p : system.get_tie_points())
+  for (const MaterialPoint& p : system.ties().points)
     tied[p.block] = true;
   const Vector2 g = system.get_model().gravity;
   if (g.norm() > 0.0)

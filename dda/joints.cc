@@ -139,4 +139,11 @@ std::vector<Joint> find_joints(const std::vector<Block>& blocks, const ModelDesc
   return joints;
 }
 
+std::array<Vector2, 2> in_situ_end_forces(const InSituStress& in_situ, const Point& x0,
+                                          const Point& x1, const Vector2& n, double l)
+{
+  const Vector2 t0 = in_situ.traction(x0, n), t1 = in_situ.traction(x1, n);
+  return std::array<Vector2, 2>{l / 6.0 * (2.0 * t0 + t1), l / 6.0 * (t0 + 2.0 * t1)};
+}
+
 } // namespace ddafem::dda

@@ -82,6 +82,13 @@ std::size_t joint_material_for(const ModelDescription& model, std::size_t materi
 std::size_t joint_material_at_edge(const ModelDescription& model, std::size_t block,
                                    std::size_t edge, std::size_t other);
 
+/// The in-situ traction sigma0 n, linear along a straight edge from x0 to x1 (length l [m]),
+/// as the two end forces [N] that give its exact generalised force for the linear T along the
+/// edge: l/6 (2 t0 + t1) and l/6 (t0 + 2 t1) (each end's half, l/2 t, would miss the moment of
+/// a stress gradient along the edge on the shear-strain unknown).
+std::array<Vector2, 2> in_situ_end_forces(const InSituStress& in_situ, const Point& x0,
+                                          const Point& x1, const Vector2& n, double l);
+
 /// Finds every pair of blocks that share an edge stretch and makes a bonded joint there, with the
 /// joint material of the shared edges (joint_material_at_edge; where both edges have their own
 /// and they differ, the shorter edge's, which the shared stretch covers more of), else the one

@@ -16,8 +16,12 @@
 #include "dda/model_description.h"
 #include "dda/snapshot.h"
 #include "dda/step_solver.h"
-#include "dda/tie_terms.h"
-#include "dda/tied_body.h"
+#include "dda/block_materials.h"
+#include "dda/bonded_joints.h"
+#include "dda/boundary_set.h"
+#include "dda/energy_ledger.h"
+#include "dda/point_set.h"
+#include "dda/tie_set.h"
 #include "dda/viscous_boundary.h"
 
 #include <Eigen/Core>
@@ -25,7 +29,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <future>
 #include <limits>
 #include <map>
 #include <memory>
@@ -37,32 +40,6 @@
 
 namespace ddafem::dda
 {
-/// Energies of the model [J]. Conservation: kinetic + strain + spring = initial +
-/// work_of_loads + work_of_supports + work_of_boundaries + work_of_damping - dissipated, where
-/// `dissipated` is the residual: the algorithmic damping of the integrator (zero for trapezoidal
-/// Newmark on a linear model).
-struct EnergyBalance
-{
-  double kinetic = 0.0;       ///< sum of v^T M v / 2
-  double strain = 0.0;        ///< block elastic energy, sum of area sigma^T C^-1 sigma / 2
-  double spring = 0.0;        ///< joint springs, fixed-point penalty springs and bolts (N^2 / 2k)
-  double work_of_loads = 0.0; ///< point loads and gravity, since t = 0
-  double work_of_supports = 0.0; ///< done by prescribed motions of fixed points, since t = 0
-  /// Done by the viscous boundaries on the blocks since t = 0: negative when they absorb.
-  double work_of_boundaries = 0.0;
-  /// Done by the ties to a tied body (the far field) on the blocks since t = 0: the energy that
-  /// crossed the interface into the blocks (negative when it left them).
-  double work_of_ties = 0.0;
-  double work_of_damping = 0.0; ///< done by the rock's dashpots (dda/damping.h), negative
-  /// Kinetic energy that left with blocks removed in motion (fallen debris, see
-  /// SettleCriterion::remove_fallen), since t = 0.
-  double removed = 0.0;
-  double initial = 0.0;    ///< kinetic + strain + spring at t = 0
-  double dissipated = 0.0; ///< initial + works - removed - (kinetic + strain + spring)
-
-  double stored() const { return kinetic + strain + spring; }
-};
-
 /// What a step did. On a failure the model is left as it was before the step; the caller acts
 /// on it: cut dt and retry (see can_retry_with_smaller_step) or stop.
 enum class StepOutcome
@@ -212,10 +189,8 @@ public:
   /// itself from then on (see TiedBody). The body must outlive the System. Before the first
   /// step only; throws InputError for a point off its block.
   void tie(TiedBody& body, const std::vector<MaterialPoint>& points);
-  bool has_tied_body() const { return tied_body != nullptr; }
-  std::size_t n_tie_points() const { return tie_points.size(); }
-  /// The tie points' current positions [m].
-  const std::vector<MaterialPoint>& get_tie_points() const { return tie_points; }
+  /// The ties to a tied body (empty without one): the tie points at their current positions.
+  const TieSet& ties() const { return tie_set; }
 
   /// Starts a stage. Static (Shi's static analysis): velocities are zeroed before every step and
   /// the clock stands still; the edges of viscous boundaries are held by their supports instead
@@ -249,8 +224,7 @@ public:
   std::size_t n_dofs() const { return 6 * blocks.size(); }
   const std::vector<Block>& get_blocks() const { return blocks; }
   /// The intact bonded joints (broken ones are gone: their blocks meet through contacts).
-  const std::vector<Joint>& get_joints() const { return joints; }
-  std::size_t n_broken_joints() const { return broken_joint_count; }
+  const BondedJoints& bonded_joints() const { return bonded; }
   /// The element kinds (dda/element.h), in the order the step takes them.
   const std::vector<std::unique_ptr<ElementKind>>& get_element_kinds() const
   {
@@ -273,14 +247,14 @@ public:
   const ModelDescription& get_model() const { return model; }
   const PhaseTimings& get_timings() const { return timings; }
   const StepSolver& get_solver() const { return solver; }
-  const std::vector<BoundaryEdge>& get_boundary_edges() const { return boundary_edges; }
+  const std::vector<BoundaryEdge>& get_boundary_edges() const { return boundary_set.edges; }
   /// Stability of boundary edge k at time step dt.
   BoundaryStability stability_of(std::size_t k, double dt) const;
   /// Penalty stiffness of fixed points without an explicit one [N/m].
-  double default_fixed_point_stiffness() const { return default_fixed_stiffness; }
+  double default_fixed_point_stiffness() const { return point_set.default_stiffness; }
   /// Normal spring [N/m] of each static support of a viscous boundary edge's ends.
-  double support_stiffness() const { return support_normal_stiffness; }
-  std::size_t n_supports() const { return supports.size(); }
+  double support_stiffness() const { return boundary_set.support_normal_stiffness; }
+  std::size_t n_supports() const { return boundary_set.supports.size(); }
 
   /// Checkpoints (dda/system_checkpoint.cc): stores everything later steps read; `load` into a
   /// System built from the same model restores it, so that it steps on bit for bit as the saved
@@ -302,56 +276,18 @@ private:
   template <class Archive>
   void transfer_contacts(Archive& archive);
 
-  struct AttachedLoad
-  {
-    MaterialPoint point;
-    Vector2 force;
-    TimeFunction function;
-  };
-  /// A static support of a viscous boundary: an end of a selected edge held by a normal and a
-  /// shear spring to `anchor` in static stages, with a force `load` [N] (global components) on
-  /// the block: the in-situ traction over half the edge at first, in dynamic stages the force
-  /// the support held when the static stage ended (a constant edge load).
-  struct Support
-  {
-    MaterialPoint point;
-    Eigen::Matrix2d stiffness; ///< p n n^T + p_s t t^T [N/m], n the edge's outward normal
-    Vector2 load;              ///< [N]
-    Point anchor;              ///< fixed ground [m], where the point was when the stage began
-    /// Force on the block [N]: load + stiffness (anchor - position).
-    Vector2 force() const { return load + stiffness * (anchor - point.position); }
-  };
-  struct AttachedFixedPoint
-  {
-    MaterialPoint point;
-    double stiffness;
-    TimeFunction displacement_x, displacement_y;
-    Point target(double t) const;
-  };
-
   // Construction, in order.
   /// The integrator's coefficients, C and C^-1 per material and tan(phi) per joint material.
   void set_material_constants();
   /// The blocks of the model with their initial velocity and stress; returns their names for
   /// messages. Throws InputError for a model without blocks.
   std::vector<std::string> make_blocks();
-  /// The bonded joints where blocks share an edge (`size`: model_size [m], for tolerances);
-  /// disables contacts in a small-displacement analysis, where a frictional joint throws.
-  void find_bonded_joints(const std::vector<std::string>& names, double size);
-  /// The fixed points' default penalty [N/m]: 10 x the stiffest joint or block (E x 1 m).
-  void set_default_fixed_stiffness();
   /// Point loads, fixed points and monitors onto their blocks (attach), then the element kinds
   /// (make_element_kinds); throws InputError for an element the blocks cannot carry.
   void attach_points();
-  /// The edges of each boundary (`size`: model_size [m], for tolerances); throws InputError for
-  /// an edge two boundaries select.
-  void select_boundaries(double size);
   MaterialPoint attach(const Point& p, const std::string& what) const override;
   /// Joint preloads and the supports of viscous boundaries from the in-situ stress.
   void apply_in_situ_stress();
-  /// The Joyner-Chen input force 2 C v_in(t) [N] of boundary edge e at time t (zero without an
-  /// incident wave).
-  Vector2 input_force(const BoundaryEdge& e, double t) const;
   /// Zero velocity and acceleration of every block (static stages, start of a dynamic one).
   void set_at_rest();
   /// Static stages: each block's balance from the step's right-hand side (after the contact
@@ -366,10 +302,6 @@ private:
   /// stages), and the work of all of them on the step's d (the contacts' from the ContactSet).
   void prepare_dashpots(double dt);
   void add_work_of_damping(const Eigen::VectorXd& d);
-  /// The tied body's H and g on the blocks of the tie points (T at the step start).
-  void add_tie_terms();
-  /// The tie points' displacement increments T d (2m) of a solution.
-  Eigen::VectorXd tie_increments(const Eigen::VectorXd& d) const;
   double largest_vertex_displacement(const Eigen::VectorXd& d) const;
   /// Friction that turns around in a step jumps by Delta S = S_end - S_start [N] along the
   /// contact's tangent. Generalized-alpha's (1 - alpha_f) r_{n+1} + alpha_f r_n would apply the
@@ -413,10 +345,6 @@ private:
   /// Phase 3: the step's matrix and right-hand side; true if the matrix was assembled anew
   /// (a small-displacement analysis keeps it while dt is unchanged).
   bool assemble_step(double dt);
-  /// The tied body (far field) starts its step on another thread: its condensed stiffness and
-  /// force on the ties. The future holds the body's StepResult (no future without a tied
-  /// body).
-  std::future<StepResult> begin_tied_step(double dt);
   /// Phase 4: the solution, with the open-close iteration if there are contacts or ties.
   StepStatus solve_step(const StepLabel& when, bool new_matrix);
   /// Step control on the solution: sets the status's largest vertex displacement and
@@ -436,9 +364,6 @@ private:
   }
   void set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings);
   std::size_t coupling_of(std::size_t i, std::size_t j) const override;
-  /// After an accepted step: bonded joints beyond their strength break. Returns the message of
-  /// a failure (small-displacement analysis), else empty.
-  std::string break_joints();
   bool small_displacement() const override
   {
     return model.geometry == GeometryMode::small_displacement;
@@ -453,13 +378,6 @@ private:
   void assemble(double dt, bool with_matrix);
   /// Each block's inertia c M and elasticity; its inertia force, stress and gravity [N, N m].
   void add_block_terms(double dt, bool with_matrix);
-  /// Point loads and fixed points' penalty springs at the step's end time t1 [s].
-  void add_point_terms(double t1, bool with_matrix);
-  /// Viscous boundaries (dynamic stages) with their input force at t1 [s], and the supports of
-  /// their edges (springs in static stages, constant loads in dynamic ones).
-  void add_boundary_terms(double dt, double t1, bool with_matrix);
-  /// Bonded joints' end springs on the gaps, with their preloads.
-  void add_joint_terms(bool with_matrix);
   /// The blocks and everything on them take the step's displacements d (6 per block).
   void update_blocks(double dt, const Eigen::VectorXd& d);
   /// Adds the step's work of loads and gravity, boundaries and moving supports [J] (before the
@@ -470,13 +388,14 @@ private:
   void move_material_points(const Eigen::VectorXd& d);
   /// Each block's velocity, acceleration and force at the step's end, then geometry and stress.
   void advance_block_states(double dt, const Eigen::VectorXd& d);
-  /// The bonded joints' spring forces at the gaps of the moved joint ends.
-  void update_joint_forces();
   double stored_spring_energy() const;
-  /// Outward unit normal of a boundary edge in the configuration the step is linearised about.
-  Vector2 boundary_normal(const BoundaryEdge& e) const;
   /// rho A0: the mass stays that of t = 0 while the block's area changes with its strain.
-  double block_mass(const Block& b) const;
+  double block_mass(const Block& b) const { return dda::block_mass(model, b); }
+  /// What the boundaries read of a step from t0 to t1 [s].
+  BoundarySet::StepInput boundary_input(double t0, double t1) const
+  {
+    return {model, blocks, *this, mode == StageMode::static_equilibrium, t0, t1};
+  }
   /// v^T M v / 2 of a block [J], with the mass matrix of its linearisation moments.
   double kinetic_energy(const Block& b) const;
   /// Density of the block in the configuration the step is linearised about [kg/m^3]: the
@@ -485,49 +404,20 @@ private:
   double block_density(const Block& b) const;
 
   ModelDescription model;
-  std::vector<Eigen::Matrix3d> elasticity; ///< C per material [Pa]
-  std::vector<Eigen::Matrix3d> compliance; ///< C^-1 per material [1/Pa]
-  std::vector<double> tan_friction;        ///< tan(phi) per joint material
+  BlockMaterials materials;
   std::vector<Block> blocks;
-  std::vector<Joint> joints;
-  std::vector<AttachedLoad> loads;
-  std::vector<AttachedFixedPoint> fixed_points;
-  std::vector<MaterialPoint> monitors;
+  BondedJoints bonded; ///< the intact bonded joints
+  PointSet point_set; ///< point loads, fixed points and monitors
   /// The element kinds (make_element_kinds), in the order the step takes them.
   std::vector<std::unique_ptr<ElementKind>> element_kinds;
   std::size_t stages_begun = 0; ///< begin_stage calls: the stage ElementKind::begin_stage gets
-  std::vector<Point> monitor_origins; ///< where each monitor's displacement is measured from
-  std::vector<BoundaryEdge> boundary_edges;
-  /// Each boundary edge's stiffness and force in the current step (set by assemble, used for
-  /// the boundary's work in update_blocks).
-  std::vector<BoundaryStep> boundary_steps;
-  std::vector<Support> supports; ///< two per edge of a vb1, vb2 or dashpot boundary
-  double support_normal_stiffness = 0.0;
-  TiedBody* tied_body = nullptr;
-  std::vector<MaterialPoint> tie_points;
-  /// Where each tie point's displacement is measured from: t = 0, then the static equilibrium
-  std::vector<Point> tie_origins;
-  std::vector<Matrix26> tie_matrices;  ///< T of each tie point at the step start
-  std::vector<std::size_t> tie_blocks; ///< blocks with tie points, sorted
-  TieTerms tie_pairs;     ///< T^T H T of the tied body, pair by pair of its runs of points
+  BoundarySet boundary_set; ///< the viscous boundaries' edges and their static supports
+  TieSet tie_set;          ///< ties to a tied body (the far field)
   ContactSet contact_set; ///< accepted and trial contacts, and their persistence
-  std::size_t broken_joint_count = 0;
-  /// Counts the changes of the intact joints (a joint broke, a block was removed).
-  std::uint64_t joint_revision = 0;
-  /// (block_a, block_b) of every intact joint and the blocks of every element between two
-  /// blocks (lower first), sorted: the matrix couples them. Rebuilt once per joint_revision.
-  struct JointLists
-  {
-    std::uint64_t revision = std::numeric_limits<std::uint64_t>::max();
-    std::vector<std::pair<std::size_t, std::size_t>> joined;
-  } joint_lists;
-  /// Rebuilds joint_lists if the joints changed since.
-  void refresh_joint_lists();
   StageMode mode = StageMode::dynamic;
   std::vector<bool> held;             ///< per block: held until the next begin_stage
   std::vector<bool> removed;          ///< per block: inert for the rest of the run
   std::vector<BlockBalance> balances; ///< of the last accepted static step
-  double default_fixed_stiffness = 0.0;
   IntegratorCoefficients integration; ///< of the scene's integrator
   /// The blocks' acceleration and force are not known (at t = 0, or set at rest): the next step
   /// of generalized-alpha takes DDA's scheme, in which neither enters and after which M a = r
@@ -563,15 +453,11 @@ private:
   BlockSparseMatrix matrix;
   BlockSparseMatrix base_matrix; ///< the step's matrix without contacts (when there are some)
   Eigen::VectorXd base_rhs;
-  BlockSparseMatrix tied_matrix; ///< base_matrix with a tied body's terms (open-close iteration)
-  Eigen::VectorXd tied_rhs;
   double matrix_dt = 0.0;          ///< dt the matrix was assembled for (small-displacement reuse)
   double matrix_mass_factor = 0.0; ///< and its factor of M [1/s^2]
   /// Each block's mass matrix M in the configuration the attempt is linearised about, from
   /// its assembly (add_block_terms); the update at its end uses it again.
   std::vector<Matrix6> step_masses;
-  /// joint_revision when the joints' couplings were last looked up (set_matrix_structure).
-  std::uint64_t joint_couplings_revision = std::numeric_limits<std::uint64_t>::max();
   Eigen::VectorXd rhs;
   Eigen::VectorXd solution;
   StepSolver solver;
@@ -580,15 +466,8 @@ private:
   Parallel parallel;
 
   double current_time = 0.0;
-  double work_of_loads = 0.0;
-  double work_of_supports = 0.0;
-  double work_of_boundaries = 0.0;
-  double work_of_damping = 0.0;
-  bool damped = false; ///< a material or joint material has damping
+  EnergyLedger ledger; ///< the works done on the blocks, the initial and removed energy
   StepDashpots dashpots;
-  double removed_energy = 0.0; ///< kinetic energy of blocks removed in motion [J]
-  double initial_energy = 0.0;
-  double largest_energy_input = 0.0; ///< max over time of work_of_loads + work_of_supports
   PhaseTimings timings;
 };
 

@@ -17,10 +17,11 @@ void System::assemble(double dt, bool with_matrix)
   const double t1 = mode == StageMode::static_equilibrium ? current_time : current_time + dt;
   prepare_dashpots(dt);
   add_block_terms(dt, with_matrix);
-  add_point_terms(t1, with_matrix);
-  add_boundary_terms(dt, t1, with_matrix);
-  add_joint_terms(with_matrix);
   StepSystem step{matrix, rhs};
+  point_set.assemble(*this, step, t1, with_matrix);
+  boundary_set.assemble(boundary_input(current_time, t1), step_integration, dt,
+                        [&](std::size_t i) { return step_start(i, dt); }, step, with_matrix);
+  bonded.assemble(*this, model, dashpots, step, with_matrix);
   for (const std::unique_ptr<ElementKind>& k : element_kinds)
     k->assemble(*this, step, with_matrix);
 }
@@ -42,7 +43,7 @@ void System::add_block_terms(double dt, bool with_matrix)
     auto f = rhs.segment<6>(6 * i);
     if (with_matrix || beta > 0.0)
     {
-      const Matrix6 k = elastic_stiffness(g.area, elasticity[b.material]);
+      const Matrix6 k = elastic_stiffness(g.area, materials.elasticity[b.material]);
       if (with_matrix)
       {
         matrix.diagonal(i).noalias() += mass_factor * m;
@@ -58,126 +59,11 @@ void System::add_block_terms(double dt, bool with_matrix)
   }
 }
 
-void System::add_point_terms(double t1, bool with_matrix)
-{
-  // Point loads at their material points.
-  for (const AttachedLoad& l : loads)
-    rhs.segment<6>(6 * l.point.block).noalias() +=
-        point_matrix(l.point).transpose() * (l.force * l.function.value(t1));
-
-  // Fixed points: penalty spring k |x + T d - X(t1)|^2 / 2.
-  for (const AttachedFixedPoint& f : fixed_points)
-  {
-    const Matrix26 t = point_matrix(f.point);
-    if (with_matrix)
-      matrix.diagonal(f.point.block).noalias() += f.stiffness * t.transpose() * t;
-    rhs.segment<6>(6 * f.point.block).noalias() +=
-        f.stiffness * t.transpose() * (f.target(t1) - f.point.position);
-  }
-}
-
-void System::add_boundary_terms(double dt, double t1, bool with_matrix)
-{
-  // Viscous boundaries at their edge midpoints, with the incident wave's input force; in a
-  // static stage their supports hold the edges instead (springs to the anchors plus the load),
-  // in a dynamic one the supports' loads stay on as constant forces.
-  const bool is_static = mode == StageMode::static_equilibrium;
-  for (std::size_t k = 0; k < boundary_edges.size(); ++k)
-  {
-    boundary_steps[k] = {};
-    if (is_static)
-      continue;
-    const BoundaryEdge& e = boundary_edges[k];
-    const KinematicState start = step_start(e.block, dt);
-    const Matrix26 t = point_matrix(e.midpoint);
-    boundary_steps[k] = boundary_step(
-        model.boundaries[e.boundary].type, e, boundary_normal(e), block_mass(blocks[e.block]), dt,
-        step_integration.beta, step_integration.gamma, t * start.velocity, t * start.acceleration);
-    if (with_matrix)
-      matrix.diagonal(e.block).noalias() += t.transpose() * boundary_steps[k].k * t;
-    rhs.segment<6>(6 * e.block).noalias() +=
-        t.transpose() * (boundary_steps[k].f + input_force(e, t1));
-  }
-  for (const Support& s : supports)
-  {
-    const Matrix26 t = point_matrix(s.point);
-    if (is_static && with_matrix)
-      matrix.diagonal(s.point.block).noalias() += t.transpose() * s.stiffness * t;
-    rhs.segment<6>(6 * s.point.block).noalias() += t.transpose() * (is_static ? s.force() : s.load);
-  }
-}
-
-void System::add_joint_terms(bool with_matrix)
-{
-  // Bonded joints: springs K_s on the gap g + T_b d_b - T_a d_a, with g = x_b - x_a, plus the
-  // preloads.
-  for (const Joint& j : joints)
-  {
-    const Vector2 tangent = j.tangent(small_displacement());
-    const Vector2 n = Joint::normal_of(tangent);
-    const JointMaterial& jm = model.joint_materials[j.joint_material];
-    const Eigen::Matrix2d springs = joint_spring_matrix(jm, n, tangent);
-    // With a dashpot beta K_s on the relative velocity (dda/damping.h): (1 + c_v beta) K_s.
-    const double beta = dashpot_factor(dashpots, jm.damping);
-    const Eigen::Matrix2d ks =
-        beta > 0.0 ? Eigen::Matrix2d((1.0 + dashpots.velocity_factor * beta) * springs) : springs;
-    for (const JointPoint& p : j.points)
-    {
-      const Matrix26 ta = point_matrix(p.on_a);
-      const Matrix26 tb = point_matrix(p.on_b);
-      if (beta > 0.0)
-      {
-        const Vector2 offset = point_displacement(p.on_b, dashpots.offsets[j.block_b]) -
-                               point_displacement(p.on_a, dashpots.offsets[j.block_a]);
-        const Vector2 force = beta * (springs * offset);
-        rhs.segment<6>(6 * j.block_a).noalias() += ta.transpose() * force;
-        rhs.segment<6>(6 * j.block_b).noalias() -= tb.transpose() * force;
-      }
-      if (with_matrix)
-      {
-        const Matrix26 ks_ta = ks * ta;
-        const Matrix26 ks_tb = ks * tb;
-        matrix.diagonal(j.block_a).noalias() += ta.transpose() * ks_ta;
-        matrix.diagonal(j.block_b).noalias() += tb.transpose() * ks_tb;
-        matrix.upper(j.coupling).noalias() -= ta.transpose() * ks_tb;
-      }
-      const Vector2 force = springs * (p.on_b.position - p.on_a.position) + p.normal_preload * n +
-                            p.shear_preload * tangent;
-      rhs.segment<6>(6 * j.block_a).noalias() += ta.transpose() * force;
-      rhs.segment<6>(6 * j.block_b).noalias() -= tb.transpose() * force;
-    }
-  }
-}
-
 void System::add_hold_terms()
 {
   for (std::size_t i = 0; i < blocks.size(); ++i)
     if (is_held(i))
       matrix.diagonal(i).diagonal() *= 1.0 + 1e8;
-}
-
-Vector2 System::input_force(const BoundaryEdge& e, double t) const
-{
-  const BoundaryDescription& b = model.boundaries[e.boundary];
-  if (!b.has_input)
-    return Vector2::Zero();
-  const Vector2 n = boundary_normal(e), tangent(-n.y(), n.x());
-  const double v = b.input.velocity.value(t);
-  const Vector2 v_in = b.input.type == BoundaryInput::Type::p ? Vector2(0.0, v) : Vector2(v, 0.0);
-  return 2.0 * (e.cn * n.dot(v_in) * n + e.ct * tangent.dot(v_in) * tangent);
-}
-
-Vector2 System::boundary_normal(const BoundaryEdge& e) const
-{
-  const Block& b = blocks[e.block];
-  const std::vector<Point>& v = small_displacement() ? b.initial_vertices : b.vertices;
-  const Vector2 t = (v[(e.edge + 1) % v.size()] - v[e.edge]).normalized();
-  return Vector2(t.y(), -t.x());
-}
-
-double System::block_mass(const Block& b) const
-{
-  return model.materials[b.material].density * b.initial_moments.area;
 }
 
 double System::block_density(const Block& b) const
@@ -190,7 +76,7 @@ double System::block_density(const Block& b) const
 
 BoundaryStability System::stability_of(std::size_t k, double dt) const
 {
-  const BoundaryEdge& e = boundary_edges[k];
+  const BoundaryEdge& e = boundary_set.edges[k];
   return boundary_stability(model.boundaries[e.boundary].type, e, block_mass(blocks[e.block]), dt);
 }
 
@@ -213,31 +99,12 @@ Vector2 System::point_displacement(const MaterialPoint& p, const Vector6& d) con
                               : displacement_at(b.moments.centroid, p.position, d);
 }
 
-void System::refresh_joint_lists()
-{
-  if (joint_lists.revision == joint_revision)
-    return;
-  joint_lists.revision = joint_revision;
-  joint_lists.joined.clear();
-  for (const Joint& j : joints)
-    joint_lists.joined.emplace_back(j.block_a, j.block_b);
-  // An element between two blocks (a bolt, a frame) couples them in the matrix like a joint
-  // (not in contact detection).
-  for (const std::unique_ptr<ElementKind>& k : element_kinds)
-    k->add_couplings(joint_lists.joined);
-  std::sort(joint_lists.joined.begin(), joint_lists.joined.end());
-}
-
 void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings)
 {
   // The tied body couples every pair of blocks with tie points (its condensed stiffness is
-  // dense over them): those pairs, sorted by construction (tie_blocks is), merged into the
-  // contacts' sorted couplings in one pass (a sort of both took 2.5 % of a tunnel's run).
-  std::vector<std::pair<std::size_t, std::size_t>> tied_block_pairs;
-  tied_block_pairs.reserve(tie_blocks.size() * tie_blocks.size() / 2);
-  for (std::size_t i = 0; i < tie_blocks.size(); ++i)
-    for (std::size_t j = i + 1; j < tie_blocks.size(); ++j)
-      tied_block_pairs.emplace_back(tie_blocks[i], tie_blocks[j]);
+  // dense over them): those pairs, sorted, merged into the contacts' sorted couplings in one
+  // pass (a sort of both took 2.5 % of a tunnel's run).
+  const std::vector<std::pair<std::size_t, std::size_t>> tied_block_pairs = tie_set.block_pairs();
   if (!std::is_sorted(couplings.begin(), couplings.end()))
     std::sort(couplings.begin(), couplings.end());
   if (!tied_block_pairs.empty())
@@ -249,7 +116,8 @@ void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t
     couplings = std::move(merged);
   }
   couplings.erase(std::unique(couplings.begin(), couplings.end()), couplings.end());
-  if (couplings != coupling_pairs || matrix.n_blocks() != blocks.size())
+  const bool structure_changed = couplings != coupling_pairs || matrix.n_blocks() != blocks.size();
+  if (structure_changed)
   {
     coupling_pairs = std::move(couplings);
     matrix = BlockSparseMatrix(blocks.size(), coupling_pairs);
@@ -259,11 +127,7 @@ void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t
     for (std::size_t i = 0; i < blocks.size(); ++i)
       coupling_rows[i + 1] += coupling_rows[i];
   }
-  else if (joint_couplings_revision == joint_revision)
-    return; // the joints' couplings are where they were
-  for (Joint& j : joints)
-    j.coupling = coupling_of(j.block_a, j.block_b);
-  joint_couplings_revision = joint_revision;
+  bonded.find_couplings(*this, structure_changed);
 }
 
 std::size_t System::coupling_of(std::size_t i, std::size_t j) const

@@ -21,19 +21,19 @@ void System::transfer_state(Archive& a)
                       transfer_all(a, b.vertices, b.moments, b.velocity, b.acceleration, b.force);
                       transfer_all(a, b.stress, b.strain);
                     });
-  transfer_all(a, joints, broken_joint_count, joint_revision, contact_set.jointed_vertices);
-  transfer_in_place(a, loads, "loads", [&a](AttachedLoad& l) { transfer_all(a, l.point); });
-  transfer_in_place(a, fixed_points, "fixed points",
+  transfer_all(a, bonded.list, bonded.n_broken, bonded.revision, contact_set.jointed_vertices);
+  transfer_in_place(a, point_set.loads, "loads", [&a](AttachedLoad& l) { transfer_all(a, l.point); });
+  transfer_in_place(a, point_set.fixed_points, "fixed points",
                     [&a](AttachedFixedPoint& p) { transfer_all(a, p.point); });
   for (std::unique_ptr<ElementKind>& k : element_kinds)
     transfer_object(a, *k);
-  transfer_all(a, stages_begun, monitors, monitor_origins);
-  transfer_in_place(a, boundary_edges, "boundary edges",
+  transfer_all(a, stages_begun, point_set.monitors, point_set.monitor_origins);
+  transfer_in_place(a, boundary_set.edges, "boundary edges",
                     [&a](BoundaryEdge& e) { transfer_all(a, e.midpoint); });
-  transfer_all(a, boundary_steps);
-  transfer_in_place(a, supports, "supports",
+  transfer_all(a, boundary_set.steps);
+  transfer_in_place(a, boundary_set.supports, "supports",
                     [&a](Support& s) { transfer_all(a, s.point, s.stiffness, s.load, s.anchor); });
-  transfer_all(a, support_normal_stiffness, tie_points, tie_origins, tie_matrices);
+  transfer_all(a, boundary_set.support_normal_stiffness, tie_set.points, tie_set.origins, tie_set.matrices);
   transfer_contacts(a);
   transfer_all(a, contact_set.reversal_tolerance, contact_set.enabled, mode, held, removed,
                balances, motion_starts);
@@ -43,19 +43,19 @@ void System::transfer_state(Archive& a)
   transfer_each(a, first_halves,
                 [&a](FirstHalf& h)
                 { transfer_all(a, h.start_velocity, h.displacement, h.mid_force); });
-  transfer_all(a, coupling_pairs, coupling_rows, matrix, base_matrix, base_rhs, tied_matrix);
+  transfer_all(a, coupling_pairs, coupling_rows, matrix, base_matrix, base_rhs, tie_set.matrix);
   transfer_all(a, contact_set.terms.states, contact_set.terms.indexed,
                contact_set.terms.block_start);
   transfer_all(a, contact_set.terms.block_contacts, contact_set.terms.coupling_start);
-  transfer_all(a, contact_set.terms.coupling_contacts, tied_rhs, matrix_dt, matrix_mass_factor,
+  transfer_all(a, contact_set.terms.coupling_contacts, tie_set.rhs, matrix_dt, matrix_mass_factor,
                step_masses);
-  transfer_all(a, joint_couplings_revision, rhs, solution);
+  transfer_all(a, bonded.couplings_revision, rhs, solution);
   transfer_object(a, solver);
-  transfer_all(a, current_time, work_of_loads, work_of_supports, work_of_boundaries,
-               work_of_damping, removed_energy);
-  transfer_all(a, initial_energy, largest_energy_input, timings);
+  transfer_all(a, current_time, ledger.loads, ledger.supports, ledger.boundaries, ledger.damping,
+               ledger.removed);
+  transfer_all(a, ledger.initial, ledger.largest_input, timings);
   // The joints' sorted lists are rebuilt at the next detection.
-  joint_lists.revision = std::numeric_limits<std::uint64_t>::max();
+  bonded.lists.revision = std::numeric_limits<std::uint64_t>::max();
   contact_set.forget_joint_lists();
 }
 

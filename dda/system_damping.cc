@@ -11,7 +11,7 @@ namespace ddafem::dda
 void System::prepare_dashpots(double dt)
 {
   dashpots.velocity_factor = 0.0;
-  if (!damped || mode != StageMode::dynamic)
+  if (!materials.damped || mode != StageMode::dynamic)
     return;
   const double beta = step_integration.beta, gamma = step_integration.gamma;
   dashpots.velocity_factor = newmark_coefficients(beta, gamma, dt).damping_u;
@@ -41,29 +41,13 @@ void System::add_work_of_damping(const Eigen::VectorXd& d)
   {
     const double beta = dashpot_factor(dashpots, model.materials[blocks[i].material].damping);
     if (beta > 0.0)
-      work_of_damping -= beta * (elastic_stiffness(linearisation_moments(blocks[i]).area,
-                                                   elasticity[blocks[i].material]) *
+      ledger.damping -= beta * (elastic_stiffness(linearisation_moments(blocks[i]).area,
+                                                   materials.elasticity[blocks[i].material]) *
                                  mean[i])
                                     .dot(d.segment<6>(6 * i));
   }
-  for (const Joint& j : joints)
-  {
-    const JointMaterial& jm = model.joint_materials[j.joint_material];
-    const double beta = dashpot_factor(dashpots, jm.damping);
-    if (beta == 0.0)
-      continue;
-    const Vector2 tangent = j.tangent(small_displacement());
-    const Eigen::Matrix2d c = beta * joint_spring_matrix(jm, Joint::normal_of(tangent), tangent);
-    for (const JointPoint& p : j.points)
-    {
-      const Vector2 v =
-          point_displacement(p.on_b, mean[j.block_b]) - point_displacement(p.on_a, mean[j.block_a]);
-      const Vector2 du = point_displacement(p.on_b, d.segment<6>(6 * j.block_b)) -
-                         point_displacement(p.on_a, d.segment<6>(6 * j.block_a));
-      work_of_damping -= (c * v).dot(du);
-    }
-  }
-  contact_set.add_work_of_damping(work_of_damping, mean, d, dashpots);
+  bonded.add_work_of_damping(*this, model, dashpots, mean, d, ledger.damping);
+  contact_set.add_work_of_damping(ledger.damping, mean, d, dashpots);
 }
 
 } // namespace ddafem::dda

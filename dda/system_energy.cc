@@ -9,16 +9,10 @@ namespace ddafem::dda
 double System::stored_spring_energy() const
 {
   double e = 0.0;
-  for (const Joint& j : joints)
-  {
-    const JointMaterial& jm = model.joint_materials[j.joint_material];
-    for (const JointPoint& p : j.points)
-      e += joint_point_energy(p, jm);
-  }
+  bonded.add_energy(model, e);
   for (const std::unique_ptr<ElementKind>& k : element_kinds)
     k->add_energy(e);
-  for (const AttachedFixedPoint& f : fixed_points)
-    e += 0.5 * f.stiffness * (f.point.position - f.target(current_time)).squaredNorm();
+  point_set.add_energy(e, current_time);
   contact_set.add_energy(e);
   return e;
 }
@@ -35,16 +29,11 @@ EnergyBalance System::energy() const
   {
     const PolygonMoments& g = linearisation_moments(b);
     e.kinetic += kinetic_energy(b);
-    e.strain += 0.5 * g.area * b.stress.dot(compliance[b.material] * b.stress);
+    e.strain += 0.5 * g.area * b.stress.dot(materials.compliance[b.material] * b.stress);
   }
   e.spring = stored_spring_energy();
-  e.work_of_loads = work_of_loads;
-  e.work_of_supports = work_of_supports;
-  e.work_of_boundaries = work_of_boundaries;
-  e.work_of_damping = work_of_damping;
-  e.work_of_ties = tied_body ? tied_body->work_on_blocks() : 0.0;
-  e.removed = removed_energy;
-  e.initial = initial_energy;
+  ledger.fill(e);
+  e.work_of_ties = tie_set.has_body() ? tie_set.body->work_on_blocks() : 0.0;
   e.dissipated = e.initial + e.work_of_loads + e.work_of_supports + e.work_of_boundaries +
                  e.work_of_damping + e.work_of_ties - e.removed - e.stored();
   return e;
@@ -53,23 +42,9 @@ EnergyBalance System::energy() const
 std::vector<ContactSnapshot> System::contact_snapshot() const
 {
   std::vector<ContactSnapshot> out;
-  out.reserve(contact_set.accepted.size() + 2 * joints.size());
+  out.reserve(contact_set.accepted.size() + 2 * bonded.list.size());
   contact_set.add_snapshots(blocks, out);
-  for (const Joint& j : joints)
-    for (const JointPoint& p : j.points)
-    {
-      ContactSnapshot s;
-      s.id = j.id;
-      s.block_a = j.block_a;
-      s.block_b = j.block_b;
-      s.state = ContactPointState::bonded;
-      s.position = p.on_a.position;
-      s.normal = j.normal(small_displacement());
-      s.normal_force = -p.normal_force;
-      s.shear_force = p.shear_force;
-      s.gap = s.normal.dot(p.on_b.position - p.on_a.position);
-      out.push_back(s);
-    }
+  bonded.add_snapshots(small_displacement(), out);
   return out;
 }
 } // namespace ddafem::dda

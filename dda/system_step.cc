@@ -32,10 +32,10 @@ StepStatus System::attempt_step(double dt, const StepPart part)
   choose_step_scheme(dt, part); // 0. the integrator's form of this part of a step
   // A tied body begins its step (the far field's free response) on another thread while the
   // blocks find their contacts and assemble: the two touch no common data.
-  std::future<StepResult> tied = begin_tied_step(dt);
+  std::future<StepResult> tied = tie_set.begin_step(dt, *this, timings.tied_body);
   detect_contacts();                         // 1. candidates, 2. contacts
   const bool new_matrix = assemble_step(dt); // 3. assemble
-  if (tied_body)
+  if (tie_set.has_body())
   {
     const StepResult begun = tied.get();
     if (!begun.taken)
@@ -81,10 +81,12 @@ StepStatus System::attempt_step(double dt, const StepPart part)
   const StepResult accepted = accept_step(dt);
   if (!accepted.taken)
     return {StepOutcome::solver_failure, accepted.why + " " + when.text(), status.solve};
-  const std::string broken = break_joints();
+  const std::string broken = bonded.break_beyond_strength(model, contact_set.tan_friction,
+                                                          small_displacement(), current_time);
+  ++contact_set.geometry_epoch;
   if (!broken.empty())
     return {StepOutcome::joint_broken, broken, status.solve};
-  if (!boundary_edges.empty() && mode == StageMode::dynamic)
+  if (!boundary_set.edges.empty() && mode == StageMode::dynamic)
     check_energy_growth(status);
   return status;
 }
@@ -107,12 +109,11 @@ void System::detect_contacts()
               pairs.end());
   timings.broad_phase += seconds_since(start);
   start = Clock::now();
-  refresh_joint_lists();
+  const ContactSet::BlockPairs& joined = bonded.joined(element_kinds);
   const ContactSet::BlockPairs touching = contact_set.detect(
-      {model, blocks, joints, joint_revision, mode == StageMode::static_equilibrium}, pairs,
+      {model, blocks, bonded.list, bonded.revision, mode == StageMode::static_equilibrium}, pairs,
       parallel);
   // The matrix couples joined blocks and blocks in contact (both lists sorted: merged).
-  const ContactSet::BlockPairs& joined = joint_lists.joined;
   ContactSet::BlockPairs couplings(joined.size() + touching.size());
   std::merge(joined.begin(), joined.end(), touching.begin(), touching.end(), couplings.begin());
   set_matrix_structure(std::move(couplings));
@@ -141,33 +142,11 @@ bool System::assemble_step(double dt)
   return new_matrix;
 }
 
-std::future<StepResult> System::begin_tied_step(double dt)
-{
-  if (!tied_body)
-    return {};
-  Eigen::VectorXd displacements(2 * tie_points.size());
-  for (std::size_t k = 0; k < tie_points.size(); ++k)
-  {
-    tie_matrices[k] = point_matrix(tie_points[k]);
-    displacements.segment<2>(2 * k) = tie_points[k].position - tie_origins[k];
-  }
-  // A body that cannot begin on another thread begins when the step asks for it (deferred).
-  return std::async(tied_body->begins_step_on_any_thread() ? std::launch::async
-                                                           : std::launch::deferred,
-                    [this, dt, displacements = std::move(displacements)]
-                    {
-                      const auto start = Clock::now();
-                      StepResult begun = tied_body->begin_step(dt, displacements);
-                      timings.tied_body += seconds_since(start);
-                      return begun;
-                    });
-}
-
 StepStatus System::solve_step(const StepLabel& when, bool new_matrix)
 {
   const auto start = Clock::now();
   StepStatus status;
-  if (contact_set.trial.empty() && !tied_body)
+  if (contact_set.trial.empty() && !tie_set.has_body())
   {
     status.solve = solver.solve(matrix, rhs, solution,
                                 new_matrix ? MatrixChange::unknown : MatrixChange::unchanged,
@@ -214,9 +193,9 @@ void System::check_motion_limits(StepStatus& status, const StepLabel& when)
 StepResult System::accept_step(double dt)
 {
   auto start = Clock::now();
-  if (tied_body)
+  if (tie_set.has_body())
   {
-    const StepResult ended = tied_body->end_step(tie_increments(solution));
+    const StepResult ended = tie_set.body->end_step(tie_set.increments(solution));
     timings.tied_body += seconds_since(start);
     if (!ended.taken)
       return ended;
@@ -241,8 +220,8 @@ StepResult System::accept_step(double dt)
 void System::check_energy_growth(StepStatus& status)
 {
   const EnergyBalance e = energy();
-  largest_energy_input = std::max(largest_energy_input, e.work_of_loads + e.work_of_supports);
-  const double reference = e.initial + largest_energy_input;
+  ledger.largest_input = std::max(ledger.largest_input, e.work_of_loads + e.work_of_supports);
+  const double reference = e.initial + ledger.largest_input;
   if (!std::isfinite(e.stored()) || e.stored() > 10.0 * reference)
   {
     std::ostringstream m;
@@ -266,24 +245,13 @@ void System::measure_balance(StepStatus& status)
     balances[i].weight = balances[i].load = block_mass(blocks[i]) * model.gravity.norm();
   }
   const auto add = [&](std::size_t block, double magnitude) { balances[block].load += magnitude; };
-  for (const AttachedLoad& l : loads)
-    add(l.point.block, std::abs(l.function.value(current_time)) * l.force.norm());
-  for (const AttachedFixedPoint& f : fixed_points)
-    add(f.point.block, f.stiffness * (f.target(current_time) - f.point.position).norm());
-  for (const Support& s : supports)
-    add(s.point.block, s.force().norm());
+  point_set.add_loads(add, current_time);
+  boundary_set.add_loads(add);
   for (const std::unique_ptr<ElementKind>& k : element_kinds)
     k->add_loads(add);
-  for (const Joint& j : joints)
-    for (const JointPoint& p : j.points)
-    {
-      add(j.block_a, std::hypot(p.normal_force, p.shear_force));
-      add(j.block_b, std::hypot(p.normal_force, p.shear_force));
-    }
+  bonded.add_loads(add);
   contact_set.add_loads(add);
-  if (tied_body)
-    for (std::size_t k = 0; k < tie_points.size(); ++k)
-      add(tie_points[k].block, tied_body->force().segment<2>(2 * k).norm());
+  tie_set.add_loads(add);
   for (std::size_t i = 0; i < blocks.size(); ++i)
     if (!is_held(i) && balances[i].ratio() > status.unbalanced_force_ratio)
     {

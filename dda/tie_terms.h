@@ -1,5 +1,5 @@
 // A tied body's stiffness in the blocks' equations: T^T H T over runs of tie points on one
-// block (System::add_tie_terms), kept per H and turned with the blocks instead of recomputed
+// block (TieSet::add_terms), kept per H and turned with the blocks instead of recomputed
 // each step.
 #pragma once
 

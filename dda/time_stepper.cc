@@ -12,7 +12,7 @@ TimeStepper::TimeStepper(System& system_, const TimeSettings& settings, double d
       cut_factor(settings.cut_factor), growth_factor(settings.growth_factor), dt(dt_max),
       reversal_tolerance(control == TimeControl::adaptive ? settings.reversal_tolerance : 0.0),
       composite(settings.integrator == Integrator::bathe),
-      ladder(control == TimeControl::adaptive && system_.has_tied_body())
+      ladder(control == TimeControl::adaptive && system_.ties().has_body())
 {
   system.localize_slip_reversals(reversal_tolerance);
   if (ladder && growth_factor > 1.0)

@@ -119,7 +119,7 @@ std::vector<dda::ContactSnapshot> tie_contacts(const coupling::FarFieldTies& tie
                                                const dda::System& system)
 {
   std::vector<dda::ContactSnapshot> out;
-  const std::vector<dda::MaterialPoint>& points = system.get_tie_points();
+  const std::vector<dda::MaterialPoint>& points = system.ties().points;
   for (std::size_t k = 0; k < ties.n_ties(); ++k)
   {
     const coupling::Tie& t = ties.get_ties()[k];

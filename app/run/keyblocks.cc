@@ -263,7 +263,7 @@ void KeyblockRecorder::update_joints(const dda::System& system)
     record(c.vertex_block, c.total_slip, opening);
     record(c.edge_block, c.total_slip, opening);
   }
-  for (const dda::Joint& j : system.get_joints())
+  for (const dda::Joint& j : system.bonded_joints().list)
     for (const dda::JointPoint& p : j.points)
     {
       const Vector2 d = p.on_b.position - p.on_a.position;
@@ -321,7 +321,7 @@ std::vector<bool> KeyblockRecorder::held_keyblocks(const dda::System& system) co
       hold(c.vertex_block);
       hold(c.edge_block);
     }
-  for (const dda::Joint& j : system.get_joints())
+  for (const dda::Joint& j : system.bonded_joints().list)
   {
     hold(j.block_a);
     hold(j.block_b);

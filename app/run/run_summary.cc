@@ -65,7 +65,7 @@ void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
     summary["solver"]["pcg_fallbacks"] = solver.n_fallbacks();
   }
   summary["model"] = {{"blocks", system.get_blocks().size()},
-                      {"bonded_joints", system.get_joints().size()},
+                      {"bonded_joints", system.bonded_joints().list.size()},
                       {"dofs", system.n_dofs()}};
   const dda::ContactCounts counts = system.contacts().counts();
   const dda::PhaseTimings& t = system.get_timings();
@@ -73,7 +73,7 @@ void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
       {"open", counts.open},
       {"slide", counts.slide},
       {"lock", counts.lock},
-      {"broken_joints", system.n_broken_joints()},
+      {"broken_joints", system.bonded_joints().n_broken},
       {"open_close_iterations", t.n_open_close_iterations},
       {"search_distance_m", system.contacts().distances.search_distance},
       {"max_step_displacement_m", system.contacts().distances.max_step_displacement}};

@@ -89,11 +89,11 @@ void describe_blocks(const Scene& scene, const dda::System& system, std::ostream
   for (const dda::BlockDescription& b : model.blocks)
     total_mass += model.materials[b.material].density * std::abs(dda::signed_area(b.vertices));
   std::size_t n_joint_points = 0;
-  for (const dda::Joint& j : system.get_joints())
+  for (const dda::Joint& j : system.bonded_joints().list)
     n_joint_points += j.points.size();
   const dda::SmallestBlock small = dda::smallest_block(model.blocks);
   out << "  analysis: plane " << name_of(model.plane_mode) << "\n";
-  out << "  blocks: " << model.blocks.size() << ", bonded joints: " << system.get_joints().size()
+  out << "  blocks: " << model.blocks.size() << ", bonded joints: " << system.bonded_joints().list.size()
       << " (" << n_joint_points << " spring points), DOFs: " << system.n_dofs() << "\n";
   out << "  total mass: " << format_significant(total_mass, 6) << " kg\n";
   out << "  smallest block: " << model.blocks[small.index].origin << ", area "

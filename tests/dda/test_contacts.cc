@@ -749,7 +749,7 @@ TEST(Contacts, BondedGridMakesNoCornerContacts)
   m.time.end_time = 0.05;
   System s(m);
   run_to(s, m.time, 0.05);
-  EXPECT_EQ(s.get_joints().size(), 24u);
+  EXPECT_EQ(s.bonded_joints().list.size(), 24u);
   EXPECT_TRUE(s.contacts().accepted.empty()) << s.contacts().accepted.size() << " contacts";
   // One solve per half step: nothing for the open-close iteration to decide; 50 steps of the
   // default composite scheme (bathe) are 100 half steps.

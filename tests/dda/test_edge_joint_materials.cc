@@ -25,7 +25,7 @@ BlockDescription square(double x0, double y0, double size)
 /// Index of the joint between blocks a < b.
 const Joint& joint_between(const System& s, std::size_t a, std::size_t b)
 {
-  for (const Joint& j : s.get_joints())
+  for (const Joint& j : s.bonded_joints().list)
     if (j.block_a == a && j.block_b == b)
       return j;
   throw std::runtime_error("no joint between the blocks");
@@ -52,7 +52,7 @@ TEST(EdgeJointMaterials, BondedJointsTakeTheSharedEdgesJointMaterial)
   m.time.dt = 1e-4;
   m.time.end_time = 1e-3;
   const System s(m);
-  ASSERT_EQ(s.get_joints().size(), 3u);
+  ASSERT_EQ(s.bonded_joints().list.size(), 3u);
   EXPECT_EQ(joint_between(s, 0, 1).joint_material, 2u);
   EXPECT_EQ(joint_between(s, 0, 2).joint_material, 1u);
   EXPECT_EQ(joint_between(s, 1, 2).joint_material, 0u);

@@ -141,7 +141,7 @@ Recording record(const ModelDescription& m)
         r.field.velocity.push_back(s.get_blocks()[b].velocity);
         r.field.stress.push_back(s.get_blocks()[b].stress);
       }
-      for (const Joint& j : s.get_joints())
+      for (const Joint& j : s.bonded_joints().list)
         if (j.block_b < width * n_rows)
           r.field.joint_forces[{j.block_a, j.block_b}] = {
               j.points[0].normal_force, j.points[0].shear_force, j.points[1].normal_force,

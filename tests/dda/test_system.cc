@@ -36,8 +36,8 @@ ModelDescription block_on_fixed_base(const JointMaterial& joint)
 TEST(System, FindsOneJointPerSharedEdge)
 {
   const System s(row_of_blocks(5, 1e12));
-  ASSERT_EQ(s.get_joints().size(), 4u);
-  for (const Joint& j : s.get_joints())
+  ASSERT_EQ(s.bonded_joints().list.size(), 4u);
+  for (const Joint& j : s.bonded_joints().list)
   {
     EXPECT_EQ(j.block_b, j.block_a + 1);
     EXPECT_NEAR(j.length, 1.0, 1e-12);
@@ -74,7 +74,7 @@ TEST(System, BondedPairStretchesAsYoungsModulusAndSpringsPredict)
     EXPECT_NEAR(b.stress[0], force, 1e-4 * force);
     EXPECT_NEAR(b.stress[1], 0.0, 1e-4 * force);
   }
-  const Joint& j = s.get_joints()[0];
+  const Joint& j = s.bonded_joints().list[0];
   EXPECT_NEAR(j.points[0].normal_force + j.points[1].normal_force, force, 1e-4 * force);
   // No net force: the pair does not drift.
   EXPECT_NEAR(s.sample_monitor(0).displacement.x() + s.sample_monitor(1).displacement.x(), 0.0,
@@ -92,7 +92,7 @@ TEST(System, BondedJointCarriesShear)
   System s(m);
   for (int k = 0; k < 400; ++k)
     ASSERT_EQ(s.advance(1e-3).outcome, StepOutcome::success);
-  const Joint& j = s.get_joints()[0];
+  const Joint& j = s.bonded_joints().list[0];
   // Joint tangent runs along block a's (the base's) top edge, from (1,1) to (0,1): -x.
   EXPECT_NEAR(j.tangent().x(), -1.0, 1e-9);
   const double shear = j.points[0].shear_force + j.points[1].shear_force;
@@ -112,11 +112,11 @@ TEST(System, JointBreaksInTensionAndTheBlocksSeparate)
   m.point_loads.push_back({{2, 0.5}, {2e6, 0}, TimeFunction::constant(1.0), ""});
   m.time = {1e-4, 1.0, Integrator::dda};
   System s(m);
-  ASSERT_EQ(s.get_joints().size(), 1u);
+  ASSERT_EQ(s.bonded_joints().list.size(), 1u);
   for (int k = 0; k < 100; ++k)
     ASSERT_EQ(s.advance(1e-4).outcome, StepOutcome::success);
-  EXPECT_EQ(s.get_joints().size(), 0u);
-  EXPECT_EQ(s.n_broken_joints(), 1u);
+  EXPECT_EQ(s.bonded_joints().list.size(), 0u);
+  EXPECT_EQ(s.bonded_joints().n_broken, 1u);
   const double gap = s.get_blocks()[1].displacement().x() - s.get_blocks()[0].displacement().x();
   const double t = s.time();
   // Free separation from the break (within the first steps): gap ~ 2 (F/m) t^2 / 2.
@@ -144,7 +144,7 @@ TEST(System, JointBrokenInShearLeavesContactsThatCarryTheBlock)
     const StepStatus status = s.advance(1e-4);
     ASSERT_EQ(status.outcome, StepOutcome::success) << "step " << k << ": " << status.message;
   }
-  EXPECT_EQ(s.n_broken_joints(), 1u);
+  EXPECT_EQ(s.bonded_joints().n_broken, 1u);
   EXPECT_GT(s.contacts().counts().slide, 0u);
   // It rests on the base: it sinks no more than the contacts' penalty allows (W / p ~ 1e-7 m).
   EXPECT_GT(s.get_blocks()[1].displacement().y(), -1e-4);

@@ -1,4 +1,4 @@
-// System::add_tie_terms: a tied body's stiffness H (2m x 2m, dense) and force g (2m) over its m
+// TieSet::add_terms: a tied body's stiffness H (2m x 2m, dense) and force g (2m) over its m
 // tie points enter the blocks' equations as T^T H T and T^T g, T the points' 2 x 6 displacement
 // matrices. The points come in runs of consecutive points on one block, in any order; the step
 // must not depend on that order.
@@ -109,7 +109,7 @@ TEST(TieTerms, TheOrderOfTheTiePointsDoesNotChangeTheStep)
 
 TEST(TieTerms, TwoThreadsGiveTheSameBits)
 {
-  // add_tie_terms computes H T and the blocks' terms run by run on the threads: four runs
+  // TieSet::add_terms computes H T and the blocks' terms run by run on the threads: four runs
   // (interleaved points) on one and on two threads give the same step, bit for bit.
   std::srand(11);
   const Eigen::MatrixXd r = Eigen::MatrixXd::Random(8, 8);
