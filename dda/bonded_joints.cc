@@ -11,8 +11,7 @@
 namespace ddafem::dda
 {
 void BondedJoints::find(const ModelDescription& model, const std::vector<Block>& blocks,
-                        const std::vector<std::string>& names, double tol,
-                        bool small_displacement)
+                        const std::vector<std::string>& names, double tol, bool small_displacement)
 {
   // Blocks that share an edge through a frictional joint material meet through contacts.
   std::vector<Joint> found = find_joints(blocks, model, names, tol);
@@ -34,9 +33,8 @@ void BondedJoints::apply_in_situ_stress(const InSituStress& in_situ)
   for (Joint& j : list)
   {
     const Vector2 n = j.normal(), t = j.tangent();
-    const std::array<Vector2, 2> f =
-        in_situ_end_forces(in_situ, j.points[0].on_a.position, j.points[1].on_a.position, n,
-                           j.length);
+    const std::array<Vector2, 2> f = in_situ_end_forces(in_situ, j.points[0].on_a.position,
+                                                        j.points[1].on_a.position, n, j.length);
     for (std::size_t e = 0; e < 2; ++e)
     {
       JointPoint& p = j.points[e];

@@ -53,7 +53,7 @@ struct BoundarySet
     const ModelDescription& model;
     const std::vector<Block>& blocks;
     const ElementHost& host;
-    bool is_static = false; ///< a static stage: the supports hold the edges
+    bool is_static = false;    ///< a static stage: the supports hold the edges
     double t0 = 0.0, t1 = 0.0; ///< the step's start and end [s]
   };
 
@@ -89,7 +89,7 @@ struct BoundarySet
   std::vector<BoundaryEdge> edges;
   /// Each edge's stiffness and force in the current step (assemble), for its work (add_work).
   std::vector<BoundaryStep> steps;
-  std::vector<Support> supports; ///< two per edge of a vb1, vb2 or dashpot boundary
+  std::vector<Support> supports;         ///< two per edge of a vb1, vb2 or dashpot boundary
   double support_normal_stiffness = 0.0; ///< [N/m]
 };
 

@@ -36,12 +36,12 @@ struct EnergyBalance
 /// one (EnergyBalance has their meaning).
 struct EnergyLedger
 {
-  double loads = 0.0;      ///< EnergyBalance::work_of_loads
-  double supports = 0.0;   ///< EnergyBalance::work_of_supports
-  double boundaries = 0.0; ///< EnergyBalance::work_of_boundaries
-  double damping = 0.0;    ///< EnergyBalance::work_of_damping
-  double removed = 0.0;    ///< EnergyBalance::removed
-  double initial = 0.0;    ///< EnergyBalance::initial
+  double loads = 0.0;         ///< EnergyBalance::work_of_loads
+  double supports = 0.0;      ///< EnergyBalance::work_of_supports
+  double boundaries = 0.0;    ///< EnergyBalance::work_of_boundaries
+  double damping = 0.0;       ///< EnergyBalance::work_of_damping
+  double removed = 0.0;       ///< EnergyBalance::removed
+  double initial = 0.0;       ///< EnergyBalance::initial
   double largest_input = 0.0; ///< the largest loads + supports so far
 
   /// A dynamic stage measures from the state reached, whose stored energy is `stored`.

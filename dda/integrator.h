@@ -21,7 +21,7 @@ enum class Integrator
   /// half step of dt/2 then a three-point backward Euler half step of dt/2. Bathe's first half
   /// is trapezoidal, which lets a block pushed along its base rock on its contacts; ours is
   /// generalized-alpha (bathe_first_half_spectral_radius) from its own a_n
-  /// (System::composite_acceleration). Second order; stiff modes fall about 4-fold per step;
+  /// (StepScheme::composite_acceleration). Second order; stiff modes fall about 4-fold per step;
   /// less period error than generalized-alpha at the same dt; two solves per step
   /// (TimeStepper takes the pairs); docs/design.md, Integrators
   bathe,

@@ -11,20 +11,15 @@
 namespace ddafem::dda
 {
 
-double System::start_force_lag() const
-{
-  // Bathe's second half starts from velocities alone (backward_euler_start).
-  return second_half ? 0.0 : step_integration.start_force_lag();
-}
-
 void System::restart_at_friction_jumps(const std::vector<std::size_t>& turning)
 {
   const auto add = [this](std::size_t i, const Vector6& jump)
   {
     Block& b = blocks[i];
-    if (std::none_of(friction_jumps.begin(), friction_jumps.end(),
-                     [i](const StateBeforeJump& s) { return s.block == i; }))
-      friction_jumps.push_back({i, b.acceleration, b.force});
+    std::vector<StepScheme::StateBeforeJump>& before = scheme.friction_jumps;
+    if (std::none_of(before.begin(), before.end(),
+                     [i](const StepScheme::StateBeforeJump& s) { return s.block == i; }))
+      before.push_back({i, b.acceleration, b.force});
     const Matrix6 m = mass_matrix(linearisation_moments(b), block_density(b));
     // The Newmark schemes and Bathe's first half restart the translation only: the jump's
     // moment would set off the block's stiff rocking on its contacts (whose normal forces take
@@ -32,22 +27,12 @@ void System::restart_at_friction_jumps(const std::vector<std::size_t>& turning)
     // (two-way sliding at 4 Hz with Bathe's scheme: 0.65% with the translation, 1.07% with the
     // full restart). Generalized-alpha at rho_inf 0.2 damps it.
     Vector6 applied = jump;
-    if (step_integration.alpha_f == 0.0 || model.time.integrator == Integrator::bathe)
+    if (scheme.coefficients.alpha_f == 0.0 || scheme.integrator == Integrator::bathe)
       applied.tail<4>().setZero();
     b.force += applied;
     b.acceleration += m.ldlt().solve(applied);
   };
   contact_set.add_friction_jumps(turning, add);
-}
-
-void System::undo_friction_jumps()
-{
-  for (const StateBeforeJump& s : friction_jumps)
-  {
-    blocks[s.block].acceleration = s.acceleration;
-    blocks[s.block].force = s.force;
-  }
-  friction_jumps.clear();
 }
 
 } // namespace ddafem::dda

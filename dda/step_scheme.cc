@@ -1,7 +1,4 @@
-// The integrator's form of each step (System::choose_step_scheme): generalized-alpha and the
-// Newmark schemes take one form throughout; Bathe's composite scheme alternates a
-// generalized-alpha first half and a three-point backward Euler second half (dda/integrator.h).
-#include "dda/system.h"
+#include "dda/step_scheme.h"
 
 #include <Eigen/Cholesky>
 
@@ -10,11 +7,15 @@
 
 namespace ddafem::dda
 {
-void System::choose_step_scheme(double dt, const StepPart part)
+void StepScheme::set_up(const Integrator integrator_, const double spectral_radius)
 {
-  const Integrator integrator = model.time.integrator;
+  integrator = integrator_;
+  integration = integrator_coefficients(integrator, spectral_radius);
+}
+
+void StepScheme::choose(double dt, const StepPart part, const bool dynamic)
+{
   // A static stage has no motion to integrate: it takes every part as a full step.
-  const bool dynamic = mode == StageMode::dynamic;
   if (dynamic && (integrator == Integrator::bathe) == (part == StepPart::full))
     throw std::logic_error(part == StepPart::full
                                ? "Bathe's scheme takes half steps in a dynamic stage"
@@ -25,19 +26,18 @@ void System::choose_step_scheme(double dt, const StepPart part)
   // With a and r unknown, DDA's scheme (in which neither enters) starts the motion.
   if (motion_starts &&
       (integrator == Integrator::generalized_alpha || integrator == Integrator::bathe))
-    step_integration = integrator_coefficients(Integrator::dda, 0.0);
+    coefficients = integrator_coefficients(Integrator::dda, 0.0);
   else if (dynamic && part == StepPart::second_half)
   {
     second_half = true;
-    step_integration = backward_euler_half_coefficients();
+    coefficients = backward_euler_half_coefficients();
   }
   else
-    step_integration = integration;
+    coefficients = integration;
 }
 
-KinematicState System::step_start(std::size_t i, double dt) const
+KinematicState StepScheme::start(const Block& b, std::size_t i, double dt) const
 {
-  const Block& b = blocks[i];
   if (!second_half)
     return {b.velocity, b.acceleration, b.force};
   const FirstHalf& h = first_halves[i];
@@ -47,9 +47,10 @@ KinematicState System::step_start(std::size_t i, double dt) const
   return s; // alpha_f = 0: r_n does not enter
 }
 
-Vector6 System::composite_acceleration(std::size_t i, const Matrix6& m, const KinematicState& end)
+Vector6 StepScheme::composite_acceleration(std::size_t i, const Matrix6& m,
+                                           const KinematicState& end, const bool dynamic)
 {
-  if (model.time.integrator != Integrator::bathe || mode != StageMode::dynamic)
+  if (integrator != Integrator::bathe || !dynamic)
     return end.acceleration;
   if (!second_half)
   {
@@ -60,16 +61,32 @@ Vector6 System::composite_acceleration(std::size_t i, const Matrix6& m, const Ki
   return m.ldlt().solve((1.0 - alpha_f) * end.force + alpha_f * first_halves[i].mid_force);
 }
 
-void System::record_half(double dt, const Eigen::VectorXd& d)
+void StepScheme::record_half(double dt, const Eigen::VectorXd& d, const std::vector<Block>& blocks,
+                             const bool dynamic)
 {
-  const bool opens =
-      model.time.integrator == Integrator::bathe && mode == StageMode::dynamic && !second_half;
+  const bool opens = integrator == Integrator::bathe && dynamic && !second_half;
   open_half = opens ? dt : 0.0;
   if (!opens)
     return;
   first_halves.resize(blocks.size());
   for (std::size_t i = 0; i < blocks.size(); ++i)
     first_halves[i] = {blocks[i].velocity, d.segment<6>(6 * i)};
+}
+
+double StepScheme::start_force_lag() const
+{
+  // Bathe's second half starts from velocities alone (backward_euler_start).
+  return second_half ? 0.0 : coefficients.start_force_lag();
+}
+
+void StepScheme::undo_friction_jumps(std::vector<Block>& blocks)
+{
+  for (const StateBeforeJump& s : friction_jumps)
+  {
+    blocks[s.block].acceleration = s.acceleration;
+    blocks[s.block].force = s.force;
+  }
+  friction_jumps.clear();
 }
 
 } // namespace ddafem::dda

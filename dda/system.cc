@@ -23,16 +23,15 @@ bool can_retry_with_smaller_step(StepOutcome outcome)
 }
 
 System::System(const ModelDescription& model_)
-    : model(model_), matrix(0, {}), base_matrix(0, {}), solver(model_.solver),
-      parallel(model_.solver.threads)
+    : model(model_), solver(model_.solver), parallel(model_.solver.threads)
 {
   set_material_constants();
   const std::vector<std::string> names = make_blocks();
   const double size = model_size(blocks);
   bonded.find(model, blocks, names, 1e-9 * size, small_displacement());
   contact_set.set_up(model, blocks, size, !small_displacement());
-  rhs.setZero(static_cast<Eigen::Index>(n_dofs()));
-  solution.setZero(static_cast<Eigen::Index>(n_dofs()));
+  equations.rhs.setZero(static_cast<Eigen::Index>(n_dofs()));
+  equations.solution.setZero(static_cast<Eigen::Index>(n_dofs()));
   attach_points();
   boundary_set.select(model, blocks, bonded.list, 1e-6 * size);
   apply_in_situ_stress();
@@ -43,7 +42,7 @@ System::System(const ModelDescription& model_)
 
 void System::set_material_constants()
 {
-  integration = integrator_coefficients(model.time.integrator, model.time.spectral_radius);
+  scheme.set_up(model.time.integrator, model.time.spectral_radius);
   materials = block_materials(model);
 }
 
@@ -96,14 +95,14 @@ void System::tie(TiedBody& body, const std::vector<MaterialPoint>& points)
   if (timings.n_attempts > 0)
     throw InputError("tie(): the ties must be made before the first step");
   tie_set.attach(body, points, blocks, 1e-6 * model_size(blocks));
-  set_matrix_structure(coupling_pairs);
+  set_matrix_structure(equations.coupling_pairs);
   ++contact_set.geometry_epoch;
 }
 
 void System::hold_block(std::size_t i)
 {
   held[i] = true;
-  matrix_dt = 0.0; // assemble the matrix anew, with the hold
+  equations.reassemble(); // with the hold
 }
 
 void System::remove_block(std::size_t i)
@@ -113,7 +112,7 @@ void System::remove_block(std::size_t i)
   b.velocity.setZero();
   b.acceleration.setZero();
   removed[i] = true;
-  matrix_dt = 0.0;
+  equations.reassemble();
   ++contact_set.geometry_epoch;
   bonded.remove_block(i);
 }
@@ -126,14 +125,14 @@ void System::set_at_rest()
     b.acceleration.setZero();
     b.force.setZero();
   }
-  motion_starts = true;
+  scheme.motion_starts = true;
 }
 
 void System::begin_stage(StageMode new_mode)
 {
   const bool after_static = mode == StageMode::static_equilibrium;
   mode = new_mode;
-  matrix_dt = 0.0; // the boundary terms change with the stage: assemble the matrix anew
+  equations.reassemble(); // the boundary terms change with the stage
   ++contact_set.geometry_epoch;
   held.assign(blocks.size(), false);
   for (const std::unique_ptr<ElementKind>& k : element_kinds)

@@ -7,20 +7,22 @@
 #include "common/checkpoint_fwd.h"
 #include "common/parallel.h"
 #include "dda/block.h"
+#include "dda/block_materials.h"
+#include "dda/bonded_joints.h"
+#include "dda/boundary_set.h"
 #include "dda/contact/contact.h"
 #include "dda/contact/contact_set.h"
 #include "dda/contact/narrow_phase.h"
 #include "dda/element.h"
+#include "dda/energy_ledger.h"
 #include "dda/joints.h"
 #include "dda/linear_solver.h"
 #include "dda/model_description.h"
-#include "dda/snapshot.h"
-#include "dda/step_solver.h"
-#include "dda/block_materials.h"
-#include "dda/bonded_joints.h"
-#include "dda/boundary_set.h"
-#include "dda/energy_ledger.h"
 #include "dda/point_set.h"
+#include "dda/snapshot.h"
+#include "dda/step_equations.h"
+#include "dda/step_scheme.h"
+#include "dda/step_solver.h"
 #include "dda/tie_set.h"
 #include "dda/viscous_boundary.h"
 
@@ -313,30 +315,17 @@ private:
   /// limit, r_n + Delta r and a_n + M^-1 Delta r (the displacements, hence every other force,
   /// are continuous); with the Newmark schemes, the translational part of Delta r only (see
   /// slip_reversals.cc). The state before is kept in
-  /// `friction_jumps` until the step is accepted or undo_friction_jumps() restores it.
+  /// `scheme.friction_jumps` until the step is accepted or StepScheme::undo_friction_jumps restores
+  /// it.
   void restart_at_friction_jumps(const std::vector<std::size_t>& turning);
-  /// IntegratorCoefficients::start_force_lag of the step being tried (0 in Bathe's second
-  /// half, which starts from velocities alone).
-  double start_force_lag() const;
-  void undo_friction_jumps();
   /// One attempt at a step (advance() without undoing an earlier attempt's friction jumps).
   StepStatus attempt_step(double dt, StepPart part);
-  /// Phase 0: the integrator's coefficients for `part` of a step of dt (sets step_integration
-  /// and second_half). Generalized-alpha and Bathe's scheme start motion with DDA's scheme;
-  /// Bathe's second half must follow an accepted first half of the same dt (std::logic_error if
-  /// not), and in a dynamic stage Bathe takes no full step.
-  void choose_step_scheme(double dt, StepPart part);
   /// Block i's state the step's Newmark updates start from: its own, or in a composite pair's
   /// second half the equivalent start of backward_euler_start.
-  KinematicState step_start(std::size_t i, double dt) const;
-  /// After an accepted dynamic step of the displacements d: a Bathe pair's first half keeps
-  /// what its second needs (first_halves, open_half); any other step closes the pair.
-  void record_half(double dt, const Eigen::VectorXd& d);
-  /// The acceleration block i keeps after a step that ended in `end` with mass matrix m: Newmark's,
-  /// except after Bathe's second half, where the next pair's generalized-alpha half needs its
-  /// own a_n, M^-1 ((1 - alpha_f) r_n + alpha_f r_{n-1/2}) with r_{n-1/2} the force at the pair's
-  /// middle (kept by the first half): with the true a_n the composite would be first order.
-  Vector6 composite_acceleration(std::size_t i, const Matrix6& m, const KinematicState& end);
+  KinematicState step_start(std::size_t i, double dt) const
+  {
+    return scheme.start(blocks[i], i, dt);
+  }
   /// Phases 1 and 2 of a step: the contact set's candidates among the blocks not removed, its
   /// narrow phase, the matrix structure (joined blocks and blocks in contact), the contacts'
   /// frames, and the trial contacts matched to the accepted ones to keep id, state and forces;
@@ -407,59 +396,20 @@ private:
   BlockMaterials materials;
   std::vector<Block> blocks;
   BondedJoints bonded; ///< the intact bonded joints
-  PointSet point_set; ///< point loads, fixed points and monitors
+  PointSet point_set;  ///< point loads, fixed points and monitors
   /// The element kinds (make_element_kinds), in the order the step takes them.
   std::vector<std::unique_ptr<ElementKind>> element_kinds;
   std::size_t stages_begun = 0; ///< begin_stage calls: the stage ElementKind::begin_stage gets
-  BoundarySet boundary_set; ///< the viscous boundaries' edges and their static supports
-  TieSet tie_set;          ///< ties to a tied body (the far field)
-  ContactSet contact_set; ///< accepted and trial contacts, and their persistence
+  BoundarySet boundary_set;     ///< the viscous boundaries' edges and their static supports
+  TieSet tie_set;               ///< ties to a tied body (the far field)
+  ContactSet contact_set;       ///< accepted and trial contacts, and their persistence
   StageMode mode = StageMode::dynamic;
   std::vector<bool> held;             ///< per block: held until the next begin_stage
   std::vector<bool> removed;          ///< per block: inert for the rest of the run
   std::vector<BlockBalance> balances; ///< of the last accepted static step
-  IntegratorCoefficients integration; ///< of the scene's integrator
-  /// The blocks' acceleration and force are not known (at t = 0, or set at rest): the next step
-  /// of generalized-alpha takes DDA's scheme, in which neither enters and after which M a = r
-  /// holds (the Newmark schemes start from a = 0 as they always have).
-  bool motion_starts = true;
-  /// A block's accepted acceleration and force before restart_at_friction_jumps changed them.
-  struct StateBeforeJump
-  {
-    std::size_t block = 0;
-    Vector6 acceleration, force;
-  };
-  std::vector<StateBeforeJump> friction_jumps; ///< of the step being tried
-  IntegratorCoefficients step_integration;     ///< of the step being tried
-  /// Integrator::bathe: whether the step being tried is a pair's second half (three-point
-  /// backward Euler, StepPart::second_half in a dynamic stage)
-  bool second_half = false;
-  /// Integrator::bathe: the dt of the last accepted step when it was a pair's first half [s];
-  /// 0 when the last step closed a pair (or was static)
-  double open_half = 0.0;
-  /// Integrator::bathe, per block: the velocity at the pair's start and the first half's
-  /// displacement (dda/integrator.h, backward_euler_start)
-  struct FirstHalf
-  {
-    Vector6 start_velocity = Vector6::Zero(), displacement = Vector6::Zero();
-    Vector6 mid_force = Vector6::Zero(); ///< r at the pair's middle [N, N m]
-  };
-  std::vector<FirstHalf> first_halves;
+  StepScheme scheme;                  ///< the integrator's form of the step being tried
 
-  std::vector<std::pair<std::size_t, std::size_t>> coupling_pairs; ///< the matrix's, sorted
-  /// Where each block's couplings (i, j), i the block, start in coupling_pairs; one past the
-  /// last block: their number.
-  std::vector<std::size_t> coupling_rows;
-  BlockSparseMatrix matrix;
-  BlockSparseMatrix base_matrix; ///< the step's matrix without contacts (when there are some)
-  Eigen::VectorXd base_rhs;
-  double matrix_dt = 0.0;          ///< dt the matrix was assembled for (small-displacement reuse)
-  double matrix_mass_factor = 0.0; ///< and its factor of M [1/s^2]
-  /// Each block's mass matrix M in the configuration the attempt is linearised about, from
-  /// its assembly (add_block_terms); the update at its end uses it again.
-  std::vector<Matrix6> step_masses;
-  Eigen::VectorXd rhs;
-  Eigen::VectorXd solution;
+  StepEquations equations; ///< the step's linear system, its structure and solution
   StepSolver solver;
   /// Threads of contact detection and of the contacts' trial states (the solver has its own;
   /// results do not depend on either).

@@ -11,16 +11,17 @@ namespace ddafem::dda
 void System::assemble(double dt, bool with_matrix)
 {
   if (with_matrix)
-    matrix.set_zero();
-  rhs.setZero();
+    equations.matrix.set_zero();
+  equations.rhs.setZero();
   // Loads and supports are evaluated at the step's end (the clock stands still in a static stage).
   const double t1 = mode == StageMode::static_equilibrium ? current_time : current_time + dt;
   prepare_dashpots(dt);
   add_block_terms(dt, with_matrix);
-  StepSystem step{matrix, rhs};
+  StepSystem step{equations.matrix, equations.rhs};
   point_set.assemble(*this, step, t1, with_matrix);
-  boundary_set.assemble(boundary_input(current_time, t1), step_integration, dt,
-                        [&](std::size_t i) { return step_start(i, dt); }, step, with_matrix);
+  boundary_set.assemble(
+      boundary_input(current_time, t1), scheme.coefficients, dt,
+      [&](std::size_t i) { return step_start(i, dt); }, step, with_matrix);
   bonded.assemble(*this, model, dashpots, step, with_matrix);
   for (const std::unique_ptr<ElementKind>& k : element_kinds)
     k->assemble(*this, step, with_matrix);
@@ -30,31 +31,31 @@ void System::add_block_terms(double dt, bool with_matrix)
 {
   // Blocks: inertia c M and elasticity; the inertia force of the block's past (v0, a0, r0), the
   // accumulated stress and gravity on the right-hand side.
-  const double mass_factor = step_integration.mass_factor(dt);
-  step_masses.resize(blocks.size());
+  const double mass_factor = scheme.coefficients.mass_factor(dt);
+  equations.masses.resize(blocks.size());
   for (std::size_t i = 0; i < blocks.size(); ++i)
   {
     const Block& b = blocks[i];
     const PolygonMoments& g = linearisation_moments(b);
     const double density = block_density(b);
-    const Matrix6& m = step_masses[i] = mass_matrix(g, density);
+    const Matrix6& m = equations.masses[i] = mass_matrix(g, density);
     // The dashpot beta K_e on the strain rates (dda/damping.h).
     const double beta = dashpot_factor(dashpots, model.materials[b.material].damping);
-    auto f = rhs.segment<6>(6 * i);
+    auto f = equations.rhs.segment<6>(6 * i);
     if (with_matrix || beta > 0.0)
     {
       const Matrix6 k = elastic_stiffness(g.area, materials.elasticity[b.material]);
       if (with_matrix)
       {
-        matrix.diagonal(i).noalias() += mass_factor * m;
-        matrix.diagonal(i).noalias() += k;
+        equations.matrix.diagonal(i).noalias() += mass_factor * m;
+        equations.matrix.diagonal(i).noalias() += k;
         if (beta > 0.0)
-          matrix.diagonal(i).noalias() += (dashpots.velocity_factor * beta) * k;
+          equations.matrix.diagonal(i).noalias() += (dashpots.velocity_factor * beta) * k;
       }
       if (beta > 0.0)
         f -= beta * (k * dashpots.offsets[i]);
     }
-    f += inertia_force(step_integration, m, step_start(i, dt), dt);
+    f += inertia_force(scheme.coefficients, m, step_start(i, dt), dt);
     f += stress_force(g.area, b.stress) + body_force(g.area, density, model.gravity);
   }
 }
@@ -63,7 +64,7 @@ void System::add_hold_terms()
 {
   for (std::size_t i = 0; i < blocks.size(); ++i)
     if (is_held(i))
-      matrix.diagonal(i).diagonal() *= 1.0 + 1e8;
+      equations.matrix.diagonal(i).diagonal() *= 1.0 + 1e8;
 }
 
 double System::block_density(const Block& b) const
@@ -116,28 +117,13 @@ void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t
     couplings = std::move(merged);
   }
   couplings.erase(std::unique(couplings.begin(), couplings.end()), couplings.end());
-  const bool structure_changed = couplings != coupling_pairs || matrix.n_blocks() != blocks.size();
-  if (structure_changed)
-  {
-    coupling_pairs = std::move(couplings);
-    matrix = BlockSparseMatrix(blocks.size(), coupling_pairs);
-    coupling_rows.assign(blocks.size() + 1, 0);
-    for (const auto& pair : coupling_pairs)
-      ++coupling_rows[pair.first + 1];
-    for (std::size_t i = 0; i < blocks.size(); ++i)
-      coupling_rows[i + 1] += coupling_rows[i];
-  }
+  const bool structure_changed = equations.set_couplings(blocks.size(), std::move(couplings));
   bonded.find_couplings(*this, structure_changed);
 }
 
 std::size_t System::coupling_of(std::size_t i, std::size_t j) const
 {
-  // Within the couplings of the lower block (all of them lie in its row): the same index as a
-  // search of all couplings, at the cost of a few comparisons.
-  const auto key = std::make_pair(std::min(i, j), std::max(i, j));
-  const auto row = coupling_pairs.begin();
-  return static_cast<std::size_t>(
-      std::lower_bound(row + coupling_rows[key.first], row + coupling_rows[key.first + 1], key) -
-      row);
+  return equations.coupling_of(i, j);
 }
+
 } // namespace ddafem::dda

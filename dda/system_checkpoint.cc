@@ -22,7 +22,8 @@ void System::transfer_state(Archive& a)
                       transfer_all(a, b.stress, b.strain);
                     });
   transfer_all(a, bonded.list, bonded.n_broken, bonded.revision, contact_set.jointed_vertices);
-  transfer_in_place(a, point_set.loads, "loads", [&a](AttachedLoad& l) { transfer_all(a, l.point); });
+  transfer_in_place(a, point_set.loads, "loads",
+                    [&a](AttachedLoad& l) { transfer_all(a, l.point); });
   transfer_in_place(a, point_set.fixed_points, "fixed points",
                     [&a](AttachedFixedPoint& p) { transfer_all(a, p.point); });
   for (std::unique_ptr<ElementKind>& k : element_kinds)
@@ -33,23 +34,26 @@ void System::transfer_state(Archive& a)
   transfer_all(a, boundary_set.steps);
   transfer_in_place(a, boundary_set.supports, "supports",
                     [&a](Support& s) { transfer_all(a, s.point, s.stiffness, s.load, s.anchor); });
-  transfer_all(a, boundary_set.support_normal_stiffness, tie_set.points, tie_set.origins, tie_set.matrices);
+  transfer_all(a, boundary_set.support_normal_stiffness, tie_set.points, tie_set.origins,
+               tie_set.matrices);
   transfer_contacts(a);
   transfer_all(a, contact_set.reversal_tolerance, contact_set.enabled, mode, held, removed,
-               balances, motion_starts);
-  transfer_each(a, friction_jumps,
-                [&a](StateBeforeJump& s) { transfer_all(a, s.block, s.acceleration, s.force); });
-  transfer_all(a, step_integration, second_half, open_half);
-  transfer_each(a, first_halves,
-                [&a](FirstHalf& h)
+               balances, scheme.motion_starts);
+  transfer_each(a, scheme.friction_jumps,
+                [&a](StepScheme::StateBeforeJump& s)
+                { transfer_all(a, s.block, s.acceleration, s.force); });
+  transfer_all(a, scheme.coefficients, scheme.second_half, scheme.open_half);
+  transfer_each(a, scheme.first_halves,
+                [&a](StepScheme::FirstHalf& h)
                 { transfer_all(a, h.start_velocity, h.displacement, h.mid_force); });
-  transfer_all(a, coupling_pairs, coupling_rows, matrix, base_matrix, base_rhs, tie_set.matrix);
+  transfer_all(a, equations.coupling_pairs, equations.coupling_rows, equations.matrix,
+               equations.base_matrix, equations.base_rhs, tie_set.matrix);
   transfer_all(a, contact_set.terms.states, contact_set.terms.indexed,
                contact_set.terms.block_start);
   transfer_all(a, contact_set.terms.block_contacts, contact_set.terms.coupling_start);
-  transfer_all(a, contact_set.terms.coupling_contacts, tie_set.rhs, matrix_dt, matrix_mass_factor,
-               step_masses);
-  transfer_all(a, bonded.couplings_revision, rhs, solution);
+  transfer_all(a, contact_set.terms.coupling_contacts, tie_set.rhs, equations.dt,
+               equations.mass_factor, equations.masses);
+  transfer_all(a, bonded.couplings_revision, equations.rhs, equations.solution);
   transfer_object(a, solver);
   transfer_all(a, current_time, ledger.loads, ledger.supports, ledger.boundaries, ledger.damping,
                ledger.removed);

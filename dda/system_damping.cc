@@ -13,7 +13,7 @@ void System::prepare_dashpots(double dt)
   dashpots.velocity_factor = 0.0;
   if (!materials.damped || mode != StageMode::dynamic)
     return;
-  const double beta = step_integration.beta, gamma = step_integration.gamma;
+  const double beta = scheme.coefficients.beta, gamma = scheme.coefficients.gamma;
   dashpots.velocity_factor = newmark_coefficients(beta, gamma, dt).damping_u;
   dashpots.offsets.resize(blocks.size());
   dashpots.start.resize(blocks.size());
@@ -42,9 +42,9 @@ void System::add_work_of_damping(const Eigen::VectorXd& d)
     const double beta = dashpot_factor(dashpots, model.materials[blocks[i].material].damping);
     if (beta > 0.0)
       ledger.damping -= beta * (elastic_stiffness(linearisation_moments(blocks[i]).area,
-                                                   materials.elasticity[blocks[i].material]) *
-                                 mean[i])
-                                    .dot(d.segment<6>(6 * i));
+                                                  materials.elasticity[blocks[i].material]) *
+                                mean[i])
+                                   .dot(d.segment<6>(6 * i));
   }
   bonded.add_work_of_damping(*this, model, dashpots, mean, d, ledger.damping);
   contact_set.add_work_of_damping(ledger.damping, mean, d, dashpots);

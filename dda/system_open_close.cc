@@ -14,27 +14,27 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
 {
   // The matrix without contact and tie terms: just assembled, or kept from the last assembly
   // (small-displacement analysis, same dt).
-  if (new_matrix || !base_matrix.same_structure(matrix))
-    base_matrix = matrix;
+  if (new_matrix || !equations.base_matrix.same_structure(equations.matrix))
+    equations.base_matrix = equations.matrix;
   else
-    matrix = base_matrix;
-  base_rhs = rhs;
+    equations.matrix = equations.base_matrix;
+  equations.base_rhs = equations.rhs;
   // A tied body's terms (dense over the tied blocks) change only when its ties change state:
   // the iterations start from the matrix with them, rebuilt only then.
   // (matrix_is_base: matrix and rhs hold base_matrix and base_rhs already, no copy needed.)
-  StepSystem step{matrix, rhs};
+  StepSystem step{equations.matrix, equations.rhs};
   const auto add_ties_to_start = [&](const bool matrix_is_base)
   {
     if (!matrix_is_base)
     {
-      matrix = base_matrix;
-      rhs = base_rhs;
+      equations.matrix = equations.base_matrix;
+      equations.rhs = equations.base_rhs;
     }
     const auto start = Clock::now();
     tie_set.add_terms(step, *this, blocks, parallel);
     timings.tie_terms += seconds_since(start);
-    tie_set.matrix = matrix;
-    tie_set.rhs = rhs;
+    tie_set.matrix = equations.matrix;
+    tie_set.rhs = equations.rhs;
   };
   if (tie_set.has_body())
     add_ties_to_start(true);
@@ -51,10 +51,12 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
     }
     else
     {
-      rhs = tie_set.has_body() ? tie_set.rhs : base_rhs;
-      contact_set.update_terms(step, tie_set.has_body() ? tie_set.matrix : base_matrix, dashpots);
+      equations.rhs = tie_set.has_body() ? tie_set.rhs : equations.base_rhs;
+      contact_set.update_terms(step, tie_set.has_body() ? tie_set.matrix : equations.base_matrix,
+                               dashpots);
     }
-    status.solve = solver.solve(matrix, rhs, solution, MatrixChange::unknown, matrix_mass_factor);
+    status.solve = solver.solve(equations.matrix, equations.rhs, equations.solution,
+                                MatrixChange::unknown, equations.mass_factor);
     ++status.n_open_close_iterations;
     ++timings.n_open_close_iterations;
     if (!status.solve.success)
@@ -64,12 +66,12 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
       return status;
     }
     std::size_t n_changes = contact_set.update_trial_states(
-        {solution, dashpots, matrix_dt, iteration, localising_slip_reversals()},
+        {equations.solution, dashpots, equations.dt, iteration, localising_slip_reversals()},
         status.n_flips_ignored, parallel);
     const std::size_t ignored_before = status.n_flips_ignored;
     const std::size_t n_tie_changes =
         tie_set.has_body()
-            ? tie_set.body->update_trial_states(tie_set.increments(solution), iteration,
+            ? tie_set.body->update_trial_states(tie_set.increments(equations.solution), iteration,
                                                 contact_set.negligible_force(),
                                                 status.n_flips_ignored)
             : 0;

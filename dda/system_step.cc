@@ -19,7 +19,7 @@ std::string StepLabel::text() const
 
 StepStatus System::advance(double dt, const StepPart part)
 {
-  undo_friction_jumps(); // each attempt starts from the accepted state
+  scheme.undo_friction_jumps(blocks); // each attempt starts from the accepted state
   return attempt_step(dt, part);
 }
 
@@ -29,7 +29,8 @@ StepStatus System::attempt_step(double dt, const StepPart part)
   ++timings.n_attempts;
   if (mode == StageMode::static_equilibrium)
     set_at_rest();
-  choose_step_scheme(dt, part); // 0. the integrator's form of this part of a step
+  scheme.choose(dt, part,
+                mode == StageMode::dynamic); // 0. the integrator's form of this part of a step
   // A tied body begins its step (the far field's free response) on another thread while the
   // blocks find their contacts and assemble: the two touch no common data.
   std::future<StepResult> tied = tie_set.begin_step(dt, *this, timings.tied_body);
@@ -55,8 +56,8 @@ StepStatus System::attempt_step(double dt, const StepPart part)
   if (localising_slip_reversals())
   {
     const ContactSet::ReversalScan scan = contact_set.scan_reversals(
-        {blocks, dt, step_integration, model.time.integrator == Integrator::bathe,
-         start_force_lag(), [&](std::size_t i) { return step_start(i, dt); }});
+        {blocks, dt, scheme.coefficients, scheme.integrator == Integrator::bathe,
+         scheme.start_force_lag(), [&](std::size_t i) { return step_start(i, dt); }});
     if (scan.earliest > 0.0)
     {
       status.reversal_fraction = scan.earliest;
@@ -70,7 +71,8 @@ StepStatus System::attempt_step(double dt, const StepPart part)
     // takes the start's acceleration). The redo repeats phases 1 and 2 too: they reset the
     // trial contacts to the step's start (the restart leaves the geometry as it was), and it
     // is taken on few steps.
-    if (!scan.friction_turns.empty() && start_force_lag() > 0.0 && friction_jumps.empty())
+    if (!scan.friction_turns.empty() && scheme.start_force_lag() > 0.0 &&
+        scheme.friction_jumps.empty())
     {
       restart_at_friction_jumps(scan.friction_turns);
       return attempt_step(dt, part);
@@ -131,13 +133,13 @@ bool System::assemble_step(double dt)
   const bool elements_change =
       std::any_of(element_kinds.begin(), element_kinds.end(),
                   [](const std::unique_ptr<ElementKind>& k) { return k->changes_stiffness(); });
-  const bool new_matrix = !small_displacement() || elements_change || dt != matrix_dt ||
-                          step_integration.mass_factor(dt) != matrix_mass_factor;
+  const bool new_matrix = !small_displacement() || elements_change || dt != equations.dt ||
+                          scheme.coefficients.mass_factor(dt) != equations.mass_factor;
   assemble(dt, new_matrix);
   if (new_matrix)
     add_hold_terms();
-  matrix_dt = dt;
-  matrix_mass_factor = step_integration.mass_factor(dt);
+  equations.dt = dt;
+  equations.mass_factor = scheme.coefficients.mass_factor(dt);
   timings.assemble += seconds_since(start);
   return new_matrix;
 }
@@ -148,9 +150,9 @@ StepStatus System::solve_step(const StepLabel& when, bool new_matrix)
   StepStatus status;
   if (contact_set.trial.empty() && !tie_set.has_body())
   {
-    status.solve = solver.solve(matrix, rhs, solution,
+    status.solve = solver.solve(equations.matrix, equations.rhs, equations.solution,
                                 new_matrix ? MatrixChange::unknown : MatrixChange::unchanged,
-                                matrix_mass_factor);
+                                equations.mass_factor);
     if (!status.solve.success)
     {
       status.outcome = StepOutcome::solver_failure;
@@ -165,7 +167,7 @@ StepStatus System::solve_step(const StepLabel& when, bool new_matrix)
 
 void System::check_motion_limits(StepStatus& status, const StepLabel& when)
 {
-  status.max_displacement = largest_vertex_displacement(solution);
+  status.max_displacement = largest_vertex_displacement(equations.solution);
   if (status.max_displacement > contact_set.distances.max_step_displacement)
   {
     std::ostringstream m;
@@ -195,22 +197,22 @@ StepResult System::accept_step(double dt)
   auto start = Clock::now();
   if (tie_set.has_body())
   {
-    const StepResult ended = tie_set.body->end_step(tie_set.increments(solution));
+    const StepResult ended = tie_set.body->end_step(tie_set.increments(equations.solution));
     timings.tied_body += seconds_since(start);
     if (!ended.taken)
       return ended;
   }
   start = Clock::now();
-  record_half(dt, solution);
-  update_blocks(dt, solution);
+  scheme.record_half(dt, equations.solution, blocks, mode == StageMode::dynamic);
+  update_blocks(dt, equations.solution);
   contact_set.accept(dt);
   if (mode == StageMode::static_equilibrium)
     set_at_rest();
   else
   {
     current_time += dt;
-    motion_starts = false;
-    friction_jumps.clear(); // the restarted state is the accepted one
+    scheme.motion_starts = false;
+    scheme.friction_jumps.clear(); // the restarted state is the accepted one
   }
   timings.update += seconds_since(start);
   ++timings.n_steps;
@@ -241,7 +243,7 @@ void System::measure_balance(StepStatus& status)
   balances.assign(blocks.size(), {});
   for (std::size_t i = 0; i < blocks.size(); ++i)
   {
-    balances[i].out_of_balance = rhs.segment<2>(6 * i);
+    balances[i].out_of_balance = equations.rhs.segment<2>(6 * i);
     balances[i].weight = balances[i].load = block_mass(blocks[i]) * model.gravity.norm();
   }
   const auto add = [&](std::size_t block, double magnitude) { balances[block].load += magnitude; };

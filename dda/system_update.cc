@@ -58,10 +58,10 @@ void System::advance_block_states(double dt, const Eigen::VectorXd& d)
   {
     Block& b = blocks[i];
     const Vector6 di = d.segment<6>(6 * i);
-    const Matrix6& m = step_masses[i]; // the attempt's assembly: the same configuration
-    const KinematicState end = advance_state(step_integration, m, step_start(i, dt), di, dt);
+    const Matrix6& m = equations.masses[i]; // the attempt's assembly: the same configuration
+    const KinematicState end = advance_state(scheme.coefficients, m, step_start(i, dt), di, dt);
     b.velocity = end.velocity;
-    b.acceleration = composite_acceleration(i, m, end);
+    b.acceleration = scheme.composite_acceleration(i, m, end, mode == StageMode::dynamic);
     b.force = end.force;
     if (removed[i]) // held by a penalty: the little it moves is not motion to carry on
     {

@@ -15,9 +15,8 @@ void TieSet::attach(TiedBody& body_, const std::vector<MaterialPoint>& points_,
   blocks.clear();
   for (const MaterialPoint& p : points_)
   {
-    if (p.block >= all_blocks.size() ||
-        locate_point(all_blocks[p.block].vertices, p.position, tolerance) !=
-            PointLocation::on_boundary)
+    if (p.block >= all_blocks.size() || locate_point(all_blocks[p.block].vertices, p.position,
+                                                     tolerance) != PointLocation::on_boundary)
     {
       std::ostringstream s;
       s << "tie point (" << p.position.x() << ", " << p.position.y() << ") is not on the boundary "
@@ -66,8 +65,7 @@ std::future<StepResult> TieSet::begin_step(double dt, const ElementHost& host, d
     displacements.segment<2>(2 * k) = points[k].position - origins[k];
   }
   // A body that cannot begin on another thread begins when the step asks for it (deferred).
-  return std::async(body->begins_step_on_any_thread() ? std::launch::async
-                                                      : std::launch::deferred,
+  return std::async(body->begins_step_on_any_thread() ? std::launch::async : std::launch::deferred,
                     [this, dt, &seconds, displacements = std::move(displacements)]
                     {
                       const auto start = Clock::now();

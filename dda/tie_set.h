@@ -57,7 +57,7 @@ struct TieSet
   std::vector<Point> origins;
   std::vector<Matrix26> matrices;  ///< T of each point at the step's start
   std::vector<std::size_t> blocks; ///< blocks with tie points, sorted
-  TieTerms pairs; ///< T^T H T of the body, pair by pair of its runs of points
+  TieTerms pairs;                  ///< T^T H T of the body, pair by pair of its runs of points
   /// The step's matrix without contacts but with the ties' terms, and its right-hand side:
   /// where each open-close iteration starts while the ties keep their states.
   BlockSparseMatrix matrix{0, {}};

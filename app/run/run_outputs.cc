@@ -34,8 +34,9 @@ std::vector<double> history_row(const dda::System& system,
   const dda::ContactCounts n = system.contacts().counts();
   row.insert(row.end(),
              {static_cast<double>(n.open), static_cast<double>(n.slide),
-              static_cast<double>(n.lock), static_cast<double>(system.bonded_joints().list.size()), last.dt,
-              static_cast<double>(last.n_open_close_iterations), static_cast<double>(last.n_cuts)});
+              static_cast<double>(n.lock), static_cast<double>(system.bonded_joints().list.size()),
+              last.dt, static_cast<double>(last.n_open_close_iterations),
+              static_cast<double>(last.n_cuts)});
   return row;
 }
 

@@ -93,8 +93,9 @@ void describe_blocks(const Scene& scene, const dda::System& system, std::ostream
     n_joint_points += j.points.size();
   const dda::SmallestBlock small = dda::smallest_block(model.blocks);
   out << "  analysis: plane " << name_of(model.plane_mode) << "\n";
-  out << "  blocks: " << model.blocks.size() << ", bonded joints: " << system.bonded_joints().list.size()
-      << " (" << n_joint_points << " spring points), DOFs: " << system.n_dofs() << "\n";
+  out << "  blocks: " << model.blocks.size()
+      << ", bonded joints: " << system.bonded_joints().list.size() << " (" << n_joint_points
+      << " spring points), DOFs: " << system.n_dofs() << "\n";
   out << "  total mass: " << format_significant(total_mass, 6) << " kg\n";
   out << "  smallest block: " << model.blocks[small.index].origin << ", area "
       << format_significant(small.area) << " m^2, shortest edge "

@@ -134,7 +134,7 @@ TEST(Integrator, ConstantForceIsExact)
 
 /// Bathe's composite scheme on the oscillator: n pairs of a generalized-alpha and a
 /// three-point backward Euler half step of dt / 2 each, (u, v / omega) at the end. The
-/// generalized-alpha half starts from its own a_n (System::composite_acceleration).
+/// generalized-alpha half starts from its own a_n (StepScheme::composite_acceleration).
 std::pair<double, double> oscillate_bathe(double omega, double dt, int n_steps)
 {
   const Matrix6 mass = Matrix6::Identity();
