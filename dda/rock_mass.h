@@ -316,6 +316,15 @@ struct RockMassTooLarge
   std::size_t joint_set = 0;
   std::string message;
 };
+/// The scene keys a refusal names (spacing and trace_length within joint_sets[joint_set]).
+constexpr std::array<EnumName<RockMassTooLarge::Key>, 4> enum_names(RockMassTooLarge::Key)
+{
+  using Key = RockMassTooLarge::Key;
+  return {{{Key::spacing, "spacing"},
+           {Key::trace_length, "trace_length"},
+           {Key::chord_tolerance, "chord_tolerance"},
+           {Key::joints, "joints"}}};
+}
 /// The refusal of a rock mass beyond `limits`, before it is generated; none if it fits.
 std::optional<RockMassTooLarge> refuse_beyond(const RockMassDescription& description,
                                               std::size_t n_other_blocks,

@@ -117,6 +117,8 @@ RockMassTooLarge shrink_largest_part(const RockMassDescription& d, const Arrange
   }
   else
   {
+    // The crossings (a persistent set's lines are never the largest part here: each line adds
+    // a block, and refuse_blocks refuses 24 kB blocks before their 4.5 kB edges).
     refusal.joint_set = closest_set(d);
     refusal.message =
         "about " + format_number(std::round(a.crossings)) +
@@ -125,6 +127,12 @@ RockMassTooLarge shrink_largest_part(const RockMassDescription& d, const Arrange
         " m (with the other sets' spacings scaled alike)";
   }
   return refusal;
+}
+/// The lines of set s across the region, one per spacing over its extent (at most its width
+/// normal to the set).
+double lines_across(const RockMassDescription& d, const JointSet& s)
+{
+  return extent(d.region) / s.spacing;
 }
 } // namespace
 
@@ -135,8 +143,7 @@ double estimate_block_count(const RockMassDescription& d)
   for (std::size_t i = 0; i < d.joint_sets.size(); ++i)
   {
     const JointSet& a = d.joint_sets[i];
-    // Traces across the region's width normal to the set (at most its extent).
-    blocks += extent(d.region) / a.spacing;
+    blocks += lines_across(d, a);
     for (std::size_t j = i + 1; j < d.joint_sets.size(); ++j)
       blocks += crossings(a, d.joint_sets[j], area);
   }
@@ -162,7 +169,7 @@ ArrangementEstimate estimate_arrangement(const RockMassDescription& d)
   for (std::size_t i = 0; i < d.joint_sets.size(); ++i)
   {
     const JointSet& s = d.joint_sets[i];
-    const double lines = extent(d.region) / s.spacing;
+    const double lines = lines_across(d, s);
     a.traces.push_back(s.persistent() ? lines
                                       : lines + area / (s.spacing * (s.trace_length + s.bridge)));
     for (std::size_t j = i + 1; j < d.joint_sets.size(); ++j)

@@ -22,33 +22,13 @@ bool can_retry_with_smaller_step(StepOutcome outcome)
          outcome == StepOutcome::penetration_too_large;
 }
 
-System::System(const ModelDescription& model_)
-    : model(model_), solver(model_.solver), parallel(model_.solver.threads)
+namespace
 {
-  set_material_constants();
-  const std::vector<std::string> names = make_blocks();
-  const double size = model_size(blocks);
-  bonded.find(model, blocks, names, 1e-9 * size, small_displacement());
-  contact_set.set_up(model, blocks, size, !small_displacement());
-  equations.rhs.setZero(static_cast<Eigen::Index>(n_dofs()));
-  equations.solution.setZero(static_cast<Eigen::Index>(n_dofs()));
-  attach_points();
-  boundary_set.select(model, blocks, bonded.list, 1e-6 * size);
-  apply_in_situ_stress();
-  // The step's matrix structure: joints now, contacts once found.
-  set_matrix_structure({});
-  ledger.initial = energy().stored();
-}
-
-void System::set_material_constants()
+/// The blocks of `model` with their initial velocity and stress, and their names for messages
+/// (`names`). Throws InputError for a model without blocks.
+std::vector<Block> make_blocks(const ModelDescription& model, std::vector<std::string>& names)
 {
-  scheme.set_up(model.time.integrator, model.time.spectral_radius);
-  materials = block_materials(model);
-}
-
-std::vector<std::string> System::make_blocks()
-{
-  std::vector<std::string> names;
+  std::vector<Block> blocks;
   for (std::size_t i = 0; i < model.blocks.size(); ++i)
   {
     const BlockDescription& bd = model.blocks[i];
@@ -60,22 +40,37 @@ std::vector<std::string> System::make_blocks()
   }
   if (blocks.empty())
     throw InputError("the model has no blocks: expected at least one entry in `blocks`");
+  return blocks;
+}
+
+} // namespace
+
+System::System(const ModelDescription& model_)
+    : model(model_), solver(model_.solver), parallel(model_.solver.threads)
+{
+  scheme.set_up(model.time.integrator, model.time.spectral_radius);
+  materials = block_materials(model);
+  std::vector<std::string> names;
+  blocks = make_blocks(model, names);
   held.assign(blocks.size(), false);
   removed.assign(blocks.size(), false);
-  return names;
-}
-
-void System::attach_points()
-{
+  const double size = model_size(blocks);
+  bonded.find(model, blocks, names, 1e-9 * size, small_displacement());
+  contact_set.set_up(model, blocks, size, !small_displacement());
+  equations.rhs.setZero(static_cast<Eigen::Index>(n_dofs()));
+  equations.solution.setZero(static_cast<Eigen::Index>(n_dofs()));
+  // Point loads, fixed points and monitors onto their blocks, then the element kinds (each
+  // throws InputError for a point or an element the blocks cannot carry).
   point_set.attach(model, *this);
   element_kinds = make_element_kinds(model, *this);
-}
-
-void System::apply_in_situ_stress()
-{
+  boundary_set.select(model, blocks, bonded.list, 1e-6 * size);
+  // The joints' preloads and the static supports of the viscous boundaries' edges from the
+  // in-situ stress.
   bonded.apply_in_situ_stress(model.in_situ_stress);
-  // Static supports of the viscous boundaries' edges, preloaded with the in-situ traction.
   boundary_set.set_up_supports(model, blocks, point_set.default_stiffness, small_displacement());
+  // The step's matrix structure: joints now, contacts once found.
+  set_matrix_structure({});
+  ledger.initial = energy().stored();
 }
 
 MaterialPoint System::attach(const Point& p, const std::string& what) const

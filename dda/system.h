@@ -219,7 +219,7 @@ public:
   /// the first static step).
   const std::vector<BlockBalance>& block_balances() const { return balances; }
   /// rho A0 [kg] of block i.
-  double mass_of(std::size_t i) const { return block_mass(blocks[i]); }
+  double mass_of(std::size_t i) const { return dda::block_mass(model, blocks[i]); }
 
   double time() const { return current_time; }
   std::size_t n_steps() const { return timings.n_steps; }
@@ -249,14 +249,12 @@ public:
   const ModelDescription& get_model() const { return model; }
   const PhaseTimings& get_timings() const { return timings; }
   const StepSolver& get_solver() const { return solver; }
-  const std::vector<BoundaryEdge>& get_boundary_edges() const { return boundary_set.edges; }
+  /// The viscous boundaries' edges and their static supports.
+  const BoundarySet& boundaries() const { return boundary_set; }
   /// Stability of boundary edge k at time step dt.
   BoundaryStability stability_of(std::size_t k, double dt) const;
-  /// Penalty stiffness of fixed points without an explicit one [N/m].
-  double default_fixed_point_stiffness() const { return point_set.default_stiffness; }
-  /// Normal spring [N/m] of each static support of a viscous boundary edge's ends.
-  double support_stiffness() const { return boundary_set.support_normal_stiffness; }
-  std::size_t n_supports() const { return boundary_set.supports.size(); }
+  /// The point loads, fixed points (with their default penalty) and monitors.
+  const PointSet& points() const { return point_set; }
 
   /// Checkpoints (dda/system_checkpoint.cc): stores everything later steps read; `load` into a
   /// System built from the same model restores it, so that it steps on bit for bit as the saved
@@ -275,28 +273,14 @@ private:
   /// save and load: one function for both (Boost.Serialization's `&` stores or restores).
   template <class Archive>
   void transfer_state(Archive& archive);
-  template <class Archive>
-  void transfer_contacts(Archive& archive);
 
-  // Construction, in order.
-  /// The integrator's coefficients, C and C^-1 per material and tan(phi) per joint material.
-  void set_material_constants();
-  /// The blocks of the model with their initial velocity and stress; returns their names for
-  /// messages. Throws InputError for a model without blocks.
-  std::vector<std::string> make_blocks();
-  /// Point loads, fixed points and monitors onto their blocks (attach), then the element kinds
-  /// (make_element_kinds); throws InputError for an element the blocks cannot carry.
-  void attach_points();
+  // Construction and the stages.
   MaterialPoint attach(const Point& p, const std::string& what) const override;
-  /// Joint preloads and the supports of viscous boundaries from the in-situ stress.
-  void apply_in_situ_stress();
   /// Zero velocity and acceleration of every block (static stages, start of a dynamic one).
   void set_at_rest();
   /// Static stages: each block's balance from the step's right-hand side (after the contact
   /// and tie terms), into `balances`; the status's largest ratio over the blocks not held.
   void measure_balance(StepStatus& status);
-  /// The penalty springs of held and removed blocks on the matrix's diagonal.
-  void add_hold_terms();
   /// Phase 4: solves with the contacts in their trial states until no state changes.
   /// `new_matrix`: the matrix was assembled for this step (else base_matrix holds it).
   StepStatus solve_with_open_close(const StepLabel& when, bool new_matrix);
@@ -372,14 +356,8 @@ private:
   /// Adds the step's work of loads and gravity, boundaries and moving supports [J] (before the
   /// material points move).
   void add_work_of_step(double dt, const Eigen::VectorXd& d);
-  /// Material points (loads, fixed points, monitors, ties, boundaries, supports, joint ends)
-  /// move with their blocks by T d, T of the configuration the step was linearised about.
-  void move_material_points(const Eigen::VectorXd& d);
   /// Each block's velocity, acceleration and force at the step's end, then geometry and stress.
   void advance_block_states(double dt, const Eigen::VectorXd& d);
-  double stored_spring_energy() const;
-  /// rho A0: the mass stays that of t = 0 while the block's area changes with its strain.
-  double block_mass(const Block& b) const { return dda::block_mass(model, b); }
   /// What the boundaries read of a step from t0 to t1 [s].
   BoundarySet::StepInput boundary_input(double t0, double t1) const
   {

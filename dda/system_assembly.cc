@@ -60,13 +60,6 @@ void System::add_block_terms(double dt, bool with_matrix)
   }
 }
 
-void System::add_hold_terms()
-{
-  for (std::size_t i = 0; i < blocks.size(); ++i)
-    if (is_held(i))
-      equations.matrix.diagonal(i).diagonal() *= 1.0 + 1e8;
-}
-
 double System::block_density(const Block& b) const
 {
   const double density = model.materials[b.material].density;
@@ -78,7 +71,7 @@ double System::block_density(const Block& b) const
 BoundaryStability System::stability_of(std::size_t k, double dt) const
 {
   const BoundaryEdge& e = boundary_set.edges[k];
-  return boundary_stability(model.boundaries[e.boundary].type, e, block_mass(blocks[e.block]), dt);
+  return boundary_stability(model.boundaries[e.boundary].type, e, mass_of(e.block), dt);
 }
 
 const PolygonMoments& System::linearisation_moments(const Block& b) const

@@ -36,7 +36,13 @@ void System::transfer_state(Archive& a)
                     [&a](Support& s) { transfer_all(a, s.point, s.stiffness, s.load, s.anchor); });
   transfer_all(a, boundary_set.support_normal_stiffness, tie_set.points, tie_set.origins,
                tie_set.matrices);
-  transfer_contacts(a);
+  transfer_all(a, contact_set.accepted, contact_set.trial);
+  transfer_each(a, contact_set.frames,
+                [&a](ContactFrame& f)
+                { transfer_all(a, f.t_vertex, f.t_edge, f.normal, f.tangent); });
+  transfer_all(a, contact_set.geometry_epoch, contact_set.detected.epoch,
+               contact_set.detected.contacts, contact_set.detected.predecessors);
+  transfer_all(a, contact_set.next_id, contact_set.raised_penalties);
   transfer_all(a, contact_set.reversal_tolerance, contact_set.enabled, mode, held, removed,
                balances, scheme.motion_starts);
   transfer_each(a, scheme.friction_jumps,
@@ -61,18 +67,6 @@ void System::transfer_state(Archive& a)
   // The joints' sorted lists are rebuilt at the next detection.
   bonded.lists.revision = std::numeric_limits<std::uint64_t>::max();
   contact_set.forget_joint_lists();
-}
-
-template <class Archive>
-void System::transfer_contacts(Archive& a)
-{
-  transfer_all(a, contact_set.accepted, contact_set.trial);
-  transfer_each(a, contact_set.frames,
-                [&a](ContactFrame& f)
-                { transfer_all(a, f.t_vertex, f.t_edge, f.normal, f.tangent); });
-  transfer_all(a, contact_set.geometry_epoch, contact_set.detected.epoch,
-               contact_set.detected.contacts, contact_set.detected.predecessors);
-  transfer_all(a, contact_set.next_id, contact_set.raised_penalties);
 }
 
 void System::save(CheckpointOut& archive) const

@@ -6,17 +6,6 @@
 
 namespace ddafem::dda
 {
-double System::stored_spring_energy() const
-{
-  double e = 0.0;
-  bonded.add_energy(model, e);
-  for (const std::unique_ptr<ElementKind>& k : element_kinds)
-    k->add_energy(e);
-  point_set.add_energy(e, current_time);
-  contact_set.add_energy(e);
-  return e;
-}
-
 double System::kinetic_energy(const Block& b) const
 {
   return 0.5 * b.velocity.dot(mass_matrix(linearisation_moments(b), block_density(b)) * b.velocity);
@@ -31,7 +20,14 @@ EnergyBalance System::energy() const
     e.kinetic += kinetic_energy(b);
     e.strain += 0.5 * g.area * b.stress.dot(materials.compliance[b.material] * b.stress);
   }
-  e.spring = stored_spring_energy();
+  // Joints' and elements' springs, fixed points' penalty springs and contacts' springs.
+  double spring = 0.0;
+  bonded.add_energy(model, spring);
+  for (const std::unique_ptr<ElementKind>& k : element_kinds)
+    k->add_energy(spring);
+  point_set.add_energy(spring, current_time);
+  contact_set.add_energy(spring);
+  e.spring = spring;
   ledger.fill(e);
   e.work_of_ties = tie_set.has_body() ? tie_set.body->work_on_blocks() : 0.0;
   e.dissipated = e.initial + e.work_of_loads + e.work_of_supports + e.work_of_boundaries +

@@ -113,7 +113,7 @@ void System::detect_contacts()
   start = Clock::now();
   const ContactSet::BlockPairs& joined = bonded.joined(element_kinds);
   const ContactSet::BlockPairs touching = contact_set.detect(
-      {model, blocks, bonded.list, bonded.revision, mode == StageMode::static_equilibrium}, pairs,
+      {blocks, bonded.list, bonded.revision, mode == StageMode::static_equilibrium}, pairs,
       parallel);
   // The matrix couples joined blocks and blocks in contact (both lists sorted: merged).
   ContactSet::BlockPairs couplings(joined.size() + touching.size());
@@ -136,8 +136,10 @@ bool System::assemble_step(double dt)
   const bool new_matrix = !small_displacement() || elements_change || dt != equations.dt ||
                           scheme.coefficients.mass_factor(dt) != equations.mass_factor;
   assemble(dt, new_matrix);
-  if (new_matrix)
-    add_hold_terms();
+  if (new_matrix) // held and removed blocks: a penalty of 1e8 x their own stiffness
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+      if (is_held(i))
+        equations.matrix.diagonal(i).diagonal() *= 1.0 + 1e8;
   equations.dt = dt;
   equations.mass_factor = scheme.coefficients.mass_factor(dt);
   timings.assemble += seconds_since(start);
@@ -244,7 +246,7 @@ void System::measure_balance(StepStatus& status)
   for (std::size_t i = 0; i < blocks.size(); ++i)
   {
     balances[i].out_of_balance = equations.rhs.segment<2>(6 * i);
-    balances[i].weight = balances[i].load = block_mass(blocks[i]) * model.gravity.norm();
+    balances[i].weight = balances[i].load = mass_of(i) * model.gravity.norm();
   }
   const auto add = [&](std::size_t block, double magnitude) { balances[block].load += magnitude; };
   point_set.add_loads(add, current_time);

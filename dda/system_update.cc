@@ -13,7 +13,14 @@ namespace ddafem::dda
 void System::update_blocks(double dt, const Eigen::VectorXd& d)
 {
   add_work_of_step(dt, d);
-  move_material_points(d);
+  // Material points move with their blocks (T of the configuration the step is linearised
+  // about, i.e. before the update).
+  point_set.move_points(*this, d);
+  tie_set.move_points(*this, d);
+  boundary_set.move_points(*this, d);
+  bonded.move_points(*this, d);
+  for (const std::unique_ptr<ElementKind>& k : element_kinds)
+    k->move_points(*this, d);
   advance_block_states(dt, d);
   bonded.update_forces(model, small_displacement());
   for (const std::unique_ptr<ElementKind>& k : element_kinds)
@@ -29,25 +36,13 @@ void System::add_work_of_step(double dt, const Eigen::VectorXd& d)
   // displacement of the step.
   point_set.add_work(*this, d, t0, t1, ledger);
   for (std::size_t i = 0; i < blocks.size(); ++i)
-    ledger.loads += block_mass(blocks[i]) * model.gravity.dot(d.segment<2>(6 * i));
+    ledger.loads += mass_of(i) * model.gravity.dot(d.segment<2>(6 * i));
 
   // Work of the boundaries: their force in the step's equation, -k T d + f, on T d. The
   // incident wave's input forces (trapezoidal in time) and the supports' constant loads of a
   // dynamic stage count as loads (static stages: the energy restarts with the dynamic stage).
   boundary_set.add_work(boundary_input(t0, t1), d, ledger);
   add_work_of_damping(d);
-}
-
-void System::move_material_points(const Eigen::VectorXd& d)
-{
-  // Material points move with their blocks (T of the configuration the step is linearised
-  // about, i.e. before the update).
-  point_set.move_points(*this, d);
-  tie_set.move_points(*this, d);
-  boundary_set.move_points(*this, d);
-  bonded.move_points(*this, d);
-  for (const std::unique_ptr<ElementKind>& k : element_kinds)
-    k->move_points(*this, d);
 }
 
 void System::advance_block_states(double dt, const Eigen::VectorXd& d)

@@ -14,9 +14,9 @@ std::vector<UnstableBoundary> unstable_boundaries(const System& system, double d
     UnstableBoundary u;
     u.boundary = b;
     u.dt_limit = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < system.get_boundary_edges().size(); ++k)
+    for (std::size_t k = 0; k < system.boundaries().edges.size(); ++k)
     {
-      if (system.get_boundary_edges()[k].boundary != b)
+      if (system.boundaries().edges[k].boundary != b)
         continue;
       const BoundaryStability s = system.stability_of(k, dt);
       u.dt_limit = std::min(u.dt_limit, s.dt_source);

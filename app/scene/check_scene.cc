@@ -28,7 +28,7 @@ namespace
 void describe_boundaries(const dda::System& system, double dt, std::ostream& out)
 {
   const dda::ModelDescription& model = system.get_model();
-  const auto& edges = system.get_boundary_edges();
+  const auto& edges = system.boundaries().edges;
   out << "  boundaries: " << model.boundaries.size() << " (" << edges.size() << " edges)\n";
   for (std::size_t b = 0; b < model.boundaries.size(); ++b)
   {
@@ -75,9 +75,10 @@ void describe_boundaries(const dda::System& system, double dt, std::ostream& out
     if (mine.size() > shown)
       out << "      ... and " << mine.size() - shown << " more edge(s)\n";
   }
-  if (system.n_supports() > 0)
-    out << "  static supports: " << system.n_supports() << " edge ends held by springs of "
-        << format_significant(system.support_stiffness())
+  if (system.boundaries().supports.size() > 0)
+    out << "  static supports: " << system.boundaries().supports.size()
+        << " edge ends held by springs of "
+        << format_significant(system.boundaries().support_normal_stiffness)
         << " N/m in static stages, their forces kept as edge loads in dynamic ones\n";
 }
 
@@ -123,8 +124,7 @@ void describe_stepping(const Scene& scene, const dda::System& system, std::ostre
 {
   const dda::ModelDescription& model = scene.model;
   out << "  loads: " << model.point_loads.size() << ", fixed points: " << model.fixed_points.size()
-      << " (default penalty " << format_significant(system.default_fixed_point_stiffness())
-      << " N/m)"
+      << " (default penalty " << format_significant(system.points().default_stiffness) << " N/m)"
       << ", monitors: " << model.monitors.size() << "\n";
   for (const std::unique_ptr<ElementOutputs>& o : make_element_outputs())
     o->describe(system, out);

@@ -145,18 +145,15 @@ RockMassReport read_rock_mass(const MapReader& r, const SceneNames& names,
     d.slivers.min_area = r.number("min_block_area");
 
   if (const auto refusal = dda::refuse_beyond(d, model.blocks.size(), r.ctx().limits))
-    switch (refusal->key)
-    {
-    case dda::RockMassTooLarge::Key::spacing:
-    case dda::RockMassTooLarge::Key::trace_length:
-      throw r.section_list("joint_sets")[refusal->joint_set].error(
-          refusal->key == dda::RockMassTooLarge::Key::spacing ? "spacing" : "trace_length",
-          refusal->message);
-    case dda::RockMassTooLarge::Key::chord_tolerance:
-      throw r.error("chord_tolerance", refusal->message);
-    case dda::RockMassTooLarge::Key::joints:
-      throw r.ctx().locator.error(r.yaml(), r.key_path(), "", refusal->message);
-    }
+  {
+    using Key = dda::RockMassTooLarge::Key;
+    const char* key = name_of(refusal->key);
+    if (refusal->key == Key::spacing || refusal->key == Key::trace_length)
+      throw r.section_list("joint_sets")[refusal->joint_set].error(key, refusal->message);
+    if (refusal->key == Key::chord_tolerance)
+      throw r.error(key, refusal->message);
+    throw r.ctx().locator.error(r.yaml(), r.key_path(), "", refusal->message);
+  }
   dda::RockMassResult result;
   try
   {

@@ -247,25 +247,16 @@ std::string near_field_refusal(const dda::RockMassDescription& d,
                                const dda::RockMassTooLarge& refusal)
 {
   using Key = dda::RockMassTooLarge::Key;
-  const std::string set = "tunnel.joint_sets[" + std::to_string(refusal.joint_set) + "].";
-  std::string key;
-  switch (refusal.key)
+  const std::string name = name_of(refusal.key);
+  std::string key = "tunnel." + name;
+  if (refusal.key == Key::spacing || refusal.key == Key::trace_length)
   {
-  case Key::spacing:
-    key = set + "spacing = " + format_significant(d.joint_sets[refusal.joint_set].spacing) + " m";
-    break;
-  case Key::trace_length:
-    key = set +
-          "trace_length = " + format_significant(d.joint_sets[refusal.joint_set].trace_length) +
-          " m";
-    break;
-  case Key::chord_tolerance:
-    key = "tunnel.chord_tolerance = " + format_significant(d.chord_tolerance) + " m";
-    break;
-  case Key::joints:
-    key = "tunnel.joints";
-    break;
+    const dda::JointSet& set = d.joint_sets[refusal.joint_set];
+    key = "tunnel.joint_sets[" + std::to_string(refusal.joint_set) + "]." + name + " = " +
+          format_significant(refusal.key == Key::spacing ? set.spacing : set.trace_length) + " m";
   }
+  else if (refusal.key == Key::chord_tolerance)
+    key += " = " + format_significant(d.chord_tolerance) + " m";
   return key + ", in the near field: " + refusal.message;
 }
 

@@ -250,7 +250,7 @@ void ContactSet::add_pair_contacts(const DetectionInput& in, std::size_t a, std:
     c.kind = f.kind;
     c.ratio = f.ratio;
     c.gap = f.distance;
-    c.joint_material = joint_material_at_edge(in.model, c.edge_block, c.edge, c.vertex_block);
+    c.joint_material = joint_material_at_edge(*model, c.edge_block, c.edge, c.vertex_block);
     c.length =
         carried_length(blocks[c.vertex_block].vertices, c.vertex,
                        block_features[c.edge_block].edges[c.edge], distances.sin_angle_tolerance);

@@ -242,8 +242,9 @@ void ContactSet::add_loads(const std::function<void(std::size_t, double)>& add) 
   for (const Contact& c : trial)
     if (c.forces.state != ContactState::open)
     {
-      add(c.vertex_block, std::hypot(c.forces.normal_force, c.forces.shear_force));
-      add(c.edge_block, std::hypot(c.forces.normal_force, c.forces.shear_force));
+      const double magnitude = std::hypot(c.forces.normal_force, c.forces.shear_force);
+      add(c.vertex_block, magnitude);
+      add(c.edge_block, magnitude);
     }
 }
 

@@ -64,7 +64,6 @@ struct ContactSet
   /// What the narrow phase reads of the System.
   struct DetectionInput
   {
-    const ModelDescription& model;
     const std::vector<Block>& blocks;
     const std::vector<Joint>& joints;   ///< the intact bonded joints
     std::uint64_t joint_revision = 0;   ///< counts the changes of `joints`

@@ -66,7 +66,7 @@ TEST(BoltSystem, StaticStageHangsTheBlockOnItsBolt)
   EXPECT_NEAR(sag / (weight / stiffness), 1.0, 1e-3);
   // The springs' energy: the bolt's N^2 / (2 k) = 33.8 J and the fixed points', which carry W
   // and the fixed block's own weight 4 W, translating together: (5 W)^2 / (2 x 3 K) = 0.028 J.
-  const double fixed = 3.0 * s.default_fixed_point_stiffness();
+  const double fixed = 3.0 * s.points().default_stiffness;
   const double expected =
       weight * weight / (2.0 * stiffness) + 25.0 * weight * weight / (2.0 * fixed);
   EXPECT_NEAR(s.energy().spring / expected, 1.0, 2e-5);

@@ -78,7 +78,7 @@ StaticThenDynamic run_box(bool in_situ, std::size_t n_dynamic)
 {
   const ModelDescription m = box(in_situ);
   System s(m);
-  EXPECT_EQ(s.n_supports(), 2u * 16u); // 16 outer edges, two ends each
+  EXPECT_EQ(s.boundaries().supports.size(), 2u * 16u); // 16 outer edges, two ends each
   StaticThenDynamic r;
   s.begin_stage(StageMode::static_equilibrium);
   for (std::size_t k = 0; k < 5000; ++k)
