@@ -330,18 +330,22 @@ std::string ids_where(const MemberOutcome& m, bool KeyblockOutcome::*verdict)
   return "[" + scene_reading::join(ids, ", ") + "]";
 }
 
-/// The progress line of a member that ended.
+/// The progress line of a member that ended, written by one call: under mpirun every rank
+/// writes to the same unbuffered stderr, and a line written piece by piece interleaves with
+/// another rank's.
 void log_member(const EnsembleOptions& o, const MemberOutcome& m, std::size_t n_done,
                 std::ostream& log)
 {
   if (o.quiet)
     return;
-  log << "ensemble: " << member_directory(o, m.index).filename().string() << ": "
-      << (m.status.empty() ? "no summary (exit code " + std::to_string(m.exit_code) + ")"
-                           : m.status)
-      << ", fell " << ids_where(m, &KeyblockOutcome::fell) << ", loosened "
-      << ids_where(m, &KeyblockOutcome::loosened) << ", " << format_significant(m.wall_s, 3)
-      << " s; " << n_done << " of " << o.members << " done" << std::endl;
+  std::ostringstream line;
+  line << "ensemble: " << member_directory(o, m.index).filename().string() << ": "
+       << (m.status.empty() ? "no summary (exit code " + std::to_string(m.exit_code) + ")"
+                            : m.status)
+       << ", fell " << ids_where(m, &KeyblockOutcome::fell) << ", loosened "
+       << ids_where(m, &KeyblockOutcome::loosened) << ", " << format_significant(m.wall_s, 3)
+       << " s; " << n_done << " of " << o.members << " done\n";
+  log << line.str() << std::flush;
 }
 
 /// Writes ensemble.json and ensemble.md.

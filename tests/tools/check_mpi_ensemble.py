@@ -30,7 +30,9 @@ def main():
         shutil.rmtree(out[way], ignore_errors=True)
         r = subprocess.run(command, capture_output=True, text=True)
         assert r.returncode == 0, (way, r.returncode, r.stderr)
-        assert r.stderr.count("ensemble: member_") == 3, (way, r.stderr)
+        # One whole progress line per member: the ranks' lines must not interleave.
+        lines = [line for line in r.stderr.splitlines() if line.startswith("ensemble: member_")]
+        assert len(lines) == 3 and all(line.endswith(" done") for line in lines), (way, r.stderr)
     assert not [f for f in os.listdir(out["mpi"]) if f.startswith("rank_")], os.listdir(out["mpi"])
     reports = {way: json.load(open(os.path.join(d, "ensemble.json"))) for way, d in out.items()}
     assert reports["mpi"]["n_counted"] == 3, reports["mpi"]
