@@ -110,7 +110,7 @@ FarFieldTies::FarFieldTies(dda::System& system, fem::PointSpringField& far_field
     throw InputError("interface: normal_stiffness = " + format_number(d.normal_stiffness) +
                      ", expected > 0 [N/m]");
 
-  const std::vector<dda::Block>& blocks = system.get_blocks();
+  const std::vector<dda::Block>& blocks = system.blocks().list;
   const double tol = d.tolerance > 0.0 ? d.tolerance : 1e-6 * extent_of(blocks);
   linear = std::isinf(d.cohesion) && std::isinf(d.tensile_strength);
   std::vector<fem::PointSpring> springs;

@@ -32,7 +32,7 @@ std::optional<InterfaceImpedance> interface_impedance(const dda::ModelDescriptio
   double sum = 0.0, weight = 0.0;
   for (const auto& [block, length] : tied_length)
   {
-    const dda::Block& b = system.get_blocks()[block];
+    const dda::Block& b = system.blocks().list[block];
     sum += length * dda::jointed_block_modulus(m.materials[b.material].youngs_modulus, p,
                                                b.moments.area, length);
     weight += length;

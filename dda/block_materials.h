@@ -1,6 +1,7 @@
 // Constants of the blocks' materials that the step uses, computed once from the model.
 #pragma once
 
+#include "dda/block.h"
 #include "dda/model_description.h"
 #include "dda/submatrices.h"
 
@@ -33,6 +34,12 @@ inline BlockMaterials block_materials(const ModelDescription& model)
   for (const JointMaterial& jm : model.joint_materials)
     out.damped = out.damped || jm.damping.active();
   return out;
+}
+
+/// rho A0 [kg]: the mass stays that of t = 0 while the block's area changes with its strain.
+inline double block_mass(const ModelDescription& model, const Block& b)
+{
+  return model.materials[b.material].density * b.initial_moments.area;
 }
 
 } // namespace ddafem::dda

@@ -4,6 +4,7 @@
 #include "dda/checkpoint_types.h"
 #include "dda/linear_solver.h"
 #include "dda/model_description.h"
+#include "dda/step_equations.h"
 
 #include <algorithm>
 #include <cmath>
@@ -137,7 +138,7 @@ void Bolts::add_couplings(std::vector<std::pair<std::size_t, std::size_t>>& pair
                        std::max(b.head.block, b.anchor.block));
 }
 
-void Bolts::assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const
+void Bolts::assemble(const ElementHost& host, StepEquations& step, bool with_matrix) const
 {
   // e = unit(x_anchor - x_head) (dda/bolt.h).
   for (const Bolt& b : bolts)
@@ -155,7 +156,7 @@ void Bolts::assemble(const ElementHost& host, StepSystem& step, bool with_matrix
     step.matrix.diagonal(b.head.block).noalias() += th.transpose() * kee * th;
     step.matrix.diagonal(b.anchor.block).noalias() += ta.transpose() * kee * ta;
     // The coupling block (i, j), i < j: row i's end against column j's.
-    const std::size_t coupling = host.coupling_of(b.head.block, b.anchor.block);
+    const std::size_t coupling = step.coupling_of(b.head.block, b.anchor.block);
     if (b.head.block < b.anchor.block)
       step.matrix.upper(coupling).noalias() -= th.transpose() * kee * ta;
     else
@@ -176,7 +177,7 @@ void Bolts::move_points(const ElementHost& host, const Eigen::VectorXd& d)
 {
   for (Bolt& b : bolts)
     for (MaterialPoint* p : {&b.head, &b.anchor})
-      p->position += host.point_displacement(*p, d.segment<6>(6 * p->block));
+      host.move_with_block(*p, d);
 }
 
 void Bolts::update(const ElementHost& /*host*/, double t)

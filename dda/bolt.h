@@ -121,7 +121,7 @@ public:
   bool changes_stiffness() const override { return !bolts.empty(); }
   /// The force N at the step start, +N e on the head's block and -N e on the anchor's, and
   /// k e e^T on the relative displacement T_anchor d_anchor - T_head d_head while elastic.
-  void assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const override;
+  void assemble(const ElementHost& host, StepEquations& step, bool with_matrix) const override;
   void add_loads(const std::function<void(std::size_t, double)>& add) const override;
   void move_points(const ElementHost& host, const Eigen::VectorXd& d) override;
   /// Each bolt's state and record from its moved ends (evaluate_bolt, record_bolt).

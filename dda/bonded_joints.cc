@@ -4,6 +4,7 @@
 #include "common/input_error.h"
 #include "dda/contact/contact_law.h"
 #include "dda/linear_solver.h"
+#include "dda/step_equations.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,17 +62,18 @@ BondedJoints::joined(const std::vector<std::unique_ptr<ElementKind>>& kinds)
   return lists.joined;
 }
 
-void BondedJoints::find_couplings(const ElementHost& host, bool structure_changed)
+void BondedJoints::find_couplings(const StepEquations& equations, bool structure_changed)
 {
   if (!structure_changed && couplings_revision == revision)
     return; // the joints' couplings are where they were
   for (Joint& j : list)
-    j.coupling = host.coupling_of(j.block_a, j.block_b);
+    j.coupling = equations.coupling_of(j.block_a, j.block_b);
   couplings_revision = revision;
 }
 
 void BondedJoints::assemble(const ElementHost& host, const ModelDescription& model,
-                            const StepDashpots& dashpots, StepSystem& step, bool with_matrix) const
+                            const StepDashpots& dashpots, StepEquations& step,
+                            bool with_matrix) const
 {
   for (const Joint& j : list)
   {
@@ -136,8 +138,7 @@ void BondedJoints::add_work_of_damping(const ElementHost& host, const ModelDescr
 
 void BondedJoints::move_points(const ElementHost& host, const Eigen::VectorXd& d)
 {
-  const auto move = [&](MaterialPoint& p)
-  { p.position += host.point_displacement(p, d.segment<6>(6 * p.block)); };
+  const auto move = [&](MaterialPoint& p) { host.move_with_block(p, d); };
   for (Joint& j : list)
     for (JointPoint& p : j.points)
     {

@@ -42,13 +42,13 @@ struct BondedJoints
   /// between two blocks (lower first), sorted: the matrix couples them. Rebuilt once per
   /// revision.
   const BlockPairs& joined(const std::vector<std::unique_ptr<ElementKind>>& kinds);
-  /// Each joint's coupling block in the step's matrix (host.coupling_of), looked up again when
-  /// the matrix structure changed or the joints did.
-  void find_couplings(const ElementHost& host, bool structure_changed);
+  /// Each joint's coupling block in the step's matrix (StepEquations::coupling_of), looked up again
+  /// when the matrix structure changed or the joints did.
+  void find_couplings(const StepEquations& equations, bool structure_changed);
   /// Springs K_s on the gap g + T_b d_b - T_a d_a (g = x_b - x_a) with the preloads; with a
   /// dashpot (dda/damping.h) (1 + c_v beta) K_s and beta K_s on the velocity offsets.
   void assemble(const ElementHost& host, const ModelDescription& model,
-                const StepDashpots& dashpots, StepSystem& step, bool with_matrix) const;
+                const StepDashpots& dashpots, StepEquations& step, bool with_matrix) const;
   /// The dashpots' work -C v . du over the step [J] (`mean`: each block's mean velocity), added
   /// to `work`.
   void add_work_of_damping(const ElementHost& host, const ModelDescription& model,

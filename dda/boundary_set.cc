@@ -1,7 +1,9 @@
 #include "dda/boundary_set.h"
 
 #include "common/input_error.h"
+#include "dda/block_materials.h"
 #include "dda/linear_solver.h"
+#include "dda/step_equations.h"
 
 #include <map>
 #include <string>
@@ -16,11 +18,6 @@ Vector2 boundary_normal(const BoundaryEdge& e, const std::vector<Block>& blocks,
   const std::vector<Point>& v = small_displacement ? b.initial_vertices : b.vertices;
   const Vector2 t = (v[(e.edge + 1) % v.size()] - v[e.edge]).normalized();
   return Vector2(t.y(), -t.x());
-}
-
-double block_mass(const ModelDescription& model, const Block& b)
-{
-  return model.materials[b.material].density * b.initial_moments.area;
 }
 
 void BoundarySet::select(const ModelDescription& model, const std::vector<Block>& blocks,
@@ -96,7 +93,7 @@ Vector2 BoundarySet::input_force(const StepInput& in, const BoundaryEdge& e, dou
 
 void BoundarySet::assemble(const StepInput& in, const IntegratorCoefficients& integration,
                            double dt, const std::function<KinematicState(std::size_t)>& start,
-                           StepSystem& step, bool with_matrix)
+                           StepEquations& step, bool with_matrix)
 {
   for (std::size_t k = 0; k < edges.size(); ++k)
   {
@@ -144,8 +141,7 @@ void BoundarySet::add_work(const StepInput& in, const Eigen::VectorXd& d,
 
 void BoundarySet::move_points(const ElementHost& host, const Eigen::VectorXd& d)
 {
-  const auto move = [&](MaterialPoint& p)
-  { p.position += host.point_displacement(p, d.segment<6>(6 * p.block)); };
+  const auto move = [&](MaterialPoint& p) { host.move_with_block(p, d); };
   for (BoundaryEdge& e : edges)
     move(e.midpoint);
   for (Support& s : supports)

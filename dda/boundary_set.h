@@ -42,9 +42,6 @@ struct Support
 Vector2 boundary_normal(const BoundaryEdge& e, const std::vector<Block>& blocks,
                         bool small_displacement);
 
-/// rho A0 [kg]: the mass stays that of t = 0 while the block's area changes with its strain.
-double block_mass(const ModelDescription& model, const Block& b);
-
 struct BoundarySet
 {
   /// What the boundaries read of the model and the step.
@@ -75,7 +72,7 @@ struct BoundarySet
   /// `integration`'s beta and gamma) with their input force at t1, and the supports (springs in
   /// static stages, constant loads in dynamic ones); keeps each edge's step for add_work.
   void assemble(const StepInput& in, const IntegratorCoefficients& integration, double dt,
-                const std::function<KinematicState(std::size_t)>& start, StepSystem& step,
+                const std::function<KinematicState(std::size_t)>& start, StepEquations& step,
                 bool with_matrix);
   /// The step's work with the blocks' unknowns d [J]: the boundaries' -k T d + f on T d into
   /// ledger.boundaries; in dynamic stages the input forces (trapezoidal in time) and the

@@ -35,13 +35,30 @@ struct RockDamping
   double ratio_at(double f) const { return active() ? ratio * f / frequency : 0.0; }
 };
 
-/// The dashpots' share of the step being tried (System::prepare_dashpots): Newmark's end velocity
+class BlockSet;
+struct StepScheme;
+struct ModelDescription;
+
+/// The dashpots' share of the step being tried (dda/step_dashpots.cc): Newmark's end velocity
 /// of each block is v1 = velocity_factor d + offsets[i] (common/newmark.h).
 struct StepDashpots
 {
   double velocity_factor = 0.0; ///< gamma / (beta dt) [1/s]; 0: no dashpot acts in this step
   std::vector<Vector6> offsets; ///< per block [m/s, rad/s, 1/s]
   std::vector<Vector6> start;   ///< per block: the velocity at the step's start (for the work)
+
+  /// The share of a step of dt [s]: none unless `active` (a dynamic stage of a model with
+  /// damping); else Newmark's velocity factor and each block's offset from the start state the
+  /// scheme's updates take (Bathe's second half: the equivalent start of backward_euler_start).
+  void prepare(const BlockSet& blocks, const StepScheme& scheme, double dt, bool active);
+  /// Each block's mean velocity over the step of unknowns d (6 per block) [m/s, rad/s, 1/s],
+  /// the start's and the end's (exact for the trapezoidal rule); empty when no dashpot acts.
+  std::vector<Vector6> mean_velocities(const Eigen::VectorXd& d) const;
+  /// Adds the work [J] of the blocks' own dashpots, -beta K_e on the mean velocities `mean`,
+  /// on the step's d to `work` (negative: absorbed).
+  void add_work_of_blocks(const BlockSet& blocks, const ModelDescription& model,
+                          const std::vector<Vector6>& mean, const Eigen::VectorXd& d,
+                          double& work) const;
 };
 
 /// A material's stiffness-proportional factor beta [s] in this step: 0 when no dashpot acts.

@@ -21,8 +21,8 @@ double block_speed(const Block& block)
 SettleDetector::SettleDetector(const System& system, const SettleCriterion& criterion_,
                                std::vector<Vector2> reference_)
     : criterion(criterion_), reference(std::move(reference_)),
-      quiet(system.get_blocks().size(), 0.0), has_fallen(system.get_blocks().size(), false),
-      tied(system.get_blocks().size(), false)
+      quiet(system.blocks().list.size(), 0.0), has_fallen(system.blocks().list.size(), false),
+      tied(system.blocks().list.size(), false)
 {
   for (const MaterialPoint& p : system.ties().points)
     tied[p.block] = true;
@@ -34,7 +34,7 @@ SettleDetector::SettleDetector(const System& system, const SettleCriterion& crit
 
 bool SettleDetector::observe(const System& system, double dt)
 {
-  const std::vector<Block>& blocks = system.get_blocks();
+  const std::vector<Block>& blocks = system.blocks().list;
   bool settled = true;
   moving_speed = 0.0;
   for (std::size_t i = 0; i < blocks.size(); ++i)
@@ -75,11 +75,11 @@ std::vector<std::size_t> SettleDetector::fallen() const
 std::vector<std::size_t> SettleDetector::out_of_place(const System& system) const
 {
   std::vector<std::size_t> ids;
-  const std::vector<Block>& blocks = system.get_blocks();
+  const std::vector<Block>& blocks = system.blocks().list;
   for (std::size_t i = 0; i < blocks.size(); ++i)
   {
     const Vector2 moved = blocks[i].displacement() - reference[i];
-    if (!has_fallen[i] || system.is_removed(i) || moved.squaredNorm() == 0.0)
+    if (!has_fallen[i] || system.blocks().is_removed(i) || moved.squaredNorm() == 0.0)
       continue;
     // Along the direction it moved (a separating axis): the nearest of its vertices now has
     // passed the farthest of where they were (at t = 0, shifted by the reference displacement).

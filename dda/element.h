@@ -19,8 +19,8 @@
 
 namespace ddafem::dda
 {
-class BlockSparseMatrix;
 struct ModelDescription;
+struct StepEquations;
 
 /// What an element kind sees of the blocks (the System): where a point lies and how a material
 /// point moves with its block in the configuration the step is linearised about.
@@ -34,21 +34,16 @@ public:
   virtual Matrix26 point_matrix(const MaterialPoint& p) const = 0;
   /// point_matrix(p) d [m] for the block's unknowns d (the same bits, without forming T).
   virtual Vector2 point_displacement(const MaterialPoint& p, const Vector6& d) const = 0;
-  /// Index of the step matrix's coupling block of blocks i != j (coupled by add_couplings).
-  virtual std::size_t coupling_of(std::size_t i, std::size_t j) const = 0;
   /// Whether the step is linearised about the initial configuration (small displacement).
   virtual bool small_displacement() const = 0;
+  /// Moves a material point with its block by the accepted step's unknowns d (6 per block).
+  void move_with_block(MaterialPoint& p, const Eigen::VectorXd& d) const
+  {
+    p.position += point_displacement(p, d.segment<6>(6 * p.block));
+  }
 
 protected:
   ~ElementHost() = default;
-};
-
-/// The step's linear system (K + c M) d = f: the 6x6 blocks of the matrix and the right-hand
-/// side [N, N m], 6 unknowns per block (u_x, u_y, r0, eps_x, eps_y, gamma_xy).
-struct StepSystem
-{
-  BlockSparseMatrix& matrix;
-  Eigen::VectorXd& rhs;
 };
 
 /// One kind of element on the blocks. The System calls each hook over its kinds in the order of
@@ -66,7 +61,7 @@ public:
   virtual bool changes_stiffness() const = 0;
   /// Adds its forces at the step's start to the right-hand side and, `with_matrix`, its
   /// stiffness to the matrix.
-  virtual void assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const = 0;
+  virtual void assemble(const ElementHost& host, StepEquations& step, bool with_matrix) const = 0;
   /// Static stages' balance: calls add(block, |force| [N]) for each force it puts on a block.
   virtual void add_loads(const std::function<void(std::size_t, double)>& add) const = 0;
   /// Its material points move with their blocks by the accepted step's unknowns d (6 per block).

@@ -6,6 +6,7 @@
 #include "dda/geometry.h"
 #include "dda/linear_solver.h"
 #include "dda/model_description.h"
+#include "dda/step_equations.h"
 #include "dda/system_helpers.h"
 
 #include <algorithm>
@@ -298,7 +299,7 @@ void GroutedBolts::add_couplings(std::vector<std::pair<std::size_t, std::size_t>
                          std::max(c.on_a.block, c.on_b.block));
 }
 
-void GroutedBolts::assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const
+void GroutedBolts::assemble(const ElementHost& host, StepEquations& step, bool with_matrix) const
 {
   for (const GroutedBolt& b : grouted_bolts)
   {
@@ -319,7 +320,7 @@ void GroutedBolts::assemble(const ElementHost& host, StepSystem& step, bool with
       const Eigen::Matrix2d k =
           (f.axial_elastic ? b.law.axial_stiffness : 0.0) * (e * e.transpose()) +
           (f.shear_elastic ? b.law.shear_stiffness : 0.0) * (t * t.transpose());
-      add_pair_spring(step.matrix, step.rhs, host.coupling_of(c.on_a.block, c.on_b.block),
+      add_pair_spring(step.matrix, step.rhs, step.coupling_of(c.on_a.block, c.on_b.block),
                       c.on_a.block, ta, c.on_b.block, tb, k, force);
     }
   }
@@ -337,8 +338,7 @@ void GroutedBolts::add_loads(const std::function<void(std::size_t, double)>& add
 
 void GroutedBolts::move_points(const ElementHost& host, const Eigen::VectorXd& d)
 {
-  const auto move = [&](MaterialPoint& p)
-  { p.position += host.point_displacement(p, d.segment<6>(6 * p.block)); };
+  const auto move = [&](MaterialPoint& p) { host.move_with_block(p, d); };
   for (GroutedBolt& b : grouted_bolts)
   {
     move(b.head);

@@ -170,7 +170,7 @@ public:
   bool changes_stiffness() const override { return !grouted_bolts.empty(); }
   /// Force F = N e + S t on the head side's block a, -F on the anchor side's b; while a part is
   /// elastic its stiffness on the relative displacement T_b d_b - T_a d_a.
-  void assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const override;
+  void assemble(const ElementHost& host, StepEquations& step, bool with_matrix) const override;
   void add_loads(const std::function<void(std::size_t, double)>& add) const override;
   void move_points(const ElementHost& host, const Eigen::VectorXd& d) override;
   /// Each crossing's state and record (evaluate_crossing, record_crossing).

@@ -3,6 +3,7 @@
 #include "dda/checkpoint_types.h"
 #include "dda/linear_solver.h"
 #include "dda/model_description.h"
+#include "dda/step_equations.h"
 
 #include <algorithm>
 #include <cmath>
@@ -280,7 +281,7 @@ void Linings::add_couplings(std::vector<std::pair<std::size_t, std::size_t>>& pa
         pairs.emplace_back(std::minmax(l.nodes[e.a].point.block, l.nodes[e.b].point.block));
 }
 
-void Linings::assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const
+void Linings::assemble(const ElementHost& host, StepEquations& step, bool with_matrix) const
 {
   for (const Lining& l : linings)
   {
@@ -307,7 +308,7 @@ void Linings::assemble(const ElementHost& host, StepSystem& step, bool with_matr
       step.matrix.diagonal(ba).noalias() += ga.transpose() * k.topLeftCorner<3, 3>() * ga;
       step.matrix.diagonal(bb).noalias() += gb.transpose() * k.bottomRightCorner<3, 3>() * gb;
       // The coupling block (i, j), i < j: row i's node against column j's.
-      const std::size_t coupling = host.coupling_of(ba, bb);
+      const std::size_t coupling = step.coupling_of(ba, bb);
       if (ba < bb)
         step.matrix.upper(coupling).noalias() += ga.transpose() * k.topRightCorner<3, 3>() * gb;
       else
@@ -332,7 +333,7 @@ void Linings::move_points(const ElementHost& host, const Eigen::VectorXd& d)
   for (Lining& l : linings)
     for (LiningNode& n : l.nodes)
     {
-      n.point.position += host.point_displacement(n.point, d.segment<6>(6 * n.point.block));
+      host.move_with_block(n.point, d);
       n.rotation += d[static_cast<Eigen::Index>(6 * n.point.block + 2)];
     }
 }

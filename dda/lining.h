@@ -214,7 +214,7 @@ public:
   /// Each intact element between two blocks: its forces at the step start on its nodes' blocks
   /// and G^T K G with G = [T; r0] of each node (the frame's linear stiffness in the chord's
   /// current direction; small displacement: the installed one).
-  void assemble(const ElementHost& host, StepSystem& step, bool with_matrix) const override;
+  void assemble(const ElementHost& host, StepEquations& step, bool with_matrix) const override;
   void add_loads(const std::function<void(std::size_t, double)>& add) const override;
   /// A node moves and turns with its block (r0).
   void move_points(const ElementHost& host, const Eigen::VectorXd& d) override;

@@ -1,6 +1,7 @@
 #include "dda/point_set.h"
 
 #include "dda/linear_solver.h"
+#include "dda/step_equations.h"
 
 #include <algorithm>
 #include <cmath>
@@ -41,7 +42,7 @@ void PointSet::attach(const ModelDescription& model, const ElementHost& host)
   }
 }
 
-void PointSet::assemble(const ElementHost& host, StepSystem& step, double t1,
+void PointSet::assemble(const ElementHost& host, StepEquations& step, double t1,
                         bool with_matrix) const
 {
   for (const AttachedLoad& l : loads)
@@ -77,8 +78,7 @@ void PointSet::add_work(const ElementHost& host, const Eigen::VectorXd& d, doubl
 
 void PointSet::move_points(const ElementHost& host, const Eigen::VectorXd& d)
 {
-  const auto move = [&](MaterialPoint& p)
-  { p.position += host.point_displacement(p, d.segment<6>(6 * p.block)); };
+  const auto move = [&](MaterialPoint& p) { host.move_with_block(p, d); };
   for (AttachedLoad& l : loads)
     move(l.point);
   for (AttachedFixedPoint& f : fixed_points)

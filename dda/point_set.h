@@ -44,7 +44,7 @@ struct PointSet
   void attach(const ModelDescription& model, const ElementHost& host);
   /// Loads at the step's end time t1 [s] on the right-hand side; fixed points' springs
   /// k |x + T d - X(t1)|^2 / 2 (their stiffness into the matrix if `with_matrix`).
-  void assemble(const ElementHost& host, StepSystem& step, double t1, bool with_matrix) const;
+  void assemble(const ElementHost& host, StepEquations& step, double t1, bool with_matrix) const;
   /// The step's work from t0 to t1 [s] with the blocks' unknowns d [J]: the loads' (trapezoidal
   /// in time) into ledger.loads, the moving fixed points' -k (x - X)_mid . dX into
   /// ledger.supports; before the points move.

@@ -15,12 +15,12 @@ void System::restart_at_friction_jumps(const std::vector<std::size_t>& turning)
 {
   const auto add = [this](std::size_t i, const Vector6& jump)
   {
-    Block& b = blocks[i];
+    Block& b = block_set.list[i];
     std::vector<StepScheme::StateBeforeJump>& before = scheme.friction_jumps;
     if (std::none_of(before.begin(), before.end(),
                      [i](const StepScheme::StateBeforeJump& s) { return s.block == i; }))
       before.push_back({i, b.acceleration, b.force});
-    const Matrix6 m = mass_matrix(linearisation_moments(b), block_density(b));
+    const Matrix6 m = mass_matrix(block_set.linearisation_moments(b), block_set.density(b));
     // The Newmark schemes and Bathe's first half restart the translation only: the jump's
     // moment would set off the block's stiff rocking on its contacts (whose normal forces take
     // that moment up at once in the rigid limit), which they damp little or not at all

@@ -5,9 +5,9 @@
 namespace ddafem::dda
 {
 ReleaseDetector::ReleaseDetector(const System& system, ReleaseCriterion criterion_)
-    : criterion(criterion_), watches(system.get_blocks().size())
+    : criterion(criterion_), watches(system.blocks().list.size())
 {
-  for (const Block& b : system.get_blocks())
+  for (const Block& b : system.blocks().list)
     last_centroids.push_back(b.moments.centroid);
 }
 
@@ -17,12 +17,12 @@ std::vector<std::size_t> ReleaseDetector::observe(const System& system)
   const std::vector<BlockBalance>& balances = system.block_balances();
   for (std::size_t i = 0; i < watches.size(); ++i)
   {
-    const Point centroid = system.get_blocks()[i].moments.centroid;
+    const Point centroid = system.blocks().list[i].moments.centroid;
     const Vector2 step = centroid - last_centroids[i];
     last_centroids[i] = centroid;
     Watch& w = watches[i];
     const double force = balances[i].out_of_balance.norm();
-    if (system.is_held(i) || balances[i].ratio() < criterion.min_ratio)
+    if (system.blocks().is_held(i) || balances[i].ratio() < criterion.min_ratio)
     {
       w = {};
       continue;
@@ -65,8 +65,8 @@ std::size_t StaticStageRun::release_blocks()
   const std::vector<std::size_t> released = detector.observe(system);
   for (const std::size_t i : released)
   {
-    result.released.push_back({i, result.n_steps, system.mass_of(i),
-                               system.get_blocks()[i].moments.centroid,
+    result.released.push_back({i, result.n_steps, system.blocks().mass_of(i),
+                               system.blocks().list[i].moments.centroid,
                                system.block_balances()[i].ratio()});
     if (stage.release == ReleaseAction::remove)
       system.remove_block(i);

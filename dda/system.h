@@ -7,7 +7,7 @@
 #include "common/checkpoint_fwd.h"
 #include "common/parallel.h"
 #include "dda/block.h"
-#include "dda/block_materials.h"
+#include "dda/block_set.h"
 #include "dda/bonded_joints.h"
 #include "dda/boundary_set.h"
 #include "dda/contact/contact.h"
@@ -161,7 +161,7 @@ struct MonitorSample
 /// (beta, gamma) = (1/2, 1) for DDA's scheme or (1/4, 1/2) for the trapezoidal rule).
 /// With GeometryMode::updated (Shi) every step is linearised about the current vertices, moments
 /// and material points; with small_displacement about the initial ones.
-class System final : private ElementHost
+class System final
 {
 public:
   /// Builds blocks, finds joints, attaches loads, fixed points and monitors to their blocks.
@@ -213,18 +213,12 @@ public:
   /// bonded joints removed and no contacts with it, so that it puts no force on the others.
   /// A moving block is stopped: its kinetic energy leaves the model (EnergyBalance::removed).
   void remove_block(std::size_t i);
-  bool is_held(std::size_t i) const { return held[i] || removed[i]; }
-  bool is_removed(std::size_t i) const { return removed[i]; }
   /// Static stages: every block's balance at the start of the last accepted step (empty before
   /// the first static step).
   const std::vector<BlockBalance>& block_balances() const { return balances; }
-  /// rho A0 [kg] of block i.
-  double mass_of(std::size_t i) const { return dda::block_mass(model, blocks[i]); }
 
   double time() const { return current_time; }
   std::size_t n_steps() const { return timings.n_steps; }
-  std::size_t n_dofs() const { return 6 * blocks.size(); }
-  const std::vector<Block>& get_blocks() const { return blocks; }
   /// The intact bonded joints (broken ones are gone: their blocks meet through contacts).
   const BondedJoints& bonded_joints() const { return bonded; }
   /// The element kinds (dda/element.h), in the order the step takes them.
@@ -247,12 +241,12 @@ public:
   /// limit).
   const ContactSet& contacts() const { return contact_set; }
   const ModelDescription& get_model() const { return model; }
+  /// The blocks (their geometry, state, mass; which are held or removed).
+  const BlockSet& blocks() const { return block_set; }
   const PhaseTimings& get_timings() const { return timings; }
   const StepSolver& get_solver() const { return solver; }
   /// The viscous boundaries' edges and their static supports.
   const BoundarySet& boundaries() const { return boundary_set; }
-  /// Stability of boundary edge k at time step dt.
-  BoundaryStability stability_of(std::size_t k, double dt) const;
   /// The point loads, fixed points (with their default penalty) and monitors.
   const PointSet& points() const { return point_set; }
 
@@ -263,9 +257,6 @@ public:
   void save(CheckpointOut& archive) const;
   void load(CheckpointIn& archive);
 
-  std::vector<BlockSnapshot> snapshot() const;
-  /// The contacts of the last accepted step and the end springs of the intact bonded joints.
-  std::vector<ContactSnapshot> contact_snapshot() const;
   MonitorSample sample_monitor(std::size_t monitor) const;
   EnergyBalance energy() const;
 
@@ -274,21 +265,14 @@ private:
   template <class Archive>
   void transfer_state(Archive& archive);
 
-  // Construction and the stages.
-  MaterialPoint attach(const Point& p, const std::string& what) const override;
-  /// Zero velocity and acceleration of every block (static stages, start of a dynamic one).
-  void set_at_rest();
+  // The step's phases and their parts (system_step.cc, system_assembly.cc,
+  // system_open_close.cc, system_update.cc, slip_reversals.cc).
   /// Static stages: each block's balance from the step's right-hand side (after the contact
   /// and tie terms), into `balances`; the status's largest ratio over the blocks not held.
   void measure_balance(StepStatus& status);
   /// Phase 4: solves with the contacts in their trial states until no state changes.
   /// `new_matrix`: the matrix was assembled for this step (else base_matrix holds it).
   StepStatus solve_with_open_close(const StepLabel& when, bool new_matrix);
-  /// The rock's dashpots (dda/system_damping.cc): the step's share of them (none in static
-  /// stages), and the work of all of them on the step's d (the contacts' from the ContactSet).
-  void prepare_dashpots(double dt);
-  void add_work_of_damping(const Eigen::VectorXd& d);
-  double largest_vertex_displacement(const Eigen::VectorXd& d) const;
   /// Friction that turns around in a step jumps by Delta S = S_end - S_start [N] along the
   /// contact's tangent. Generalized-alpha's (1 - alpha_f) r_{n+1} + alpha_f r_n would apply the
   /// jump only in part and leave the velocity alpha_f dt Delta r / m behind for as long as the
@@ -304,12 +288,6 @@ private:
   void restart_at_friction_jumps(const std::vector<std::size_t>& turning);
   /// One attempt at a step (advance() without undoing an earlier attempt's friction jumps).
   StepStatus attempt_step(double dt, StepPart part);
-  /// Block i's state the step's Newmark updates start from: its own, or in a composite pair's
-  /// second half the equivalent start of backward_euler_start.
-  KinematicState step_start(std::size_t i, double dt) const
-  {
-    return scheme.start(blocks[i], i, dt);
-  }
   /// Phases 1 and 2 of a step: the contact set's candidates among the blocks not removed, its
   /// narrow phase, the matrix structure (joined blocks and blocks in contact), the contacts'
   /// frames, and the trial contacts matched to the accepted ones to keep id, state and forces;
@@ -320,33 +298,12 @@ private:
   bool assemble_step(double dt);
   /// Phase 4: the solution, with the open-close iteration if there are contacts or ties.
   StepStatus solve_step(const StepLabel& when, bool new_matrix);
-  /// Step control on the solution: sets the status's largest vertex displacement and
-  /// penetration, and its outcome if one exceeds its limit (g2 w0; max_penetration, after
-  /// raising the penalties of the contacts too deep).
-  void check_motion_limits(StepStatus& status, const StepLabel& when);
   /// Phase 5: the tied body, blocks and contacts take the solution; time advances. The tied
   /// body's StepResult (when not taken, nothing else is updated).
   StepResult accept_step(double dt);
-  /// A boundary beyond its stability limit feeds energy into the model: the status's outcome
-  /// is energy_growth when the stored energy exceeds ten times all the energy ever put in.
-  void check_energy_growth(StepStatus& status);
-  /// Whether slip reversals are localised in this stage (a reversal tolerance, dynamic).
-  bool localising_slip_reversals() const
-  {
-    return contact_set.reversal_tolerance > 0.0 && mode == StageMode::dynamic;
-  }
+  /// The step's matrix couples the block pairs `couplings` (sorted) and those of the tied
+  /// body's blocks; the bonded joints' coupling blocks are looked up again if it changed.
   void set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings);
-  std::size_t coupling_of(std::size_t i, std::size_t j) const override;
-  bool small_displacement() const override
-  {
-    return model.geometry == GeometryMode::small_displacement;
-  }
-  /// Moments of the configuration the step is linearised about (current or initial).
-  const PolygonMoments& linearisation_moments(const Block& b) const;
-  /// T at a material point, in the configuration the step is linearised about.
-  Matrix26 point_matrix(const MaterialPoint& p) const override;
-  /// point_matrix(p) d [m] without forming T (displacement_at: the same bits).
-  Vector2 point_displacement(const MaterialPoint& p, const Vector6& d) const override;
   /// The step's right-hand side, and its matrix if `with_matrix`.
   void assemble(double dt, bool with_matrix);
   /// Each block's inertia c M and elasticity; its inertia force, stress and gravity [N, N m].
@@ -356,23 +313,11 @@ private:
   /// Adds the step's work of loads and gravity, boundaries and moving supports [J] (before the
   /// material points move).
   void add_work_of_step(double dt, const Eigen::VectorXd& d);
-  /// Each block's velocity, acceleration and force at the step's end, then geometry and stress.
-  void advance_block_states(double dt, const Eigen::VectorXd& d);
-  /// What the boundaries read of a step from t0 to t1 [s].
-  BoundarySet::StepInput boundary_input(double t0, double t1) const
-  {
-    return {model, blocks, *this, mode == StageMode::static_equilibrium, t0, t1};
-  }
-  /// v^T M v / 2 of a block [J], with the mass matrix of its linearisation moments.
-  double kinetic_energy(const Block& b) const;
-  /// Density of the block in the configuration the step is linearised about [kg/m^3]: the
-  /// material's, times initial over current area (mass conservation), so that M = rho
-  /// integral of T^T T dA keeps the translational mass rho A0.
-  double block_density(const Block& b) const;
 
   ModelDescription model;
-  BlockMaterials materials;
-  std::vector<Block> blocks;
+  /// The blocks, their materials, which are held or removed; what the element kinds see of
+  /// them (ElementHost).
+  BlockSet block_set;
   BondedJoints bonded; ///< the intact bonded joints
   PointSet point_set;  ///< point loads, fixed points and monitors
   /// The element kinds (make_element_kinds), in the order the step takes them.
@@ -382,8 +327,6 @@ private:
   TieSet tie_set;               ///< ties to a tied body (the far field)
   ContactSet contact_set;       ///< accepted and trial contacts, and their persistence
   StageMode mode = StageMode::dynamic;
-  std::vector<bool> held;             ///< per block: held until the next begin_stage
-  std::vector<bool> removed;          ///< per block: inert for the rest of the run
   std::vector<BlockBalance> balances; ///< of the last accepted static step
   StepScheme scheme;                  ///< the integrator's form of the step being tried
 
@@ -398,5 +341,10 @@ private:
   StepDashpots dashpots;
   PhaseTimings timings;
 };
+
+/// Stability of boundary edge k of `system` at time step dt [s].
+BoundaryStability stability_of(const System& system, std::size_t k, double dt);
+/// The contacts of `system`'s last accepted step and the end springs of its intact bonded joints.
+std::vector<ContactSnapshot> contact_snapshot(const System& system);
 
 } // namespace ddafem::dda

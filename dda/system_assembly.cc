@@ -15,16 +15,17 @@ void System::assemble(double dt, bool with_matrix)
   equations.rhs.setZero();
   // Loads and supports are evaluated at the step's end (the clock stands still in a static stage).
   const double t1 = mode == StageMode::static_equilibrium ? current_time : current_time + dt;
-  prepare_dashpots(dt);
+  dashpots.prepare(block_set, scheme, dt, block_set.materials.damped && mode == StageMode::dynamic);
   add_block_terms(dt, with_matrix);
-  StepSystem step{equations.matrix, equations.rhs};
-  point_set.assemble(*this, step, t1, with_matrix);
+  point_set.assemble(block_set, equations, t1, with_matrix);
   boundary_set.assemble(
-      boundary_input(current_time, t1), scheme.coefficients, dt,
-      [&](std::size_t i) { return step_start(i, dt); }, step, with_matrix);
-  bonded.assemble(*this, model, dashpots, step, with_matrix);
+      {model, block_set.list, block_set, mode == StageMode::static_equilibrium, current_time, t1},
+      scheme.coefficients, dt,
+      [&](std::size_t i) { return scheme.start(block_set.list[i], i, dt); }, equations,
+      with_matrix);
+  bonded.assemble(block_set, model, dashpots, equations, with_matrix);
   for (const std::unique_ptr<ElementKind>& k : element_kinds)
-    k->assemble(*this, step, with_matrix);
+    k->assemble(block_set, equations, with_matrix);
 }
 
 void System::add_block_terms(double dt, bool with_matrix)
@@ -32,19 +33,19 @@ void System::add_block_terms(double dt, bool with_matrix)
   // Blocks: inertia c M and elasticity; the inertia force of the block's past (v0, a0, r0), the
   // accumulated stress and gravity on the right-hand side.
   const double mass_factor = scheme.coefficients.mass_factor(dt);
-  equations.masses.resize(blocks.size());
-  for (std::size_t i = 0; i < blocks.size(); ++i)
+  equations.masses.resize(block_set.list.size());
+  for (std::size_t i = 0; i < block_set.list.size(); ++i)
   {
-    const Block& b = blocks[i];
-    const PolygonMoments& g = linearisation_moments(b);
-    const double density = block_density(b);
+    const Block& b = block_set.list[i];
+    const PolygonMoments& g = block_set.linearisation_moments(b);
+    const double density = block_set.density(b);
     const Matrix6& m = equations.masses[i] = mass_matrix(g, density);
     // The dashpot beta K_e on the strain rates (dda/damping.h).
     const double beta = dashpot_factor(dashpots, model.materials[b.material].damping);
     auto f = equations.rhs.segment<6>(6 * i);
     if (with_matrix || beta > 0.0)
     {
-      const Matrix6 k = elastic_stiffness(g.area, materials.elasticity[b.material]);
+      const Matrix6 k = elastic_stiffness(g.area, block_set.materials.elasticity[b.material]);
       if (with_matrix)
       {
         equations.matrix.diagonal(i).noalias() += mass_factor * m;
@@ -55,42 +56,16 @@ void System::add_block_terms(double dt, bool with_matrix)
       if (beta > 0.0)
         f -= beta * (k * dashpots.offsets[i]);
     }
-    f += inertia_force(scheme.coefficients, m, step_start(i, dt), dt);
+    f += inertia_force(scheme.coefficients, m, scheme.start(block_set.list[i], i, dt), dt);
     f += stress_force(g.area, b.stress) + body_force(g.area, density, model.gravity);
   }
 }
 
-double System::block_density(const Block& b) const
+BoundaryStability stability_of(const System& system, std::size_t k, double dt)
 {
-  const double density = model.materials[b.material].density;
-  if (small_displacement())
-    return density; // the linearisation area is the initial one
-  return density * (b.initial_moments.area / b.moments.area);
-}
-
-BoundaryStability System::stability_of(std::size_t k, double dt) const
-{
-  const BoundaryEdge& e = boundary_set.edges[k];
-  return boundary_stability(model.boundaries[e.boundary].type, e, mass_of(e.block), dt);
-}
-
-const PolygonMoments& System::linearisation_moments(const Block& b) const
-{
-  return small_displacement() ? b.initial_moments : b.moments;
-}
-
-Matrix26 System::point_matrix(const MaterialPoint& p) const
-{
-  const Block& b = blocks[p.block];
-  return small_displacement() ? displacement_matrix(b.initial_centroid, p.initial)
-                              : displacement_matrix(b.moments.centroid, p.position);
-}
-
-Vector2 System::point_displacement(const MaterialPoint& p, const Vector6& d) const
-{
-  const Block& b = blocks[p.block];
-  return small_displacement() ? displacement_at(b.initial_centroid, p.initial, d)
-                              : displacement_at(b.moments.centroid, p.position, d);
+  const BoundaryEdge& e = system.boundaries().edges[k];
+  return boundary_stability(system.get_model().boundaries[e.boundary].type, e,
+                            system.blocks().mass_of(e.block), dt);
 }
 
 void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t>> couplings)
@@ -110,13 +85,9 @@ void System::set_matrix_structure(std::vector<std::pair<std::size_t, std::size_t
     couplings = std::move(merged);
   }
   couplings.erase(std::unique(couplings.begin(), couplings.end()), couplings.end());
-  const bool structure_changed = equations.set_couplings(blocks.size(), std::move(couplings));
-  bonded.find_couplings(*this, structure_changed);
-}
-
-std::size_t System::coupling_of(std::size_t i, std::size_t j) const
-{
-  return equations.coupling_of(i, j);
+  const bool structure_changed =
+      equations.set_couplings(block_set.list.size(), std::move(couplings));
+  bonded.find_couplings(equations, structure_changed);
 }
 
 } // namespace ddafem::dda

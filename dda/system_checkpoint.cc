@@ -15,7 +15,7 @@ template <class Archive>
 void System::transfer_state(Archive& a)
 {
   transfer_marker(a, "dda::System");
-  transfer_in_place(a, blocks, "blocks",
+  transfer_in_place(a, block_set.list, "blocks",
                     [&a](Block& b)
                     {
                       transfer_all(a, b.vertices, b.moments, b.velocity, b.acceleration, b.force);
@@ -43,8 +43,8 @@ void System::transfer_state(Archive& a)
   transfer_all(a, contact_set.geometry_epoch, contact_set.detected.epoch,
                contact_set.detected.contacts, contact_set.detected.predecessors);
   transfer_all(a, contact_set.next_id, contact_set.raised_penalties);
-  transfer_all(a, contact_set.reversal_tolerance, contact_set.enabled, mode, held, removed,
-               balances, scheme.motion_starts);
+  transfer_all(a, contact_set.reversal_tolerance, contact_set.enabled, mode, block_set.held,
+               block_set.removed, balances, scheme.motion_starts);
   transfer_each(a, scheme.friction_jumps,
                 [&a](StepScheme::StateBeforeJump& s)
                 { transfer_all(a, s.block, s.acceleration, s.force); });

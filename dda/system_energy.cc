@@ -6,19 +6,14 @@
 
 namespace ddafem::dda
 {
-double System::kinetic_energy(const Block& b) const
-{
-  return 0.5 * b.velocity.dot(mass_matrix(linearisation_moments(b), block_density(b)) * b.velocity);
-}
-
 EnergyBalance System::energy() const
 {
   EnergyBalance e;
-  for (const Block& b : blocks)
+  for (const Block& b : block_set.list)
   {
-    const PolygonMoments& g = linearisation_moments(b);
-    e.kinetic += kinetic_energy(b);
-    e.strain += 0.5 * g.area * b.stress.dot(materials.compliance[b.material] * b.stress);
+    const PolygonMoments& g = block_set.linearisation_moments(b);
+    e.kinetic += block_set.kinetic_energy(b);
+    e.strain += 0.5 * g.area * b.stress.dot(block_set.materials.compliance[b.material] * b.stress);
   }
   // Joints' and elements' springs, fixed points' penalty springs and contacts' springs.
   double spring = 0.0;
@@ -35,12 +30,14 @@ EnergyBalance System::energy() const
   return e;
 }
 
-std::vector<ContactSnapshot> System::contact_snapshot() const
+std::vector<ContactSnapshot> contact_snapshot(const System& system)
 {
+  const ContactSet& contacts = system.contacts();
+  const BondedJoints& bonded = system.bonded_joints();
   std::vector<ContactSnapshot> out;
-  out.reserve(contact_set.accepted.size() + 2 * bonded.list.size());
-  contact_set.add_snapshots(blocks, out);
-  bonded.add_snapshots(small_displacement(), out);
+  out.reserve(contacts.accepted.size() + 2 * bonded.list.size());
+  contacts.add_snapshots(system.blocks().list, out);
+  bonded.add_snapshots(system.blocks().small_displacement(), out);
   return out;
 }
 } // namespace ddafem::dda

@@ -22,7 +22,6 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
   // A tied body's terms (dense over the tied blocks) change only when its ties change state:
   // the iterations start from the matrix with them, rebuilt only then.
   // (matrix_is_base: matrix and rhs hold base_matrix and base_rhs already, no copy needed.)
-  StepSystem step{equations.matrix, equations.rhs};
   const auto add_ties_to_start = [&](const bool matrix_is_base)
   {
     if (!matrix_is_base)
@@ -31,7 +30,7 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
       equations.rhs = equations.base_rhs;
     }
     const auto start = Clock::now();
-    tie_set.add_terms(step, *this, blocks, parallel);
+    tie_set.add_terms(equations, block_set, block_set.list, parallel);
     timings.tie_terms += seconds_since(start);
     tie_set.matrix = equations.matrix;
     tie_set.rhs = equations.rhs;
@@ -47,13 +46,13 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
     {
       if (iteration > 1)
         add_ties_to_start(false);
-      contact_set.add_terms(step, dashpots);
+      contact_set.add_terms(equations, dashpots);
     }
     else
     {
       equations.rhs = tie_set.has_body() ? tie_set.rhs : equations.base_rhs;
-      contact_set.update_terms(step, tie_set.has_body() ? tie_set.matrix : equations.base_matrix,
-                               dashpots);
+      contact_set.update_terms(
+          equations, tie_set.has_body() ? tie_set.matrix : equations.base_matrix, dashpots);
     }
     status.solve = solver.solve(equations.matrix, equations.rhs, equations.solution,
                                 MatrixChange::unknown, equations.mass_factor);
@@ -66,7 +65,8 @@ StepStatus System::solve_with_open_close(const StepLabel& when, bool new_matrix)
       return status;
     }
     std::size_t n_changes = contact_set.update_trial_states(
-        {equations.solution, dashpots, equations.dt, iteration, localising_slip_reversals()},
+        {equations.solution, dashpots, equations.dt, iteration,
+         contact_set.localises_reversals(mode == StageMode::dynamic)},
         status.n_flips_ignored, parallel);
     const std::size_t ignored_before = status.n_flips_ignored;
     const std::size_t n_tie_changes =

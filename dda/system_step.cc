@@ -12,6 +12,60 @@
 
 namespace ddafem::dda
 {
+namespace
+{
+/// Step control on the solution: sets the status's largest vertex displacement [m] (given) and
+/// penetration, and its outcome if one exceeds its limit (g2 w0; max_penetration, after raising
+/// the penalties of the contacts too deep).
+void check_motion_limits(double max_displacement, ContactSet& contact_set, const StepLabel& when,
+                         StepStatus& status)
+{
+  status.max_displacement = max_displacement;
+  if (status.max_displacement > contact_set.distances.max_step_displacement)
+  {
+    std::ostringstream m;
+    m << "a vertex moves " << status.max_displacement << " m in one step, more than the "
+      << contact_set.distances.max_step_displacement << " m allowed (g2 w0) " << when.text();
+    status.outcome = StepOutcome::displacement_too_large;
+    status.message = m.str();
+    return;
+  }
+  const Contact* deepest = contact_set.deepest(status.max_penetration);
+  if (status.max_penetration > contact_set.distances.max_penetration)
+  {
+    std::ostringstream m;
+    m << "a contact (vertex " << deepest->vertex << " of block " << deepest->vertex_block
+      << " on edge " << deepest->edge << " of block " << deepest->edge_block << ", gap "
+      << deepest->gap << " m at the step's start) penetrates " << status.max_penetration
+      << " m, deeper than the " << contact_set.distances.max_penetration << " m allowed "
+      << when.text() << " (a stiffer joint normal_stiffness or a smaller dt reduces it)";
+    status.penalty_raised = contact_set.raise_penalties();
+    status.outcome = StepOutcome::penetration_too_large;
+    status.message = m.str();
+  }
+}
+
+/// A boundary beyond its stability limit feeds energy into the model: the status's outcome is
+/// energy_growth when the stored energy (of the balance e at time t [s]) exceeds ten times all
+/// the energy ever put in (the ledger's largest input, updated here).
+void check_energy_growth(const EnergyBalance& e, EnergyLedger& ledger, double t, StepStatus& status)
+{
+  ledger.largest_input = std::max(ledger.largest_input, e.work_of_loads + e.work_of_supports);
+  const double reference = e.initial + ledger.largest_input;
+  if (!std::isfinite(e.stored()) || e.stored() > 10.0 * reference)
+  {
+    std::ostringstream m;
+    m << "the stored energy grew to " << e.stored() << " J, more than 10 times the " << reference
+      << " J put into the model, at t = " << format_time(t)
+      << ": a boundary is feeding energy into the model (see `ddafem check` for each "
+         "boundary's time-step limit)";
+    status.outcome = StepOutcome::energy_growth;
+    status.message = m.str();
+  }
+}
+
+} // namespace
+
 std::string StepLabel::text() const
 {
   return "at t = " + format_time(time) + " (dt = " + format_time(dt) + ")";
@@ -19,7 +73,7 @@ std::string StepLabel::text() const
 
 StepStatus System::advance(double dt, const StepPart part)
 {
-  scheme.undo_friction_jumps(blocks); // each attempt starts from the accepted state
+  scheme.undo_friction_jumps(block_set.list); // each attempt starts from the accepted state
   return attempt_step(dt, part);
 }
 
@@ -28,12 +82,15 @@ StepStatus System::attempt_step(double dt, const StepPart part)
   const StepLabel when{current_time, dt};
   ++timings.n_attempts;
   if (mode == StageMode::static_equilibrium)
-    set_at_rest();
+  {
+    block_set.set_at_rest();
+    scheme.motion_starts = true;
+  }
   scheme.choose(dt, part,
                 mode == StageMode::dynamic); // 0. the integrator's form of this part of a step
   // A tied body begins its step (the far field's free response) on another thread while the
   // blocks find their contacts and assemble: the two touch no common data.
-  std::future<StepResult> tied = tie_set.begin_step(dt, *this, timings.tied_body);
+  std::future<StepResult> tied = tie_set.begin_step(dt, block_set, timings.tied_body);
   detect_contacts();                         // 1. candidates, 2. contacts
   const bool new_matrix = assemble_step(dt); // 3. assemble
   if (tie_set.has_body())
@@ -50,14 +107,16 @@ StepStatus System::attempt_step(double dt, const StepPart part)
 
   // Step control: no vertex may move farther than g2 w0, no contact penetrate too deep, no
   // slip reversal leave more than the tolerance.
-  check_motion_limits(status, when);
+  check_motion_limits(block_set.largest_vertex_displacement(equations.solution), contact_set, when,
+                      status);
   if (status.outcome != StepOutcome::success)
     return status;
-  if (localising_slip_reversals())
+  if (contact_set.localises_reversals(mode == StageMode::dynamic))
   {
     const ContactSet::ReversalScan scan = contact_set.scan_reversals(
-        {blocks, dt, scheme.coefficients, scheme.integrator == Integrator::bathe,
-         scheme.start_force_lag(), [&](std::size_t i) { return step_start(i, dt); }});
+        {block_set.list, dt, scheme.coefficients, scheme.integrator == Integrator::bathe,
+         scheme.start_force_lag(),
+         [&](std::size_t i) { return scheme.start(block_set.list[i], i, dt); }});
     if (scan.earliest > 0.0)
     {
       status.reversal_fraction = scan.earliest;
@@ -83,13 +142,13 @@ StepStatus System::attempt_step(double dt, const StepPart part)
   const StepResult accepted = accept_step(dt);
   if (!accepted.taken)
     return {StepOutcome::solver_failure, accepted.why + " " + when.text(), status.solve};
-  const std::string broken = bonded.break_beyond_strength(model, contact_set.tan_friction,
-                                                          small_displacement(), current_time);
+  const std::string broken = bonded.break_beyond_strength(
+      model, contact_set.tan_friction, block_set.small_displacement(), current_time);
   ++contact_set.geometry_epoch;
   if (!broken.empty())
     return {StepOutcome::joint_broken, broken, status.solve};
   if (!boundary_set.edges.empty() && mode == StageMode::dynamic)
-    check_energy_growth(status);
+    check_energy_growth(energy(), ledger, current_time, status);
   return status;
 }
 
@@ -105,21 +164,22 @@ void System::detect_contacts()
     return;
   }
   ContactSet::BlockPairs pairs =
-      contact_set.enabled ? contact_set.candidates(blocks) : ContactSet::BlockPairs{};
+      contact_set.enabled ? contact_set.candidates(block_set.list) : ContactSet::BlockPairs{};
   pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
-                             [&](const auto& p) { return removed[p.first] || removed[p.second]; }),
+                             [&](const auto& p)
+                             { return block_set.removed[p.first] || block_set.removed[p.second]; }),
               pairs.end());
   timings.broad_phase += seconds_since(start);
   start = Clock::now();
   const ContactSet::BlockPairs& joined = bonded.joined(element_kinds);
   const ContactSet::BlockPairs touching = contact_set.detect(
-      {blocks, bonded.list, bonded.revision, mode == StageMode::static_equilibrium}, pairs,
+      {block_set.list, bonded.list, bonded.revision, mode == StageMode::static_equilibrium}, pairs,
       parallel);
   // The matrix couples joined blocks and blocks in contact (both lists sorted: merged).
   ContactSet::BlockPairs couplings(joined.size() + touching.size());
   std::merge(joined.begin(), joined.end(), touching.begin(), touching.end(), couplings.begin());
   set_matrix_structure(std::move(couplings));
-  contact_set.set_frames(blocks, *this, parallel);
+  contact_set.set_frames(block_set.list, equations, parallel);
   contact_set.inherit(parallel);
   timings.narrow_phase += seconds_since(start);
 }
@@ -133,12 +193,13 @@ bool System::assemble_step(double dt)
   const bool elements_change =
       std::any_of(element_kinds.begin(), element_kinds.end(),
                   [](const std::unique_ptr<ElementKind>& k) { return k->changes_stiffness(); });
-  const bool new_matrix = !small_displacement() || elements_change || dt != equations.dt ||
+  const bool new_matrix = !block_set.small_displacement() || elements_change ||
+                          dt != equations.dt ||
                           scheme.coefficients.mass_factor(dt) != equations.mass_factor;
   assemble(dt, new_matrix);
   if (new_matrix) // held and removed blocks: a penalty of 1e8 x their own stiffness
-    for (std::size_t i = 0; i < blocks.size(); ++i)
-      if (is_held(i))
+    for (std::size_t i = 0; i < block_set.list.size(); ++i)
+      if (block_set.is_held(i))
         equations.matrix.diagonal(i).diagonal() *= 1.0 + 1e8;
   equations.dt = dt;
   equations.mass_factor = scheme.coefficients.mass_factor(dt);
@@ -167,33 +228,6 @@ StepStatus System::solve_step(const StepLabel& when, bool new_matrix)
   return status;
 }
 
-void System::check_motion_limits(StepStatus& status, const StepLabel& when)
-{
-  status.max_displacement = largest_vertex_displacement(equations.solution);
-  if (status.max_displacement > contact_set.distances.max_step_displacement)
-  {
-    std::ostringstream m;
-    m << "a vertex moves " << status.max_displacement << " m in one step, more than the "
-      << contact_set.distances.max_step_displacement << " m allowed (g2 w0) " << when.text();
-    status.outcome = StepOutcome::displacement_too_large;
-    status.message = m.str();
-    return;
-  }
-  const Contact* deepest = contact_set.deepest(status.max_penetration);
-  if (status.max_penetration > contact_set.distances.max_penetration)
-  {
-    std::ostringstream m;
-    m << "a contact (vertex " << deepest->vertex << " of block " << deepest->vertex_block
-      << " on edge " << deepest->edge << " of block " << deepest->edge_block << ", gap "
-      << deepest->gap << " m at the step's start) penetrates " << status.max_penetration
-      << " m, deeper than the " << contact_set.distances.max_penetration << " m allowed "
-      << when.text() << " (a stiffer joint normal_stiffness or a smaller dt reduces it)";
-    status.penalty_raised = contact_set.raise_penalties();
-    status.outcome = StepOutcome::penetration_too_large;
-    status.message = m.str();
-  }
-}
-
 StepResult System::accept_step(double dt)
 {
   auto start = Clock::now();
@@ -205,11 +239,14 @@ StepResult System::accept_step(double dt)
       return ended;
   }
   start = Clock::now();
-  scheme.record_half(dt, equations.solution, blocks, mode == StageMode::dynamic);
+  scheme.record_half(dt, equations.solution, block_set.list, mode == StageMode::dynamic);
   update_blocks(dt, equations.solution);
   contact_set.accept(dt);
   if (mode == StageMode::static_equilibrium)
-    set_at_rest();
+  {
+    block_set.set_at_rest();
+    scheme.motion_starts = true;
+  }
   else
   {
     current_time += dt;
@@ -221,32 +258,15 @@ StepResult System::accept_step(double dt)
   return {};
 }
 
-void System::check_energy_growth(StepStatus& status)
-{
-  const EnergyBalance e = energy();
-  ledger.largest_input = std::max(ledger.largest_input, e.work_of_loads + e.work_of_supports);
-  const double reference = e.initial + ledger.largest_input;
-  if (!std::isfinite(e.stored()) || e.stored() > 10.0 * reference)
-  {
-    std::ostringstream m;
-    m << "the stored energy grew to " << e.stored() << " J, more than 10 times the " << reference
-      << " J put into the model, at t = " << format_time(current_time)
-      << ": a boundary is feeding energy into the model (see `ddafem check` for each "
-         "boundary's time-step limit)";
-    status.outcome = StepOutcome::energy_growth;
-    status.message = m.str();
-  }
-}
-
 void System::measure_balance(StepStatus& status)
 {
   // With zero velocity the right-hand side's translational part is the resultant force at the
   // step start; the magnitudes of its terms, from the same step-start state, are the load.
-  balances.assign(blocks.size(), {});
-  for (std::size_t i = 0; i < blocks.size(); ++i)
+  balances.assign(block_set.list.size(), {});
+  for (std::size_t i = 0; i < block_set.list.size(); ++i)
   {
     balances[i].out_of_balance = equations.rhs.segment<2>(6 * i);
-    balances[i].weight = balances[i].load = mass_of(i) * model.gravity.norm();
+    balances[i].weight = balances[i].load = block_set.mass_of(i) * model.gravity.norm();
   }
   const auto add = [&](std::size_t block, double magnitude) { balances[block].load += magnitude; };
   point_set.add_loads(add, current_time);
@@ -256,8 +276,8 @@ void System::measure_balance(StepStatus& status)
   bonded.add_loads(add);
   contact_set.add_loads(add);
   tie_set.add_loads(add);
-  for (std::size_t i = 0; i < blocks.size(); ++i)
-    if (!is_held(i) && balances[i].ratio() > status.unbalanced_force_ratio)
+  for (std::size_t i = 0; i < block_set.list.size(); ++i)
+    if (!block_set.is_held(i) && balances[i].ratio() > status.unbalanced_force_ratio)
     {
       status.unbalanced_force_ratio = balances[i].ratio();
       status.unbalanced_block = i;

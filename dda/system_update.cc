@@ -15,16 +15,16 @@ void System::update_blocks(double dt, const Eigen::VectorXd& d)
   add_work_of_step(dt, d);
   // Material points move with their blocks (T of the configuration the step is linearised
   // about, i.e. before the update).
-  point_set.move_points(*this, d);
-  tie_set.move_points(*this, d);
-  boundary_set.move_points(*this, d);
-  bonded.move_points(*this, d);
+  point_set.move_points(block_set, d);
+  tie_set.move_points(block_set, d);
+  boundary_set.move_points(block_set, d);
+  bonded.move_points(block_set, d);
   for (const std::unique_ptr<ElementKind>& k : element_kinds)
-    k->move_points(*this, d);
-  advance_block_states(dt, d);
-  bonded.update_forces(model, small_displacement());
+    k->move_points(block_set, d);
+  block_set.advance_states(d, dt, equations.masses, scheme, mode == StageMode::dynamic);
+  bonded.update_forces(model, block_set.small_displacement());
   for (const std::unique_ptr<ElementKind>& k : element_kinds)
-    k->update(*this, current_time);
+    k->update(block_set, current_time);
 }
 
 void System::add_work_of_step(double dt, const Eigen::VectorXd& d)
@@ -34,54 +34,22 @@ void System::add_work_of_step(double dt, const Eigen::VectorXd& d)
 
   // Work of the loads (trapezoidal in time) and of moving fixed points, then of gravity, on the
   // displacement of the step.
-  point_set.add_work(*this, d, t0, t1, ledger);
-  for (std::size_t i = 0; i < blocks.size(); ++i)
-    ledger.loads += mass_of(i) * model.gravity.dot(d.segment<2>(6 * i));
+  point_set.add_work(block_set, d, t0, t1, ledger);
+  for (std::size_t i = 0; i < block_set.list.size(); ++i)
+    ledger.loads += block_set.mass_of(i) * model.gravity.dot(d.segment<2>(6 * i));
 
   // Work of the boundaries: their force in the step's equation, -k T d + f, on T d. The
   // incident wave's input forces (trapezoidal in time) and the supports' constant loads of a
   // dynamic stage count as loads (static stages: the energy restarts with the dynamic stage).
-  boundary_set.add_work(boundary_input(t0, t1), d, ledger);
-  add_work_of_damping(d);
-}
-
-void System::advance_block_states(double dt, const Eigen::VectorXd& d)
-{
-  // Velocity, acceleration and force at the step's end (with the mass matrix the step used),
-  // then geometry and stress.
-  for (std::size_t i = 0; i < blocks.size(); ++i)
-  {
-    Block& b = blocks[i];
-    const Vector6 di = d.segment<6>(6 * i);
-    const Matrix6& m = equations.masses[i]; // the attempt's assembly: the same configuration
-    const KinematicState end = advance_state(scheme.coefficients, m, step_start(i, dt), di, dt);
-    b.velocity = end.velocity;
-    b.acceleration = scheme.composite_acceleration(i, m, end, mode == StageMode::dynamic);
-    b.force = end.force;
-    if (removed[i]) // held by a penalty: the little it moves is not motion to carry on
-    {
-      b.velocity.setZero();
-      b.acceleration.setZero();
-      b.force.setZero();
-    }
-    b.apply_increment(di, materials.elasticity[b.material], small_displacement());
-  }
-}
-
-double System::largest_vertex_displacement(const Eigen::VectorXd& d) const
-{
-  // The largest squared length, one square root at the end (sqrt is monotonic: the same value).
-  double largest = 0.0;
-  for (std::size_t i = 0; i < blocks.size(); ++i)
-  {
-    const Block& b = blocks[i];
-    const Vector6 di = d.segment<6>(6 * i);
-    const std::vector<Point>& v = small_displacement() ? b.initial_vertices : b.vertices;
-    const Point& c = small_displacement() ? b.initial_centroid : b.moments.centroid;
-    for (const Point& x : v)
-      largest = std::max(largest, displacement_at(c, x, di).squaredNorm());
-  }
-  return std::sqrt(largest);
+  boundary_set.add_work(
+      {model, block_set.list, block_set, mode == StageMode::static_equilibrium, t0, t1}, d, ledger);
+  // The rock's dashpots' work on the step's d (none when they do not act).
+  const std::vector<Vector6> mean = dashpots.mean_velocities(d);
+  if (mean.empty())
+    return;
+  dashpots.add_work_of_blocks(block_set, model, mean, d, ledger.damping);
+  bonded.add_work_of_damping(block_set, model, dashpots, mean, d, ledger.damping);
+  contact_set.add_work_of_damping(ledger.damping, mean, d, dashpots);
 }
 
 } // namespace ddafem::dda

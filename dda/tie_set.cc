@@ -3,6 +3,7 @@
 #include "common/input_error.h"
 #include "common/stopwatch.h"
 #include "dda/geometry.h"
+#include "dda/step_equations.h"
 
 #include <algorithm>
 #include <sstream>
@@ -75,7 +76,7 @@ std::future<StepResult> TieSet::begin_step(double dt, const ElementHost& host, d
                     });
 }
 
-void TieSet::add_terms(StepSystem& step, const ElementHost& host,
+void TieSet::add_terms(StepEquations& step, const ElementHost& host,
                        const std::vector<Block>& all_blocks, const Parallel& parallel)
 {
   if (!body)
@@ -116,9 +117,9 @@ void TieSet::add_terms(StepSystem& step, const ElementHost& host,
       else if (bb == ra.block)
         step.matrix.diagonal(ra.block) += x + x.transpose();
       else if (ra.block < bb)
-        step.matrix.upper(host.coupling_of(ra.block, bb)) += x;
+        step.matrix.upper(step.coupling_of(ra.block, bb)) += x;
       else
-        step.matrix.upper(host.coupling_of(ra.block, bb)) += x.transpose();
+        step.matrix.upper(step.coupling_of(ra.block, bb)) += x.transpose();
     }
   }
 }
@@ -134,7 +135,7 @@ Eigen::VectorXd TieSet::increments(const Eigen::VectorXd& d) const
 void TieSet::move_points(const ElementHost& host, const Eigen::VectorXd& d)
 {
   for (MaterialPoint& p : points)
-    p.position += host.point_displacement(p, d.segment<6>(6 * p.block));
+    host.move_with_block(p, d);
 }
 
 void TieSet::add_loads(const std::function<void(std::size_t, double)>& add) const

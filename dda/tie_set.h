@@ -40,9 +40,9 @@ struct TieSet
   /// the points' displacements since their origins, on another thread if the body allows it
   /// (deferred otherwise); its time adds to `seconds`. No future without a body.
   std::future<StepResult> begin_step(double dt, const ElementHost& host, double& seconds);
-  /// Adds T^T H T to the matrix and T^T g to the right-hand side (host.coupling_of between
+  /// Adds T^T H T to the matrix and T^T g to the right-hand side (step.coupling_of between
   /// blocks, host.small_displacement for the pair terms' geometry).
-  void add_terms(StepSystem& step, const ElementHost& host, const std::vector<Block>& blocks,
+  void add_terms(StepEquations& step, const ElementHost& host, const std::vector<Block>& blocks,
                  const Parallel& parallel);
   /// The points' displacement increments T d (2m) of the blocks' unknowns d (6 per block).
   Eigen::VectorXd increments(const Eigen::VectorXd& d) const;

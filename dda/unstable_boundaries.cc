@@ -18,7 +18,7 @@ std::vector<UnstableBoundary> unstable_boundaries(const System& system, double d
     {
       if (system.boundaries().edges[k].boundary != b)
         continue;
-      const BoundaryStability s = system.stability_of(k, dt);
+      const BoundaryStability s = stability_of(system, k, dt);
       u.dt_limit = std::min(u.dt_limit, s.dt_source);
       u.x_max = std::max({u.x_max, s.x_n, s.x_t});
       u.n_sources += s.is_source ? 1 : 0;

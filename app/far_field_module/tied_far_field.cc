@@ -248,7 +248,7 @@ std::unique_ptr<TiedFarField> make_tied_far_field(const Scene& scene, dda::Syste
 
 BaseArrival::BaseArrival(const Scene& scene_, const dda::System& system) : scene(scene_)
 {
-  for (const dda::Block& b : system.get_blocks())
+  for (const dda::Block& b : system.blocks().list)
     for (const dda::Point& p : b.initial_vertices)
       base = std::min(base, p.y());
   const auto& sides = scene.far_field->boundaries;

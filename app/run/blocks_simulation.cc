@@ -196,7 +196,7 @@ void BlocksSimulation::begin_dynamic_stage()
   {
     // Falls in settle stages are measured from the first dynamic stage's start.
     fall_reference.emplace();
-    for (const dda::Block& b : system.get_blocks())
+    for (const dda::Block& b : system.blocks().list)
       fall_reference->push_back(b.displacement());
   }
   if (!initial_written)

@@ -183,7 +183,7 @@ void KeyblockRecorder::add_channels(std::vector<HistoryChannel>& channels) const
 
 void KeyblockRecorder::append_row(const dda::System& system, std::vector<double>& row)
 {
-  const std::vector<dda::Block>& blocks = system.get_blocks();
+  const std::vector<dda::Block>& blocks = system.blocks().list;
   if (!referenced)
   {
     // The dynamic stage after a static one is measured from the equilibrium reached.
@@ -276,7 +276,7 @@ void KeyblockRecorder::update_joints(const dda::System& system)
 
 nlohmann::json KeyblockRecorder::fallen_per_opening(const dda::System& system) const
 {
-  const std::vector<dda::Block>& blocks = system.get_blocks();
+  const std::vector<dda::Block>& blocks = system.blocks().list;
   nlohmann::json openings = nlohmann::json::array();
   std::vector<double> area(geometry.openings.size(), 0.0);
   std::vector<double> area_released(geometry.openings.size(), 0.0); // by a static stage [m^2]
@@ -350,7 +350,7 @@ nlohmann::json KeyblockRecorder::keyblock_summary(std::size_t k, const dda::Syst
 {
   const std::size_t id = geometry.blocks[k];
   const Track& t = tracks[k];
-  const Vector2 v = system.get_blocks()[id].velocity.head<2>();
+  const Vector2 v = system.blocks().list[id].velocity.head<2>();
   const double size = geometry.openings[geometry.opening_of[k]].size();
   const dda::FallVerdict verdict = dda::keyblock_fell({t.last, t.last_relative, v, held}, down,
                                                       criterion.fall_fraction * size, gravity);

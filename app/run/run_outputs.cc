@@ -132,8 +132,8 @@ void RunOutputs::write_snapshot()
   const auto name = [](const std::string& path)
   { return std::filesystem::path(path).filename().string(); };
   std::vector<std::string> files = {
-      name(blocks_vtu.write(system.time(), system.snapshot())),
-      name(contacts_vtu.write(system.time(), system.contact_snapshot()))};
+      name(blocks_vtu.write(system.time(), system.blocks().snapshot())),
+      name(contacts_vtu.write(system.time(), dda::contact_snapshot(system)))};
   if (tied)
   {
     const auto far_field_start = Clock::now();

@@ -64,9 +64,9 @@ void add_blocks_summary(nlohmann::json& summary, const dda::System& system,
     summary["solver"]["pcg_iterations"] = solver.n_pcg_iterations();
     summary["solver"]["pcg_fallbacks"] = solver.n_fallbacks();
   }
-  summary["model"] = {{"blocks", system.get_blocks().size()},
+  summary["model"] = {{"blocks", system.blocks().list.size()},
                       {"bonded_joints", system.bonded_joints().list.size()},
-                      {"dofs", system.n_dofs()}};
+                      {"dofs", system.blocks().n_dofs()}};
   const dda::ContactCounts counts = system.contacts().counts();
   const dda::PhaseTimings& t = system.get_timings();
   summary["contacts"] = {

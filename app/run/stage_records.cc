@@ -74,8 +74,8 @@ nlohmann::json dynamic_stage_record(const dda::Stage& stage, const dda::DynamicS
     fallen.push_back(
         {{"block", i},
          {"name", system.get_model().blocks[i].origin},
-         {"mass_kg", system.mass_of(i)},
-         {"opening", opening_of(keyblocks, i, system.get_blocks()[i].moments.centroid)}});
+         {"mass_kg", system.blocks().mass_of(i)},
+         {"opening", opening_of(keyblocks, i, system.blocks().list[i].moments.centroid)}});
   record["settled"] = result.settled;
   record["rest_speed_m_s"] = c.rest_speed;
   record["rest_duration_s"] = c.rest_duration;
@@ -100,7 +100,7 @@ dda::StepStatus static_stage_failure(const dda::Stage& stage, const dda::StaticS
   dda::StepStatus failure;
   if (result.outcome == dda::StaticOutcome::equilibrium)
     return failure;
-  const dda::Block& b = system.get_blocks()[result.block];
+  const dda::Block& b = system.blocks().list[result.block];
   failure.outcome = dda::StepOutcome::not_converged;
   failure.message =
       "static stage '" + stage.name + "' did not reach equilibrium in " +

@@ -38,10 +38,10 @@ void describe_boundaries(const dda::System& system, double dt, std::ostream& out
       if (edges[k].boundary == b)
         mine.push_back(k);
     // Worst (smallest limit) first.
-    std::sort(mine.begin(), mine.end(),
-              [&](std::size_t i, std::size_t j) {
-                return system.stability_of(i, dt).dt_source < system.stability_of(j, dt).dt_source;
-              });
+    std::sort(
+        mine.begin(), mine.end(),
+        [&](std::size_t i, std::size_t j)
+        { return stability_of(system, i, dt).dt_source < stability_of(system, j, dt).dt_source; });
     out << "    " << boundary_name(model, b) << ", " << name_of(bd.impedance) << " impedance, a_n "
         << bd.a_n << ", a_t " << bd.a_t << ", " << mine.size() << " edge(s)"
         << (bd.has_input ? bd.input.type == dda::BoundaryInput::Type::p
@@ -53,7 +53,7 @@ void describe_boundaries(const dda::System& system, double dt, std::ostream& out
     for (std::size_t i = 0; i < shown; ++i)
     {
       const dda::BoundaryEdge& e = edges[mine[i]];
-      const dda::BoundaryStability s = system.stability_of(mine[i], dt);
+      const dda::BoundaryStability s = stability_of(system, mine[i], dt);
       out << "      block " << e.block << " edge " << e.edge << ": l0 "
           << format_significant(e.length) << " m, m " << format_significant(s.mass)
           << " kg; VP/VS textbook " << format_significant(e.textbook.p, 5) << "/"
@@ -96,7 +96,7 @@ void describe_blocks(const Scene& scene, const dda::System& system, std::ostream
   out << "  analysis: plane " << name_of(model.plane_mode) << "\n";
   out << "  blocks: " << model.blocks.size()
       << ", bonded joints: " << system.bonded_joints().list.size() << " (" << n_joint_points
-      << " spring points), DOFs: " << system.n_dofs() << "\n";
+      << " spring points), DOFs: " << system.blocks().n_dofs() << "\n";
   out << "  total mass: " << format_significant(total_mass, 6) << " kg\n";
   out << "  smallest block: " << model.blocks[small.index].origin << ", area "
       << format_significant(small.area) << " m^2, shortest edge "

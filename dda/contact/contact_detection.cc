@@ -3,6 +3,7 @@
 #include "dda/contact/contact_set.h"
 
 #include "dda/contact/broad_phase.h"
+#include "dda/step_equations.h"
 #include "dda/submatrices.h"
 
 #include <algorithm>
@@ -258,7 +259,7 @@ void ContactSet::add_pair_contacts(const DetectionInput& in, std::size_t a, std:
   }
 }
 
-void ContactSet::set_frames(const std::vector<Block>& blocks, const ElementHost& host,
+void ContactSet::set_frames(const std::vector<Block>& blocks, const StepEquations& equations,
                             const Parallel& parallel)
 {
   // Each contact's coupling and frame, in the configuration at the step start.
@@ -270,7 +271,7 @@ void ContactSet::set_frames(const std::vector<Block>& blocks, const ElementHost&
         for (std::size_t k = begin; k < end; ++k)
         {
           Contact& c = detected.contacts[k];
-          c.coupling = host.coupling_of(c.vertex_block, c.edge_block);
+          c.coupling = equations.coupling_of(c.vertex_block, c.edge_block);
           const Block& vb = blocks[c.vertex_block];
           const Block& eb = blocks[c.edge_block];
           const Point& e0 = eb.vertices[c.edge];

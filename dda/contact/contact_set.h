@@ -141,6 +141,8 @@ struct ContactSet
   std::vector<ContactFrame> frames; ///< of `trial` (and detected.contacts)
   TermsIndex terms;                 ///< of the trial contacts in the step's matrix
   double reversal_tolerance = 0.0;  ///< slip error of a reversal that is localised [m]; 0: none
+  /// Whether slip reversals are localised in a stage (a reversal tolerance, `dynamic`).
+  bool localises_reversals(bool dynamic) const { return reversal_tolerance > 0.0 && dynamic; }
   /// Where a bonded joint ties a vertex to the other block: (vertex block, vertex, other block).
   std::vector<std::tuple<std::size_t, std::size_t, std::size_t>> jointed_vertices;
 
@@ -160,20 +162,21 @@ struct ContactSet
   /// the trial contacts). Vertices tied by an intact joint to the other block make none.
   /// Returns the pairs with contacts, sorted (the matrix couples them).
   BlockPairs detect(const DetectionInput& in, const BlockPairs& pairs, const Parallel& parallel);
-  /// Each detected contact's coupling in `host`'s matrix structure (set after `detect`) and its
-  /// frame at the step start.
-  void set_frames(const std::vector<Block>& blocks, const ElementHost& host,
+  /// Each detected contact's coupling in the step's matrix structure (`equations`, set after
+  /// `detect`) and its frame at the step start.
+  void set_frames(const std::vector<Block>& blocks, const StepEquations& equations,
                   const Parallel& parallel);
   /// Contact c's law: its joint material's springs (times its penalty factor), friction,
   /// cohesion and tensile strength over its length (none for a broken bonded joint's).
   ContactLaw law(const Contact& c) const;
   /// Adds every closed trial contact's terms to the matrix and right-hand side (an attempt's
   /// first open-close iteration, or after the tie terms changed).
-  void add_terms(StepSystem& step, const StepDashpots& dashpots);
+  void add_terms(StepEquations& step, const StepDashpots& dashpots);
   /// A later iteration: `step.matrix` holds `start` plus the terms of the states last added; the
   /// blocks of contacts that changed state are summed again from `start`, and the contacts'
   /// forces are added to `step.rhs` (which holds the start's).
-  void update_terms(StepSystem& step, const BlockSparseMatrix& start, const StepDashpots& dashpots);
+  void update_terms(StepEquations& step, const BlockSparseMatrix& start,
+                    const StepDashpots& dashpots);
   /// Sets each trial from the solution; returns the number of state changes that hold the
   /// iteration back (from iteration 3 on, not those of contacts carrying almost nothing,
   /// which are counted in `n_ignored`).

@@ -3,6 +3,7 @@
 // closed, shear while it sticks, on Newmark's end velocity) and forces on the right-hand side.
 #include "dda/contact/contact_set.h"
 
+#include "dda/step_equations.h"
 #include "dda/system_helpers.h"
 
 #include <algorithm>
@@ -43,7 +44,7 @@ void ContactSet::spring(std::size_t k, const StepDashpots& dashpots, Eigen::Matr
   add_dashpot(c, f, dashpots, k2, force_on_vertex);
 }
 
-void ContactSet::add_terms(StepSystem& step, const StepDashpots& dashpots)
+void ContactSet::add_terms(StepEquations& step, const StepDashpots& dashpots)
 {
   terms.states.resize(trial.size());
   terms.indexed = false; // the contacts of a new attempt
@@ -62,7 +63,7 @@ void ContactSet::add_terms(StepSystem& step, const StepDashpots& dashpots)
   }
 }
 
-void ContactSet::update_terms(StepSystem& step, const BlockSparseMatrix& start,
+void ContactSet::update_terms(StepEquations& step, const BlockSparseMatrix& start,
                               const StepDashpots& dashpots)
 {
   // A contact's springs depend on its state alone, its forces also on its friction (which

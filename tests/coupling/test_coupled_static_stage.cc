@@ -130,7 +130,7 @@ Outcome static_then_dynamic(bool in_situ)
   EXPECT_EQ(system.time(), 0.0); // the clock stands still
   r.settlement = (system.sample_monitor(0).displacement - start).norm();
   double scale = 0.0;
-  for (const dda::Block& b : system.get_blocks())
+  for (const dda::Block& b : system.blocks().list)
   {
     const dda::Voigt expected = m.in_situ_stress.at(b.moments.centroid);
     scale = std::max(scale, expected.cwiseAbs().maxCoeff());
@@ -145,7 +145,7 @@ Outcome static_then_dynamic(bool in_situ)
     EXPECT_EQ(status.outcome, dda::StepOutcome::success) << status.message;
     if (status.outcome != dda::StepOutcome::success)
       break;
-    for (const dda::Block& b : system.get_blocks())
+    for (const dda::Block& b : system.blocks().list)
       r.block_velocity = std::max(r.block_velocity, b.velocity.head<2>().norm());
     r.block_displacement =
         std::max(r.block_displacement, system.sample_monitor(0).displacement.norm());

@@ -47,7 +47,7 @@ inline ResumedRun run_whole_and_resumed(const ModelDescription& m, std::size_t s
   Stage stage;
   stage.end_time = 0.06;
   const auto at_rest = [](const System& s)
-  { return std::vector<Vector2>(s.get_blocks().size(), Vector2::Zero()); };
+  { return std::vector<Vector2>(s.blocks().list.size(), Vector2::Zero()); };
   ResumedRun out{std::make_unique<System>(m), std::make_unique<System>(m), 0.0};
   out.whole->begin_stage(StageMode::dynamic);
   run_dynamic_stage(*out.whole, stage, m.time, at_rest(*out.whole));

@@ -43,7 +43,7 @@ ModelDescription hanging_block(double yield_force, double pretension = 0.0)
 
 std::vector<Vector2> no_displacement(const System& s)
 {
-  return std::vector<Vector2>(s.get_blocks().size(), Vector2::Zero());
+  return std::vector<Vector2>(s.blocks().list.size(), Vector2::Zero());
 }
 } // namespace
 

@@ -89,7 +89,7 @@ double penetration_below(const Block& a, double top)
 Vector2 momentum(const System& s)
 {
   Vector2 p = Vector2::Zero();
-  for (const Block& b : s.get_blocks())
+  for (const Block& b : s.blocks().list)
     p +=
         s.get_model().materials[b.material].density * b.initial_moments.area * b.velocity.head<2>();
   return p;
@@ -197,9 +197,9 @@ void expect_pushed_block_slides(Integrator integrator)
   System s(pushed.model);
   settle(s, pushed.model.time);
   run_to(s, pushed.model.time, 0.3);
-  const double v1 = s.get_blocks()[1].velocity.x();
+  const double v1 = s.blocks().list[1].velocity.x();
   run_to(s, pushed.model.time, 0.6);
-  const double v2 = s.get_blocks()[1].velocity.x();
+  const double v2 = s.blocks().list[1].velocity.x();
   const double mass = rho * 1.0;
   const double expected =
       (force - PushedBlock::weight() * std::tan(PushedBlock::phi * M_PI / 180.0)) / mass;
@@ -257,8 +257,8 @@ TEST(Contacts, FreeFallThenImpactWithoutPenetrationOrEnergyGain)
       const double fall = s.sample_monitor(0).displacement.y();
       worst_fall_error = std::max(worst_fall_error, std::abs(fall + 0.5 * g * t * t));
     }
-    const double base_top = s.get_blocks()[0].vertices[2].y();
-    deepest = std::max(deepest, penetration_below(s.get_blocks()[1], base_top));
+    const double base_top = s.blocks().list[0].vertices[2].y();
+    deepest = std::max(deepest, penetration_below(s.blocks().list[1], base_top));
     largest_gain = std::max(largest_gain, energy_gain(s));
   }
   std::cout << "free fall: worst error " << worst_fall_error << " m, deepest penetration "
@@ -319,7 +319,7 @@ TEST(Contacts, TwoBlockCollisionConservesMomentumAndSeparates)
     const StepStatus status = stepper.step(m.time.end_time - s.time());
     ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
     worst_momentum = std::max(worst_momentum, (momentum(s) - p0).norm() / p0.norm());
-    const auto& blocks = s.get_blocks();
+    const auto& blocks = s.blocks().list;
     const double a_right = std::max(blocks[0].vertices[1].x(), blocks[0].vertices[2].x());
     const double b_left = std::min(blocks[1].vertices[0].x(), blocks[1].vertices[3].x());
     deepest = std::max(deepest, a_right - b_left);
@@ -337,7 +337,7 @@ TEST(Contacts, TwoBlockCollisionConservesMomentumAndSeparates)
       after_impact = momentum(s);
     }
   }
-  const auto& blocks = s.get_blocks();
+  const auto& blocks = s.blocks().list;
   const double va = blocks[0].velocity.x(), vb = blocks[1].velocity.x();
   const double restitution = (vb - va) / v;
   const double gap = blocks[1].vertices[0].x() - blocks[0].vertices[1].x();
@@ -565,7 +565,7 @@ History run_wall(std::size_t n_steps, SolverMethod method = SolverMethod::direct
       break;
     h.values.push_back(s.time());
     h.iterations.push_back(status.n_open_close_iterations);
-    for (const Block& b : s.get_blocks())
+    for (const Block& b : s.blocks().list)
     {
       for (const Point& v : b.vertices)
       {
@@ -719,7 +719,7 @@ TEST(Contacts, OverhangingWallCollapsesWithoutStalling)
   EXPECT_GT(s.time(), 0.03);
   EXPECT_LE(n_steps - stepper.n_reversals(), 150u);
   // The right half falls: the top right brick has dropped by about g t^2 / 2.
-  const Block& top_right = s.get_blocks().back();
+  const Block& top_right = s.blocks().list.back();
   EXPECT_LT(top_right.displacement().y(), -0.2 * 0.5 * g * s.time() * s.time());
 }
 

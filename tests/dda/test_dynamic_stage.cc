@@ -64,7 +64,7 @@ ModelDescription slope_and_falling_block()
 
 std::vector<Vector2> no_displacement(const System& s)
 {
-  return std::vector<Vector2>(s.get_blocks().size(), Vector2::Zero());
+  return std::vector<Vector2>(s.blocks().list.size(), Vector2::Zero());
 }
 } // namespace
 
@@ -129,9 +129,9 @@ TEST(DynamicStage, TiedBlocksAreNotJudged)
   EXPECT_EQ(r.failure.outcome, StepOutcome::success) << r.failure.message;
   EXPECT_TRUE(r.settled);
   EXPECT_TRUE(r.moving.empty());
-  EXPECT_GE(s.time(), 0.1 - 1e-9);                // rest_duration
-  EXPECT_LT(s.time(), 0.15);                      // long before the bound
-  EXPECT_GT(block_speed(s.get_blocks()[1]), 0.3); // still sliding: g sin 20 x 0.1 s = 0.34 m/s
+  EXPECT_GE(s.time(), 0.1 - 1e-9);                 // rest_duration
+  EXPECT_LT(s.time(), 0.15);                       // long before the bound
+  EXPECT_GT(block_speed(s.blocks().list[1]), 0.3); // still sliding: g sin 20 x 0.1 s = 0.34 m/s
 }
 
 // A block with nothing below falls; once its centroid is 0.1 m lower it has fallen and is not
@@ -173,8 +173,8 @@ TEST(DynamicStage, FallenBlockIsRemovedOnceOutOfPlace)
   EXPECT_LT(r.removed[0].second, t_out + 2e-3); // the step that takes it there
   const double t_r = r.removed[0].second, mass = 2650.0;
   EXPECT_NEAR(s.energy().removed, 0.5 * mass * g * g * t_r * t_r, 1e-3 * mass * g * width);
-  const Block& b = s.get_blocks()[2];
-  EXPECT_TRUE(s.is_removed(2));
+  const Block& b = s.blocks().list[2];
+  EXPECT_TRUE(s.blocks().is_removed(2));
   EXPECT_EQ(b.velocity.norm(), 0.0);
   EXPECT_NEAR(b.displacement().norm(), 0.5 * g * t_r * t_r, 1e-6);
   EXPECT_NEAR(s.time(), 0.6, 1e-9);
@@ -190,8 +190,8 @@ TEST(DynamicStage, FallenBlockIsKeptWithoutRemoveFallen)
       run_dynamic_stage(s, settle_stage(0.5, 0.6), m.time, no_displacement(s));
   EXPECT_EQ(r.failure.outcome, StepOutcome::success) << r.failure.message;
   EXPECT_TRUE(r.removed.empty());
-  EXPECT_FALSE(s.is_removed(2));
-  EXPECT_NEAR(s.get_blocks()[2].displacement().norm(), 0.5 * g * 0.36, 1e-3);
+  EXPECT_FALSE(s.blocks().is_removed(2));
+  EXPECT_NEAR(s.blocks().list[2].displacement().norm(), 0.5 * g * 0.36, 1e-3);
   EXPECT_EQ(s.energy().removed, 0.0);
 }
 
@@ -254,7 +254,7 @@ namespace
 std::vector<double> final_state(const System& s)
 {
   std::vector<double> x = {s.time(), s.energy().kinetic, s.energy().dissipated};
-  for (const Block& b : s.get_blocks())
+  for (const Block& b : s.blocks().list)
   {
     x.insert(x.end(), b.velocity.data(), b.velocity.data() + 6);
     x.insert(x.end(), b.acceleration.data(), b.acceleration.data() + 6);

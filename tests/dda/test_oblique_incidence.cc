@@ -138,8 +138,8 @@ Recording record(const ModelDescription& m)
     {
       for (std::size_t b = 0; b < width * n_rows; ++b)
       {
-        r.field.velocity.push_back(s.get_blocks()[b].velocity);
-        r.field.stress.push_back(s.get_blocks()[b].stress);
+        r.field.velocity.push_back(s.blocks().list[b].velocity);
+        r.field.stress.push_back(s.blocks().list[b].stress);
       }
       for (const Joint& j : s.bonded_joints().list)
         if (j.block_b < width * n_rows)

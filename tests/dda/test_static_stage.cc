@@ -88,22 +88,22 @@ TEST(StaticStage, BlockOnFrictionlessSlopeIsReleasedAndTheRestConverges)
   // On a frictionless slope the resultant is W sin b and the load W + W cos b.
   const double b = 30.0 * M_PI / 180.0;
   EXPECT_NEAR(r.released[0].ratio, std::sin(b) / (1.0 + std::cos(b)), 0.02);
-  EXPECT_TRUE(s.is_held(2));
-  EXPECT_FALSE(s.is_held(1));
+  EXPECT_TRUE(s.blocks().is_held(2));
+  EXPECT_FALSE(s.blocks().is_held(1));
   EXPECT_LE(s.block_balances()[1].ratio(), 1e-6);
   // Released after about one window: it has barely moved.
   // The first window ends as the contacts take up the slope's normal share of the weight (the
   // resultant drops from W to W sin b); the second one releases it.
   EXPECT_LE(r.released[0].step, 2 * ReleaseCriterion().window);
-  EXPECT_LT(s.get_blocks()[2].displacement().norm(), 1e-3);
+  EXPECT_LT(s.blocks().list[2].displacement().norm(), 1e-3);
 
   // In the dynamic stage it is free again and slides down the slope at g sin b.
   s.begin_stage(StageMode::dynamic);
-  EXPECT_FALSE(s.is_held(2));
-  const double x0 = s.get_blocks()[2].moments.centroid.x();
+  EXPECT_FALSE(s.blocks().is_held(2));
+  const double x0 = s.blocks().list[2].moments.centroid.x();
   for (std::size_t k = 0; k < 100; ++k)
     ASSERT_EQ(s.advance(1e-3, step_parts::of_call(s, k)).outcome, StepOutcome::success);
-  const double slid = s.get_blocks()[2].moments.centroid.x() - x0;
+  const double slid = s.blocks().list[2].moments.centroid.x() - x0;
   EXPECT_NEAR(slid, 0.5 * g * std::sin(b) * 0.1 * 0.1, 0.05 * 0.5 * g * std::sin(b) * 0.01);
 }
 
@@ -117,12 +117,12 @@ TEST(StaticStage, RemovedBlockIsInertForTheRestOfTheRun)
       run_static_stage(s, static_stage(1e-6, ReleaseAction::remove), m.time);
   ASSERT_EQ(r.outcome, StaticOutcome::equilibrium);
   ASSERT_EQ(r.released.size(), 1u);
-  EXPECT_TRUE(s.is_removed(2));
+  EXPECT_TRUE(s.blocks().is_removed(2));
   s.begin_stage(StageMode::dynamic);
-  const Point c = s.get_blocks()[2].moments.centroid;
+  const Point c = s.blocks().list[2].moments.centroid;
   for (std::size_t k = 0; k < 100; ++k)
     ASSERT_EQ(s.advance(1e-3, step_parts::of_call(s, k)).outcome, StepOutcome::success);
-  EXPECT_LT((s.get_blocks()[2].moments.centroid - c).norm(), 1e-9);
+  EXPECT_LT((s.blocks().list[2].moments.centroid - c).norm(), 1e-9);
   for (const Contact& contact : s.contacts().accepted)
     EXPECT_TRUE(contact.vertex_block != 2 && contact.edge_block != 2);
 }
@@ -152,7 +152,7 @@ TEST(StaticStage, StableStackConvergesWithoutReleases)
   std::cout << "stack: " << r.n_steps << " steps, ratio " << r.ratio << "\n";
   ASSERT_EQ(r.outcome, StaticOutcome::equilibrium);
   EXPECT_TRUE(r.released.empty());
-  for (std::size_t i = 0; i < s.get_blocks().size(); ++i)
+  for (std::size_t i = 0; i < s.blocks().list.size(); ++i)
   {
     const BlockBalance& b = s.block_balances()[i];
     EXPECT_LE(b.ratio(), 1e-7) << "block " << i;
@@ -189,7 +189,7 @@ TEST(StaticStage, LightBlockIsJudgedAgainstItsOwnLoad)
   EXPECT_NEAR(heavy.weight / light.weight, 1e6, 1e-3);
   EXPECT_LE(light.out_of_balance.norm(), 1e-5 * light.load);
   // It landed: its weight rests on the base (penalty penetration W / p at most).
-  EXPECT_LT(s.get_blocks()[2].moments.centroid.y(), 0.5 + 1e-9);
+  EXPECT_LT(s.blocks().list[2].moments.centroid.y(), 0.5 + 1e-9);
   EXPECT_GT(light.load, 1.9 * light.weight);
 }
 
@@ -223,9 +223,9 @@ TEST(StaticStage, ACheckpointedStageGoesOnBitForBit)
   ASSERT_EQ(r.released.size(), 1u);
   EXPECT_EQ(r.released[0].step, uninterrupted.released[0].step);
   EXPECT_EQ(r.ratio, uninterrupted.ratio);
-  for (std::size_t i = 0; i < whole.get_blocks().size(); ++i)
+  for (std::size_t i = 0; i < whole.blocks().list.size(); ++i)
   {
-    EXPECT_EQ(resumed.get_blocks()[i].vertices, whole.get_blocks()[i].vertices);
-    EXPECT_EQ(resumed.get_blocks()[i].stress, whole.get_blocks()[i].stress);
+    EXPECT_EQ(resumed.blocks().list[i].vertices, whole.blocks().list[i].vertices);
+    EXPECT_EQ(resumed.blocks().list[i].stress, whole.blocks().list[i].stress);
   }
 }

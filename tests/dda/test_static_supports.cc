@@ -91,7 +91,7 @@ StaticThenDynamic run_box(bool in_situ, std::size_t n_dynamic)
       break;
   }
   double scale = 0.0;
-  for (const Block& b : s.get_blocks())
+  for (const Block& b : s.blocks().list)
   {
     const Voigt expected = m.in_situ_stress.at(b.moments.centroid);
     scale = std::max(scale, expected.cwiseAbs().maxCoeff());
@@ -103,7 +103,7 @@ StaticThenDynamic run_box(bool in_situ, std::size_t n_dynamic)
   {
     const StepStatus status = s.advance(1e-4, step_parts::of_call(s, k));
     EXPECT_EQ(status.outcome, StepOutcome::success) << status.message;
-    for (const Block& b : s.get_blocks())
+    for (const Block& b : s.blocks().list)
       r.max_velocity = std::max(r.max_velocity, b.velocity.head<2>().norm());
     r.max_displacement = std::max(r.max_displacement, s.sample_monitor(0).displacement.norm());
   }

@@ -69,7 +69,7 @@ TEST(System, BondedPairStretchesAsYoungsModulusAndSpringsPredict)
       s.sample_monitor(1).displacement.x() - s.sample_monitor(0).displacement.x();
   const double expected = 2 * force / young + force / (2 * p);
   EXPECT_NEAR(stretch, expected, 1e-4 * expected);
-  for (const Block& b : s.get_blocks())
+  for (const Block& b : s.blocks().list)
   {
     EXPECT_NEAR(b.stress[0], force, 1e-4 * force);
     EXPECT_NEAR(b.stress[1], 0.0, 1e-4 * force);
@@ -98,7 +98,7 @@ TEST(System, BondedJointCarriesShear)
   const double shear = j.points[0].shear_force + j.points[1].shear_force;
   EXPECT_NEAR(-shear, force, 1e-3 * force);
   // The top block's average shear stress is F / 1 m^2.
-  EXPECT_NEAR(s.get_blocks()[1].stress[2], force, 2e-2 * force);
+  EXPECT_NEAR(s.blocks().list[1].stress[2], force, 2e-2 * force);
 }
 
 TEST(System, JointBreaksInTensionAndTheBlocksSeparate)
@@ -117,7 +117,7 @@ TEST(System, JointBreaksInTensionAndTheBlocksSeparate)
     ASSERT_EQ(s.advance(1e-4).outcome, StepOutcome::success);
   EXPECT_EQ(s.bonded_joints().list.size(), 0u);
   EXPECT_EQ(s.bonded_joints().n_broken, 1u);
-  const double gap = s.get_blocks()[1].displacement().x() - s.get_blocks()[0].displacement().x();
+  const double gap = s.blocks().list[1].displacement().x() - s.blocks().list[0].displacement().x();
   const double t = s.time();
   // Free separation from the break (within the first steps): gap ~ 2 (F/m) t^2 / 2.
   EXPECT_NEAR(gap, 2e6 / 2650.0 * t * t, 0.05 * 2e6 / 2650.0 * t * t);
@@ -147,10 +147,10 @@ TEST(System, JointBrokenInShearLeavesContactsThatCarryTheBlock)
   EXPECT_EQ(s.bonded_joints().n_broken, 1u);
   EXPECT_GT(s.contacts().counts().slide, 0u);
   // It rests on the base: it sinks no more than the contacts' penalty allows (W / p ~ 1e-7 m).
-  EXPECT_GT(s.get_blocks()[1].displacement().y(), -1e-4);
+  EXPECT_GT(s.blocks().list[1].displacement().y(), -1e-4);
   // It slides at g tan(phi) from the start: x = a t^2 / 2 (within 5 %: the first step's break).
   const double t = s.time(), expected = 0.5 * g * tan_phi * t * t;
-  EXPECT_NEAR(s.get_blocks()[1].displacement().x(), expected, 0.05 * expected);
+  EXPECT_NEAR(s.blocks().list[1].displacement().x(), expected, 0.05 * expected);
 }
 
 TEST(System, JointBreakingInASmallDisplacementAnalysisIsAFailure)

@@ -82,7 +82,7 @@ Eigen::VectorXd step_with(const std::vector<int>& order, const Eigen::MatrixXd& 
   const StepStatus status = s.advance(m.time.dt, step_parts::of_call(s, 0));
   EXPECT_EQ(status.outcome, StepOutcome::success) << status.message;
   Eigen::VectorXd v(12);
-  v << s.get_blocks()[0].velocity, s.get_blocks()[1].velocity;
+  v << s.blocks().list[0].velocity, s.blocks().list[1].velocity;
   return v;
 }
 } // namespace

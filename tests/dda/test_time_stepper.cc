@@ -87,7 +87,7 @@ TEST(TimeStepper, CutsByTheCutFactorAndGrowsBackToTheLargestStep)
   while (s.time() < 0.1)
   {
     const double tried = stepper.next_dt();
-    const double admissible = admissible_dt(s.get_blocks()[0].velocity.y());
+    const double admissible = admissible_dt(s.blocks().list[0].velocity.y());
     const std::size_t cuts_before = stepper.n_cuts();
     status = stepper.step();
     ASSERT_EQ(status.outcome, StepOutcome::success) << status.message;
@@ -110,7 +110,7 @@ TEST(TimeStepper, CutsByTheCutFactorAndGrowsBackToTheLargestStep)
   EXPECT_GT(stepper.n_cuts(), first_cuts);
   EXPECT_GT(n_steps_at_max, 10u);
   EXPECT_DOUBLE_EQ(stepper.next_dt(), dt_max);
-  EXPECT_NEAR(s.get_blocks()[0].velocity.y(), v0 - g * s.time(), 1e-9);
+  EXPECT_NEAR(s.blocks().list[0].velocity.y(), v0 - g * s.time(), 1e-9);
 }
 
 TEST(TimeStepper, FixedControlStopsWithAMessageInsteadOfCutting)
@@ -126,7 +126,7 @@ TEST(TimeStepper, FixedControlStopsWithAMessageInsteadOfCutting)
   // The failed step left the System as it was.
   EXPECT_EQ(s.n_steps(), 0u);
   EXPECT_EQ(s.time(), 0.0);
-  EXPECT_EQ(s.get_blocks()[0].velocity.y(), v0);
+  EXPECT_EQ(s.blocks().list[0].velocity.y(), v0);
 }
 
 TEST(TimeStepper, StopsWithAMessageBelowTheSmallestStep)
@@ -238,7 +238,7 @@ TEST(TimeStepper, BatheTakesPairsOfHalfStepsAndKeepsAFirstHalfWhoseSecondFails)
     EXPECT_DOUBLE_EQ(stepper.last_dt(), s.time() - start);
     EXPECT_LE(status.max_displacement, s.contacts().distances.max_step_displacement);
   }
-  EXPECT_NEAR(s.get_blocks()[0].velocity.y(), -v - g * s.time(), 1e-9);
+  EXPECT_NEAR(s.blocks().list[0].velocity.y(), -v - g * s.time(), 1e-9);
 }
 
 TEST(TimeStepper, TiedToABodyStepsOnTheLevelsOfTheLargestStep)
@@ -282,7 +282,7 @@ TEST(TimeStepper, TiedToABodyStepsOnTheLevelsOfTheLargestStep)
     EXPECT_EQ(k, std::round(k)) << dt;
   }
   EXPECT_EQ(stepper.next_dt(), dt_max);
-  EXPECT_NEAR(s.get_blocks()[0].velocity.y(), v0 - g * s.time(), 1e-9);
+  EXPECT_NEAR(s.blocks().list[0].velocity.y(), v0 - g * s.time(), 1e-9);
 }
 
 TEST(TimeStepper, TiedToABodyRegrowsOnTheLadderAfterAContactEvent)

@@ -119,7 +119,7 @@ SlipErrors run_shaken_block(double reversal_tolerance, const RockDamping& dampin
   s.begin_stage(StageMode::dynamic);
   const auto slip = [&s]
   {
-    const std::vector<Block>& b = s.get_blocks();
+    const std::vector<Block>& b = s.blocks().list;
     return b[1].displacement().x() - b[0].displacement().x();
   };
   const double slip0 = slip(), t0 = s.time();

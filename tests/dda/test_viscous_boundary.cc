@@ -164,7 +164,7 @@ TEST(ViscousBoundary, InclinedBlockIsDampedNormalToItsEdge)
     absorbed[i] = -s.energy().work_of_boundaries;
     for (int k = 0; k < 200; ++k)
       ASSERT_EQ(s.advance(1e-6).outcome, StepOutcome::success);
-    const Vector2 v = s.get_blocks()[0].velocity.head<2>();
+    const Vector2 v = s.blocks().list[0].velocity.head<2>();
     // Up to the edge's own rotation (about 1e-6 rad here: the tangential force acts off the
     // centroid), which turns the dashpots with the block under updated geometry.
     EXPECT_NEAR(v.dot(i == 0 ? t : n), 0.0, 1e-4 * v.norm());
@@ -221,7 +221,7 @@ TEST(ViscousBoundary, Vb1BeyondItsThresholdFeedsEnergyAndTheRunStops)
     ModelDescription m = bar(60, BoundaryType::vb1, ImpedanceKind::textbook, dt, 2.0);
     m.monitors.clear();
     System s(m);
-    EXPECT_EQ(s.stability_of(0, dt).is_source, dt > 3.5e-4);
+    EXPECT_EQ(stability_of(s, 0, dt).is_source, dt > 3.5e-4);
     StepStatus status;
     const auto n = static_cast<std::size_t>(std::llround(2.0 / dt));
     for (std::size_t k = 0; k < n && status.outcome == StepOutcome::success; ++k)

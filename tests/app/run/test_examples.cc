@@ -175,7 +175,7 @@ TEST(BlockStack, ReachesTheStaticStressOfItsWeight)
   const Material& m = scene.model.materials[0];
   const double w = m.density * std::abs(scene.model.gravity.y()) * 1.0;
   // Blocks 1, 2, 3 are stacked bottom to top on the base block 0.
-  const auto& blocks = system.get_blocks();
+  const auto& blocks = system.blocks().list;
   ASSERT_EQ(blocks.size(), 4u);
   const double load_on_top[3] = {2 * w, w, 0.0};
   for (std::size_t i = 0; i < 3; ++i)
