@@ -2,6 +2,7 @@
 
 #include "common/checkpoint_archive.h"
 #include "common/vtk_collection.h"
+#include "dda/vtu_text.h"
 
 #include <algorithm>
 #include <charconv>
@@ -17,28 +18,7 @@ namespace ddafem::dda
 namespace
 {
 namespace fs = std::filesystem;
-
-/// VTK cell types (vtkCellType.h): a simple polygon, convex or not, and a single point.
-constexpr int vtk_polygon = 7;
-constexpr int vtk_vertex = 1;
-constexpr int vtk_line = 3;
-constexpr int vtk_poly_line = 4;
-
-/// Appends the shortest decimal text that reads back as exactly `value` (std::to_chars).
-void append_number(std::string& out, double value)
-{
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  out.append(buffer, result.ptr);
-}
-
-template <typename Integer>
-void append_integer(std::string& out, Integer value)
-{
-  char buffer[24];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  out.append(buffer, result.ptr);
-}
+using namespace vtu;
 
 /// Von Mises equivalent stress [Pa] of a plane stress state (sxx, syy, sxy) [Pa]:
 /// sqrt(sxx^2 - sxx syy + syy^2 + 3 sxy^2).
@@ -49,88 +29,6 @@ double von_mises(const Voigt& stress)
   const double sxy = stress[2];
   return std::sqrt(std::max(0.0, sxx * sxx - sxx * syy + syy * syy + 3.0 * sxy * sxy));
 }
-
-/// Opens a cell-data DataArray element.
-void open_array(std::string& out, const char* type, const char* name, int n_components)
-{
-  out += "        <DataArray type=\"";
-  out += type;
-  out += "\" Name=\"";
-  out += name;
-  out += '"';
-  if (n_components > 1)
-  {
-    out += " NumberOfComponents=\"";
-    append_integer(out, n_components);
-    out += '"';
-  }
-  out += " format=\"ascii\">\n";
-}
-
-constexpr const char* close_array = "        </DataArray>\n";
-
-/// Appends a 2D vector as a 3-component tuple with z = 0.
-void append_vector(std::string& out, const Vector2& v)
-{
-  out += "          ";
-  append_number(out, v[0]);
-  out += ' ';
-  append_number(out, v[1]);
-  out += " 0\n";
-}
-
-/// The opening of a .vtu file up to the <Piece> element.
-void open_piece(std::string& out, double time, std::size_t n_points, std::size_t n_cells)
-{
-  out += "<?xml version=\"1.0\"?>\n"
-         "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-         "  <UnstructuredGrid>\n"
-         "    <FieldData>\n"
-         "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" "
-         "format=\"ascii\">";
-  append_number(out, time);
-  out += "</DataArray>\n"
-         "    </FieldData>\n"
-         "    <Piece NumberOfPoints=\"";
-  append_integer(out, n_points);
-  out += "\" NumberOfCells=\"";
-  append_integer(out, n_cells);
-  out += "\">\n";
-}
-
-/// One integer or number per line of a cell-data array, `get` of each item.
-template <typename Value, typename Item>
-void append_column(std::string& out, const std::vector<Item>& items, const char* type,
-                   const char* name,
-                   Value (*get)(const typename std::vector<Item>::value_type&)) // get: not deduced
-{
-  open_array(out, type, name, 1);
-  for (const Item& item : items)
-  {
-    out += "          ";
-    if constexpr (std::is_floating_point_v<Value>)
-      append_number(out, get(item));
-    else
-      append_integer(out, get(item));
-    out += '\n';
-  }
-  out += close_array;
-}
-
-/// A 3-component cell-data array of 2D vectors (z = 0), `get` of each item.
-template <typename Item>
-void append_vector_column(std::string& out, const std::vector<Item>& items, const char* name,
-                          Vector2 (*get)(const Item&))
-{
-  open_array(out, "Float64", name, 3);
-  for (const Item& item : items)
-    append_vector(out, get(item));
-  out += close_array;
-}
-
-constexpr const char* close_piece = "    </Piece>\n"
-                                    "  </UnstructuredGrid>\n"
-                                    "</VTKFile>\n";
 
 /// Points and cells of the blocks: their current vertices, block after block, z = 0 [m], and
 /// one polygon per block over its own vertices.
@@ -270,67 +168,6 @@ std::string contact_vtu_text(double time, const std::vector<ContactSnapshot>& co
   return out;
 }
 
-std::string lining_vtu_text(double time, const std::vector<LiningElementSnapshot>& elements)
-{
-  using E = LiningElementSnapshot;
-  std::string out;
-  out.reserve(512 + 256 * elements.size());
-  open_piece(out, time, 2 * elements.size(), elements.size());
-  out += "      <Points>\n"
-         "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (const E& e : elements)
-  {
-    append_vector(out, e.a);
-    append_vector(out, e.b);
-  }
-  out += close_array;
-  out += "      </Points>\n"
-         "      <Cells>\n";
-  // One line cell per element with its own two points: connectivity 2k, 2k + 1.
-  open_array(out, "Int64", "connectivity", 1);
-  for (std::size_t k = 0; k < elements.size(); ++k)
-  {
-    out += "          ";
-    append_integer(out, 2 * k);
-    out += ' ';
-    append_integer(out, 2 * k + 1);
-    out += '\n';
-  }
-  out += close_array;
-  open_array(out, "Int64", "offsets", 1);
-  for (std::size_t k = 0; k < elements.size(); ++k)
-  {
-    out += "          ";
-    append_integer(out, 2 * k + 2);
-    out += '\n';
-  }
-  out += close_array;
-  append_column<int>(out, elements, "UInt8", "types", [](const E&) { return vtk_line; });
-  out += "      </Cells>\n"
-         "      <CellData Scalars=\"utilisation\">\n";
-  append_column<std::size_t>(out, elements, "Int64", "lining", [](const E& e) { return e.lining; });
-  append_column<std::size_t>(out, elements, "Int64", "element",
-                             [](const E& e) { return e.element; });
-  append_column<int>(out, elements, "Int32", "state",
-                     [](const E& e) { return static_cast<int>(e.state); });
-  append_column<double>(out, elements, "Float64", "axial_force",
-                        [](const E& e) { return e.forces.axial_force; });
-  append_column<double>(out, elements, "Float64", "shear_force",
-                        [](const E& e) { return e.forces.shear_force; });
-  append_column<double>(out, elements, "Float64", "moment",
-                        [](const E& e)
-                        {
-                          const double a = e.forces.bending_moment_a();
-                          const double b = e.forces.bending_moment_b();
-                          return std::abs(a) >= std::abs(b) ? a : b;
-                        });
-  append_column<double>(out, elements, "Float64", "utilisation",
-                        [](const E& e) { return e.utilisation; });
-  out += "      </CellData>\n";
-  out += close_piece;
-  return out;
-}
-
 /// Points, cells and point data of the bolts: one polyline per bolt through its points.
 void append_bolt_geometry(std::string& out, const std::vector<BoltSnapshot>& bolts)
 {
@@ -425,11 +262,6 @@ std::string VtuSeriesWriter::write(double time, const std::vector<BlockSnapshot>
 std::string VtuSeriesWriter::write(double time, const std::vector<ContactSnapshot>& contacts)
 {
   return write_text(time, contact_vtu_text(time, contacts));
-}
-
-std::string VtuSeriesWriter::write(double time, const std::vector<LiningElementSnapshot>& elements)
-{
-  return write_text(time, lining_vtu_text(time, elements));
 }
 
 std::string VtuSeriesWriter::write(double time, const std::vector<BoltSnapshot>& bolts)

@@ -5,7 +5,6 @@
 
 #include "common/checkpoint_fwd.h"
 #include "dda/bolt_snapshot.h"
-#include "dda/lining.h"
 #include "dda/snapshot.h"
 
 #include <string>
@@ -31,11 +30,6 @@ public:
   /// 1 slide, 2 lock, 3 bonded joint end), normal (3-component), normal_force [N, compression
   /// positive], shear_force [N], gap [m, negative: penetration] and slip [m].
   std::string write(double time, const std::vector<ContactSnapshot>& contacts);
-  /// Writes one snapshot of linings' elements: one VTK_LINE cell per element with cell data
-  /// lining, element, state (Int32: 0 intact, 1 broken, 2 on one block), axial_force and
-  /// shear_force [N/m], moment (the end moment of larger magnitude, M(0) or M(L)) [N m/m] and
-  /// utilisation [-].
-  std::string write(double time, const std::vector<LiningElementSnapshot>& elements);
   /// Writes one snapshot of bolts: one VTK_POLY_LINE cell per bolt (BoltSnapshot's points),
   /// cell data bolt_id, type (Int32: 0 end_anchored, 1 grouted), axial_force [N, tension
   /// positive; grouted: the largest of its crossings], shear_force [N, grouted: the largest
@@ -43,6 +37,10 @@ public:
   /// point_axial_force and point_shear_force [N] (a grouted bolt's crossings' own; 0 at its
   /// ends).
   std::string write(double time, const std::vector<BoltSnapshot>& bolts);
+
+  /// Writes one snapshot whose .vtu text is `text` (dda/vtu_text.h): an element kind's own
+  /// series, written by its outputs (app/run/<element>_outputs.cc).
+  std::string write_text(double time, const std::string& text);
 
   std::size_t n_written() const { return entries.size(); }
 
@@ -52,7 +50,6 @@ public:
   void load(CheckpointIn& archive);
 
 private:
-  std::string write_text(double time, const std::string& text);
   void write_pvd() const;
   std::string directory;
   std::string basename;

@@ -180,21 +180,14 @@ void DistributedWaveModel::Impl::assemble()
 
 void DistributedWaveModel::Impl::assemble_domain()
 {
-  const unsigned int n = fe.n_dofs_per_cell();
-  const QGauss<2> quadrature(fe.degree + 1);
-  FEValues<2> values(fe, quadrature, update_values | update_gradients | update_JxW_values);
-  FullMatrix<double> cell_mass(n, n), cell_stiffness(n, n);
-  std::vector<types::global_dof_index> dofs(n);
-  for (const auto& cell : dof_handler.active_cell_iterators())
-  {
-    if (!cell->is_locally_owned())
-      continue;
-    values.reinit(cell);
-    elastic_cell_matrices(values, description.density, lambda, mu, cell_mass, cell_stiffness);
-    cell->get_dof_indices(dofs);
-    constraints.distribute_local_to_global(cell_mass, dofs, mass);
-    constraints.distribute_local_to_global(cell_stiffness, dofs, stiffness);
-  }
+  for_each_elastic_cell(dof_handler, description.density, lambda, mu, true,
+                        [&](const std::vector<types::global_dof_index>& dofs,
+                            const FullMatrix<double>& cell_mass,
+                            const FullMatrix<double>& cell_stiffness)
+                        {
+                          constraints.distribute_local_to_global(cell_mass, dofs, mass);
+                          constraints.distribute_local_to_global(cell_stiffness, dofs, stiffness);
+                        });
 }
 
 void DistributedWaveModel::Impl::assemble_boundary()

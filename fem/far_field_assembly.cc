@@ -37,24 +37,15 @@ void ElasticWaveModel::Impl::assemble_matrices()
 
 void ElasticWaveModel::Impl::assemble_domain()
 {
-  const double rho = description.density;
-  const double lambda = elasticity.lambda;
-  const double mu = elasticity.mu;
-  const unsigned int n = fe.n_dofs_per_cell();
-
   // Consistent mass and plane elastic stiffness (deal.II step-8 form).
-  const QGauss<2> quadrature(fe.degree + 1);
-  FEValues<2> fe_values(fe, quadrature, update_values | update_gradients | update_JxW_values);
-  FullMatrix<double> cell_mass(n, n), cell_stiffness(n, n);
-  std::vector<types::global_dof_index> dofs(n);
-  for (const auto& cell : dof_handler.active_cell_iterators())
-  {
-    fe_values.reinit(cell);
-    elastic_cell_matrices(fe_values, rho, lambda, mu, cell_mass, cell_stiffness);
-    cell->get_dof_indices(dofs);
-    mass.add(dofs, cell_mass);
-    stiffness.add(dofs, cell_stiffness);
-  }
+  for_each_elastic_cell(dof_handler, description.density, elasticity.lambda, elasticity.mu, false,
+                        [&](const std::vector<types::global_dof_index>& dofs,
+                            const FullMatrix<double>& cell_mass,
+                            const FullMatrix<double>& cell_stiffness)
+                        {
+                          mass.add(dofs, cell_mass);
+                          stiffness.add(dofs, cell_stiffness);
+                        });
 }
 
 void ElasticWaveModel::Impl::assemble_boundary(SparseMatrix<double>& full_damping)

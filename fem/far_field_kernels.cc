@@ -5,6 +5,7 @@
 #include "fem/far_field_mesh.h"
 
 #include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/component_mask.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -113,6 +114,29 @@ void elastic_cell_matrices(const FEValues<2>& values, const double rho, const do
         cell_mass(i, j) += m * values.JxW(q);
       }
     }
+  }
+}
+
+void for_each_elastic_cell(
+    const DoFHandler<2>& dof_handler, const double rho, const double lambda, const double mu,
+    const bool owned_only,
+    const std::function<void(const std::vector<types::global_dof_index>&, const FullMatrix<double>&,
+                             const FullMatrix<double>&)>& add)
+{
+  const FiniteElement<2>& fe = dof_handler.get_fe();
+  const unsigned int n = fe.n_dofs_per_cell();
+  const QGauss<2> quadrature(fe.degree + 1);
+  FEValues<2> values(fe, quadrature, update_values | update_gradients | update_JxW_values);
+  FullMatrix<double> cell_mass(n, n), cell_stiffness(n, n);
+  std::vector<types::global_dof_index> dofs(n);
+  for (const auto& cell : dof_handler.active_cell_iterators())
+  {
+    if (owned_only && !cell->is_locally_owned())
+      continue;
+    values.reinit(cell);
+    elastic_cell_matrices(values, rho, lambda, mu, cell_mass, cell_stiffness);
+    cell->get_dof_indices(dofs);
+    add(dofs, cell_mass, cell_stiffness);
   }
 }
 

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <utility>
 #include <vector>
@@ -49,6 +50,15 @@ void add_support_constraints(const dealii::DoFHandler<2>& dof_handler,
 void elastic_cell_matrices(const dealii::FEValues<2>& values, double rho, double lambda, double mu,
                            dealii::FullMatrix<double>& cell_mass,
                            dealii::FullMatrix<double>& cell_stiffness);
+
+/// Calls add(dofs, cell_mass, cell_stiffness) for each active cell of `dof_handler` (only the
+/// locally owned ones if `owned_only`) with its elastic_cell_matrices (rho [kg/m^3], Lame lambda,
+/// mu [Pa]; Gauss quadrature of degree + 1 points) and its dof indices, cell after cell.
+void for_each_elastic_cell(
+    const dealii::DoFHandler<2>& dof_handler, double rho, double lambda, double mu, bool owned_only,
+    const std::function<void(const std::vector<dealii::types::global_dof_index>&,
+                             const dealii::FullMatrix<double>&, const dealii::FullMatrix<double>&)>&
+        add);
 
 using Matrix2 = std::array<std::array<double, 2>, 2>;
 

@@ -7,6 +7,7 @@
 
 #include "common/format.h"
 #include "dda/lining.h"
+#include "dda/vtu_text.h"
 #include "dda/vtu_writer.h"
 
 #include <algorithm>
@@ -24,6 +25,67 @@ double governing_moment(const dda::FrameForces& f)
 {
   return std::abs(f.bending_moment_a()) >= std::abs(f.bending_moment_b()) ? f.bending_moment_a()
                                                                           : f.bending_moment_b();
+}
+
+/// The .vtu text of the linings' elements at `time` [s]: one VTK_LINE cell per element with cell
+/// data lining, element, state (Int32: 0 intact, 1 broken, 2 on one block), axial_force and
+/// shear_force [N/m], moment (the end moment of larger magnitude, M(0) or M(L)) [N m/m] and
+/// utilisation [-].
+std::string lining_vtu_text(double time, const std::vector<dda::LiningElementSnapshot>& elements)
+{
+  using namespace dda::vtu;
+  using E = dda::LiningElementSnapshot;
+  std::string out;
+  out.reserve(512 + 256 * elements.size());
+  open_piece(out, time, 2 * elements.size(), elements.size());
+  out += "      <Points>\n"
+         "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (const E& e : elements)
+  {
+    append_vector(out, e.a);
+    append_vector(out, e.b);
+  }
+  out += close_array;
+  out += "      </Points>\n"
+         "      <Cells>\n";
+  // One line cell per element with its own two points: connectivity 2k, 2k + 1.
+  open_array(out, "Int64", "connectivity", 1);
+  for (std::size_t k = 0; k < elements.size(); ++k)
+  {
+    out += "          ";
+    append_integer(out, 2 * k);
+    out += ' ';
+    append_integer(out, 2 * k + 1);
+    out += '\n';
+  }
+  out += close_array;
+  open_array(out, "Int64", "offsets", 1);
+  for (std::size_t k = 0; k < elements.size(); ++k)
+  {
+    out += "          ";
+    append_integer(out, 2 * k + 2);
+    out += '\n';
+  }
+  out += close_array;
+  append_column<int>(out, elements, "UInt8", "types", [](const E&) { return vtk_line; });
+  out += "      </Cells>\n"
+         "      <CellData Scalars=\"utilisation\">\n";
+  append_column<std::size_t>(out, elements, "Int64", "lining", [](const E& e) { return e.lining; });
+  append_column<std::size_t>(out, elements, "Int64", "element",
+                             [](const E& e) { return e.element; });
+  append_column<int>(out, elements, "Int32", "state",
+                     [](const E& e) { return static_cast<int>(e.state); });
+  append_column<double>(out, elements, "Float64", "axial_force",
+                        [](const E& e) { return e.forces.axial_force; });
+  append_column<double>(out, elements, "Float64", "shear_force",
+                        [](const E& e) { return e.forces.shear_force; });
+  append_column<double>(out, elements, "Float64", "moment",
+                        [](const E& e) { return governing_moment(e.forces); });
+  append_column<double>(out, elements, "Float64", "utilisation",
+                        [](const E& e) { return e.utilisation; });
+  out += "      </CellData>\n";
+  out += close_piece;
+  return out;
 }
 
 nlohmann::json element_json(const dda::Lining& l, std::size_t k)
@@ -65,7 +127,10 @@ public:
   void write_series(const dda::System& system) override
   {
     if (series)
-      series->write(system.time(), dda::lining_snapshot(system.elements<dda::Linings>().all()));
+      series->write_text(
+          system.time(),
+          lining_vtu_text(system.time(),
+                          dda::lining_snapshot(system.elements<dda::Linings>().all())));
   }
   void save_series(CheckpointOut& archive) const override
   {
