@@ -138,12 +138,11 @@ void BondedJoints::add_work_of_damping(const ElementHost& host, const ModelDescr
 
 void BondedJoints::move_points(const ElementHost& host, const Eigen::VectorXd& d)
 {
-  const auto move = [&](MaterialPoint& p) { host.move_with_block(p, d); };
   for (Joint& j : list)
     for (JointPoint& p : j.points)
     {
-      move(p.on_a);
-      move(p.on_b);
+      host.move_with_block(p.on_a, d);
+      host.move_with_block(p.on_b, d);
     }
 }
 

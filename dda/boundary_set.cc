@@ -141,11 +141,10 @@ void BoundarySet::add_work(const StepInput& in, const Eigen::VectorXd& d,
 
 void BoundarySet::move_points(const ElementHost& host, const Eigen::VectorXd& d)
 {
-  const auto move = [&](MaterialPoint& p) { host.move_with_block(p, d); };
   for (BoundaryEdge& e : edges)
-    move(e.midpoint);
+    host.move_with_block(e.midpoint, d);
   for (Support& s : supports)
-    move(s.point);
+    host.move_with_block(s.point, d);
 }
 
 void BoundarySet::add_loads(const std::function<void(std::size_t, double)>& add) const

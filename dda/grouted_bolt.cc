@@ -338,15 +338,14 @@ void GroutedBolts::add_loads(const std::function<void(std::size_t, double)>& add
 
 void GroutedBolts::move_points(const ElementHost& host, const Eigen::VectorXd& d)
 {
-  const auto move = [&](MaterialPoint& p) { host.move_with_block(p, d); };
   for (GroutedBolt& b : grouted_bolts)
   {
-    move(b.head);
-    move(b.anchor);
+    host.move_with_block(b.head, d);
+    host.move_with_block(b.anchor, d);
     for (GroutedCrossing& c : b.crossings)
     {
-      move(c.on_a);
-      move(c.on_b);
+      host.move_with_block(c.on_a, d);
+      host.move_with_block(c.on_b, d);
     }
   }
 }

@@ -78,13 +78,12 @@ void PointSet::add_work(const ElementHost& host, const Eigen::VectorXd& d, doubl
 
 void PointSet::move_points(const ElementHost& host, const Eigen::VectorXd& d)
 {
-  const auto move = [&](MaterialPoint& p) { host.move_with_block(p, d); };
   for (AttachedLoad& l : loads)
-    move(l.point);
+    host.move_with_block(l.point, d);
   for (AttachedFixedPoint& f : fixed_points)
-    move(f.point);
+    host.move_with_block(f.point, d);
   for (MaterialPoint& m : monitors)
-    move(m);
+    host.move_with_block(m, d);
 }
 
 void PointSet::add_loads(const std::function<void(std::size_t, double)>& add, double t) const
